@@ -1,0 +1,1 @@
+"""Small compiled building blocks shared by the models and rigs (numba)."""

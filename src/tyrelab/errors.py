@@ -1,0 +1,41 @@
+"""The one exception type that reaches a user.
+
+Every reader and parser raises :class:`InputError` for bad input, naming the
+file, line or field and what was expected. The command line catches it and
+prints the message as one line on stderr with a non-zero exit; Python users get
+an ordinary exception with the same message.
+"""
+
+from __future__ import annotations
+
+
+class InputError(ValueError):
+    """Bad input from a user: a file, a field, a command-line value.
+
+    Parameters
+    ----------
+    message : str
+        What was wrong and what was expected.
+    source : str, optional
+        The file (or "command line", "study spec") the bad input came from.
+    line : int, optional
+        1-based line number in ``source``.
+    field : str, optional
+        The key, column or option that was wrong.
+    """
+
+    def __init__(self, message: str, source: str | None = None,
+                 line: int | None = None, field: str | None = None):
+        self.source = source
+        self.line = line
+        self.field = field
+        self.reason = message
+        where = ""
+        if source is not None:
+            where = str(source)
+            if line is not None:
+                where += f", line {line}"
+            where += ": "
+        if field is not None:
+            where += f"{field}: "
+        super().__init__(where + message)

@@ -1,0 +1,250 @@
+"""Compiled time loop of the towed tyre test trailer (see :mod:`.trailer`).
+
+The trailer is one rigid body hanging on a hitch that moves in a straight
+line at constant speed. The hitch is a universal joint: the body pitches
+about the world y axis through the hitch and rolls about its own x axis,
+orientation ``R = Ry(theta) Rx(phi)``; yaw is held by the towing vehicle.
+Both wheels spin freely about their axles. Equations of motion (Euler's
+equations about the hitch, which moves at constant velocity and so is an
+inertial point, projected on the two joint axes)::
+
+    (J^T I J) q'' = J^T (tau_b - w x I w - I Jdot q')
+
+with body angular velocity ``w = J q'``, ``J = [Rx(phi)^T e_y, e_x]`` and
+``Jdot q' = theta' phi' (0, -sin phi, -cos phi)``. Integrated with the
+semi-implicit (symplectic) Euler method at a fixed step.
+"""
+
+import math
+
+import numba as nb
+import numpy as np
+
+from ..tyre.kernel import OUT_SIZE, wheel_force
+from ..tyre.contact.point import GEO_SIZE
+from .frames import c_axis_loads
+
+# trailer parameter layout (tp)
+TP_SPEED, TP_L, TP_TRACK, TP_HITCH_Z, TP_MASS, TP_CGX, TP_CGY, TP_CGZ = range(8)
+TP_I = 8            # 9 entries, body inertia about the hitch, row-major
+TP_ISPIN = 17
+TP_MWHEEL = 18
+TP_G = 19
+TP_ROAD_Y = 20      # road y of the test wheel's track = world y + TP_ROAD_Y
+TP_SIZE = 21
+
+# state layout
+S_THETA, S_PHI, S_DTHETA, S_DPHI, S_WR, S_WL, S_T, S_VXR, S_VYR, S_VZR = range(10)
+S_SIZE = 10
+
+# output columns
+CHANNELS = ("RUNTIME", "DISTANCE", "FX", "FY", "FZ", "MX", "MY", "MZ", "FXW", "FYW", "FZW",
+            "X_WC", "Y_WC", "Z_WC", "VX_WC", "VY_WC", "VZ_WC", "ROTSPEED", "INCLANGL", "DEFLECT",
+            "X_CP", "Y_CP", "Z_CP", "FX_HUB", "FY_HUB", "FZ_HUB", "FZ_LEFT", "PITCH", "ROLL")
+N_CH = len(CHANNELS)
+
+
+@nb.njit(cache=True)
+def _rotation(theta, phi, R):
+    ct, st = math.cos(theta), math.sin(theta)
+    cp, sp = math.cos(phi), math.sin(phi)
+    # Ry(theta) @ Rx(phi)
+    R[0, 0] = ct
+    R[0, 1] = st * sp
+    R[0, 2] = st * cp
+    R[1, 0] = 0.0
+    R[1, 1] = cp
+    R[1, 2] = -sp
+    R[2, 0] = -st
+    R[2, 1] = ct * sp
+    R[2, 2] = ct * cp
+
+
+@nb.njit(cache=True)
+def trailer_steps(model,
+                  vpR, knR, coR, cpR, gpR, zR, ziR,
+                  vpL, knL, coL, cpL, gpL, zL, ziL,
+                  tp, state, n_steps, dt, out_every, out, row0, x_start):
+    """Advance the trailer ``n_steps`` steps from ``state``; write every
+    ``out_every``-th step into ``out`` starting at row ``row0``. Returns the
+    next free row."""
+    R = np.empty((3, 3))
+    Ib = tp[TP_I:TP_I + 9].reshape(3, 3)
+    geo = np.empty(GEO_SIZE)
+    fR = np.empty(OUT_SIZE)
+    fL = np.empty(OUT_SIZE)
+    cax = np.empty(6)
+    L = tp[TP_L]
+    half = 0.5 * tp[TP_TRACK]
+    V = tp[TP_SPEED]
+    g = tp[TP_G]
+    m = tp[TP_MASS]
+    ispin = tp[TP_ISPIN]
+    mw = tp[TP_MWHEEL]
+    road_y = tp[TP_ROAD_Y]
+    row = row0
+    for step in range(n_steps):
+        th = state[S_THETA]
+        ph = state[S_PHI]
+        dth = state[S_DTHETA]
+        dph = state[S_DPHI]
+        t = state[S_T]
+        _rotation(th, ph, R)
+        hx = x_start + V * t
+        hz = tp[TP_HITCH_Z]
+        # world angular velocity: dth * e_y + dph * (Ry e_x)
+        wx = dph * math.cos(th)
+        wy = dth
+        wz = -dph * math.sin(th)
+        # axis of the wheels (body y) in the world
+        ax, ay, az = R[0, 1], R[1, 1], R[2, 1]
+        tau0 = 0.0
+        tau1 = 0.0
+        tau2 = 0.0
+        spinR = 0.0
+        spinL = 0.0
+        for side in range(2):
+            by = -half if side == 0 else half   # right (test) wheel first
+            rx = -L * R[0, 0] + by * R[0, 1]
+            ry = -L * R[1, 0] + by * R[1, 1]
+            rz = -L * R[2, 0] + by * R[2, 1]
+            cx = hx + rx
+            cy = ry
+            cz = hz + rz
+            vx = V + wy * rz - wz * ry
+            vy = wz * rx - wx * rz
+            vz = wx * ry - wy * rx
+            if side == 0:
+                wheel_force(model, vpR, knR, coR, cpR, gpR, zR, ziR, cx, cy + road_y, cz,
+                            ax, ay, az, vx, vy, vz, state[S_WR], geo, fR)
+                fR[4] -= road_y  # contact point back to world y
+                f = fR
+            else:
+                wheel_force(model, vpL, knL, coL, cpL, gpL, zL, ziL, cx, cy - road_y, cz,
+                            ax, ay, az, vx, vy, vz, state[S_WL], geo, fL)
+                fL[4] += road_y
+                f = fL
+            # moment about the hitch of the force at the contact point
+            px = f[3] - hx
+            py = f[4]
+            pz = f[5] - hz
+            tau0 += py * f[2] - pz * f[1]
+            tau1 += pz * f[0] - px * f[2]
+            tau2 += px * f[1] - py * f[0]
+            # spin: moment about the axle of the force at the contact point
+            qx = f[3] - cx
+            qy = f[4] - cy
+            qz = f[5] - cz
+            sm = ((qy * f[2] - qz * f[1]) * ax + (qz * f[0] - qx * f[2]) * ay
+                  + (qx * f[1] - qy * f[0]) * az)
+            if side == 0:
+                spinR = sm
+                if (step % out_every) == 0 and row < out.shape[0]:
+                    c_axis_loads(cx, cy, cz, ax, ay, az, fR, cax)
+                    o = out[row]
+                    o[0] = t
+                    o[1] = cx - (x_start - L)
+                    for k in range(6):
+                        o[2 + k] = cax[k]
+                    o[8] = fR[11]
+                    o[9] = fR[12]
+                    o[10] = fR[13]
+                    o[11] = cx
+                    o[12] = cy
+                    o[13] = cz
+                    o[14] = vx
+                    o[15] = vy
+                    o[16] = vz
+                    o[17] = state[S_WR]
+                    o[18] = math.asin(max(-1.0, min(1.0, ax * fR[6] + ay * fR[7] + az * fR[8])))
+                    o[19] = fR[9] if fR[9] > 0.0 else 0.0
+                    o[20] = fR[3]
+                    o[21] = fR[4]
+                    o[22] = fR[5]
+                    # load-cell reading: tyre force less the wheel's inertia force,
+                    # load cells tared with the wheel hanging free
+                    if step > 0:
+                        acx = (vx - state[S_VXR]) / dt
+                        acy = (vy - state[S_VYR]) / dt
+                        acz = (vz - state[S_VZR]) / dt
+                    else:
+                        acx = 0.0
+                        acy = 0.0
+                        acz = 0.0
+                    o[23] = cax[0] - mw * (acx * R[0, 0] + acy * R[1, 0] + acz * R[2, 0])
+                    o[24] = cax[1] - mw * (acx * ax + acy * ay + acz * az)
+                    o[25] = cax[2] - mw * (acx * R[0, 2] + acy * R[1, 2] + acz * R[2, 2])
+                    o[27] = th
+                    o[28] = ph
+                state[S_VXR] = vx
+                state[S_VYR] = vy
+                state[S_VZR] = vz
+            else:
+                spinL = sm
+                if (step % out_every) == 0 and row < out.shape[0]:
+                    out[row, 26] = fL[13]
+        if (step % out_every) == 0 and row < out.shape[0]:
+            row += 1
+        # gravity about the hitch: r_cg x (0, 0, -m g)
+        gx = R[0, 0] * tp[TP_CGX] + R[0, 1] * tp[TP_CGY] + R[0, 2] * tp[TP_CGZ]
+        gy = R[1, 0] * tp[TP_CGX] + R[1, 1] * tp[TP_CGY] + R[1, 2] * tp[TP_CGZ]
+        tau0 += gy * (-m * g)
+        tau1 -= gx * (-m * g)
+        # to the body frame: tau_b = R^T tau
+        tb0 = R[0, 0] * tau0 + R[1, 0] * tau1 + R[2, 0] * tau2
+        tb1 = R[0, 1] * tau0 + R[1, 1] * tau1 + R[2, 1] * tau2
+        tb2 = R[0, 2] * tau0 + R[1, 2] * tau1 + R[2, 2] * tau2
+        sp_ = math.sin(ph)
+        cp_ = math.cos(ph)
+        j1 = (0.0, cp_, -sp_)          # column for theta'
+        # body angular velocity and velocity-product terms
+        w0 = dph
+        w1 = dth * cp_
+        w2 = -dth * sp_
+        Iw0 = Ib[0, 0] * w0 + Ib[0, 1] * w1 + Ib[0, 2] * w2
+        Iw1 = Ib[1, 0] * w0 + Ib[1, 1] * w1 + Ib[1, 2] * w2
+        Iw2 = Ib[2, 0] * w0 + Ib[2, 1] * w1 + Ib[2, 2] * w2
+        g0 = w1 * Iw2 - w2 * Iw1
+        g1 = w2 * Iw0 - w0 * Iw2
+        g2 = w0 * Iw1 - w1 * Iw0
+        jd1 = -dth * dph * sp_
+        jd2 = -dth * dph * cp_
+        r0 = tb0 - g0 - (Ib[0, 1] * jd1 + Ib[0, 2] * jd2)
+        r1 = tb1 - g1 - (Ib[1, 1] * jd1 + Ib[1, 2] * jd2)
+        r2 = tb2 - g2 - (Ib[2, 1] * jd1 + Ib[2, 2] * jd2)
+        # generalized mass matrix M = J^T I J, J = [j1, e_x]
+        Ij1_0 = Ib[0, 1] * j1[1] + Ib[0, 2] * j1[2]
+        Ij1_1 = Ib[1, 1] * j1[1] + Ib[1, 2] * j1[2]
+        Ij1_2 = Ib[2, 1] * j1[1] + Ib[2, 2] * j1[2]
+        m11 = j1[1] * Ij1_1 + j1[2] * Ij1_2
+        m12 = Ij1_0
+        m22 = Ib[0, 0]
+        q1 = j1[1] * r1 + j1[2] * r2
+        q2 = r0
+        det = m11 * m22 - m12 * m12
+        ddth = (m22 * q1 - m12 * q2) / det
+        ddph = (m11 * q2 - m12 * q1) / det
+        # semi-implicit Euler
+        state[S_DTHETA] = dth + dt * ddth
+        state[S_DPHI] = dph + dt * ddph
+        state[S_THETA] = th + dt * state[S_DTHETA]
+        state[S_PHI] = ph + dt * state[S_DPHI]
+        state[S_WR] += dt * spinR / ispin
+        state[S_WL] += dt * spinL / ispin
+        state[S_T] = t + dt
+    return row
+
+
+# One entry point per contact model. Calling the generic loop with a constant
+# model id lets numba compile it for that literal value only (dead branches
+# pruned), so each model pays only for its own compilation, and the result is
+# cached on disk. A model added to tyrelab.tyre.kernel.CONTACT_MODELS gets a
+# line here.
+@nb.njit(cache=True)
+def trailer_steps_point(vpR, knR, coR, cpR, gpR, zR, ziR, vpL, knL, coL, cpL, gpL, zL, ziL,
+                        tp, state, n_steps, dt, out_every, out, row0, x_start):
+    return trailer_steps(0, vpR, knR, coR, cpR, gpR, zR, ziR, vpL, knL, coL, cpL, gpL, zL, ziL,
+                         tp, state, n_steps, dt, out_every, out, row0, x_start)
+
+
+ENTRY = {0: trailer_steps_point}

@@ -1,0 +1,67 @@
+"""Running a compiled rig loop in chunks, with a progress bar, into a signal table."""
+
+from __future__ import annotations
+
+import sys
+import time
+
+import numpy as np
+
+from ..signal import make_signal
+
+#: runs expected to take longer than this [s] show a progress bar by default
+PROGRESS_AFTER = 2.0
+
+
+def run_chunks(advance, n_steps: int, out_every: int, n_channels: int, dt: float,
+               progress: bool | None = None, chunk_time: float = 0.5) -> np.ndarray:
+    """Call ``advance(n, out, row) -> row`` until ``n_steps`` steps are done.
+
+    The compiled loop runs in chunks of ``chunk_time`` simulated seconds so a
+    progress bar (tqdm, on stderr) can follow long runs; no Python code runs
+    per time step. Returns the filled output array.
+    """
+    n_out = (n_steps - 1) // out_every + 1 if n_steps > 0 else 0
+    out = np.zeros((n_out, n_channels))
+    per_chunk = max(out_every, int(round(chunk_time / dt)) // out_every * out_every)
+    bar = None
+    done = 0
+    row = 0
+    started = time.perf_counter()
+    while done < n_steps:
+        n = min(per_chunk, n_steps - done)
+        row = advance(n, out, row)
+        done += n
+        if bar is None and progress is not False and done < n_steps:
+            elapsed = time.perf_counter() - started
+            expected = elapsed * n_steps / done
+            if progress or (expected > PROGRESS_AFTER and sys.stderr.isatty()) or progress is True:
+                from tqdm import tqdm
+                bar = tqdm(total=n_steps * dt, unit="s sim", desc="simulating", file=sys.stderr,
+                           bar_format="{l_bar}{bar}| {n:.1f}/{total:.1f} s simulated [{elapsed}<{remaining}]")
+                bar.update(done * dt)
+        elif bar is not None:
+            bar.update(n * dt)
+    if bar is not None:
+        bar.close()
+    return out[:row]
+
+
+class SimulationError(RuntimeError):
+    """A run produced a non-finite value or a negative normal force."""
+
+
+def to_signal(data: np.ndarray, channels, metadata: dict):
+    """Wrap a rig's output array as a signal table, refusing NaN or tension.
+
+    A model must never hand out a NaN or a negative normal force; if one
+    does, this stops the run with an error instead of writing it.
+    """
+    if not np.all(np.isfinite(data)):
+        bad = [c for k, c in enumerate(channels) if not np.all(np.isfinite(data[:, k]))]
+        raise SimulationError(f"the simulation diverged (non-finite {', '.join(bad)}); "
+                              "try a smaller time step")
+    for name in ("FZW", "FZ_LEFT"):
+        if name in channels and np.any(data[:, list(channels).index(name)] < 0):
+            raise SimulationError(f"negative normal force in {name}")
+    return make_signal({name: data[:, k] for k, name in enumerate(channels)}, metadata)

@@ -1,0 +1,247 @@
+"""The towed single-axle tyre test trailer of thesis 3.4 and 5.2.
+
+A rigid frame without suspension carries two wheels. The right wheel is the
+test wheel and runs on the road under test; the left wheel runs on flat
+ground. A towing vehicle pulls the hitch along a straight line at constant
+speed; the frame pitches and rolls about the hitch (the towing vehicle holds
+yaw). The six load cells of the real trailer measured the forces and
+moments between the test wheel's sub-frame and the main frame; here they
+are the ``*_HUB`` channels, and the tyre's own loads at the wheel centre
+are the TYDEX channels ``FX`` ... ``MZ``.
+
+The thesis does not publish the trailer's geometry, mass or inertia. The
+values below are assumptions, chosen so the static test-wheel load equals
+the load cases of Table 3-4 exactly (the ballast's position along the frame
+is solved for); they are listed in ARCHITECTURE.md.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..errors import InputError
+from ..tyre.kernel import TyreModel
+from ..tyre.library import load_cases
+from ..road.base import Road
+from ..road.obstacles import Flat
+from ..road.spec import road_from_spec
+from . import _trailer_kernel as K
+from .simulation import run_chunks, to_signal
+
+G = 9.80665
+
+
+@dataclass
+class TrailerGeometry:
+    """Assumed geometry and masses of the test trailer (SI).
+
+    Attributes
+    ----------
+    hitch_to_axle : float
+        Horizontal distance from the hitch to the axle [m].
+    track : float
+        Distance between the wheel centres [m] (wider than the towing
+        vehicle's, thesis 3.4).
+    frame_cg_behind_hitch, frame_cg_height : float
+        Bare trailer (frame, sub-frame, both wheels) centre of mass, behind
+        and above the hitch [m].
+    frame_gyration : tuple
+        Radii of gyration of the bare trailer about its centre of mass
+        (roll, pitch, yaw) [m].
+    ballast_height : float
+        Height of the ballast's centre of mass above the hitch [m].
+    ballast_size : tuple
+        Ballast block length, width, height [m] (for its inertia).
+    """
+
+    hitch_to_axle: float = 3.0
+    track: float = 2.4
+    frame_cg_behind_hitch: float = 2.7
+    frame_cg_height: float = 0.3
+    frame_gyration: tuple = (0.9, 1.1, 1.2)
+    ballast_height: float = 0.6
+    ballast_size: tuple = (1.2, 1.5, 0.5)
+
+
+@dataclass
+class TrailerSetup:
+    """Masses and initial state solved for one load case."""
+
+    wheel_load: float
+    frame_mass: float
+    ballast_mass: float
+    ballast_behind_hitch: float
+    hitch_height: float
+    pitch0: float
+    inertia: np.ndarray
+    mass: float
+    cg: np.ndarray
+
+
+def _block_inertia(m, a, b, c):
+    return np.diag([m * (b * b + c * c) / 12, m * (a * a + c * c) / 12, m * (a * a + b * b) / 12])
+
+
+def _about_point(m, r, I_cg):
+    r = np.asarray(r, float)
+    return I_cg + m * (np.dot(r, r) * np.eye(3) - np.outer(r, r))
+
+
+def trailer_setup(tyre, geometry: TrailerGeometry, load_case: str | float,
+                  reference_load: float) -> TrailerSetup:
+    """Solve the frame and ballast masses so the static test-wheel load is exact.
+
+    The bare trailer is sized so that each wheel carries ``reference_load``
+    (LC1) with the frame level; the ballast of the load case (Table 3-4) is
+    placed along the frame where it brings the wheel load to the table
+    value at the pitch the tyre's deflection gives.
+    """
+    gm = geometry
+    L = gm.hitch_to_axle
+    if isinstance(load_case, str):
+        cases = load_cases()
+        key = load_case.upper()
+        if key not in cases.index:
+            raise InputError(f"unknown load case '{load_case}', expected one of "
+                             f"{', '.join(cases.index)} or a wheel load in N", field="load")
+        target = float(cases.loc[key, "wheel_load_N"])
+        ballast = float(cases.loc[key, "ballast_kg"])
+    else:
+        target = float(load_case)
+        if not (np.isfinite(target) and target > 0):
+            raise InputError(f"wheel load must be a positive number of newtons, got {load_case}",
+                             field="load")
+        ballast = None
+    r0 = tyre.unloaded_radius
+    hitch_z = r0 - tyre.static_deflection(reference_load)   # level frame at the reference load
+    # bare trailer: two wheels carry 2 * reference_load with the frame level
+    frame_mass = 2.0 * reference_load * L / (G * gm.frame_cg_behind_hitch)
+    defl = tyre.static_deflection(target)
+    s = (r0 - defl - hitch_z) / L
+    if abs(s) >= 0.5:
+        raise InputError(f"load {target:.0f} N deflects the tyre {defl * 1e3:.0f} mm: the trailer "
+                         "cannot stand level enough on its hitch", field="load")
+    theta = math.asin(s)  # positive: rear up
+    c, sn = math.cos(theta), math.sin(theta)
+
+    def x_lever(xb, zb):  # horizontal distance behind the hitch after pitching
+        return xb * c - zb * sn
+
+    frame_lever = x_lever(gm.frame_cg_behind_hitch, gm.frame_cg_height)
+    wheel_lever = L * c
+    needed = 2.0 * target * wheel_lever / G - frame_mass * frame_lever  # kg m from ballast
+    if ballast is None:  # a load in N: ballast of the LC3 size, or none if not needed
+        ballast = 0.0 if abs(needed) < 1e-9 else max(needed / (L * c), 0.0)
+    if ballast == 0.0:
+        if abs(needed) > 1e-6 * frame_mass * L:
+            # no ballast: the bare trailer's own load; move its centre of mass instead
+            frame_lever_needed = 2.0 * target * wheel_lever / (G * frame_mass)
+            xb0 = (frame_lever_needed + gm.frame_cg_height * sn) / c
+            return _finish(gm, target, frame_mass, 0.0, 0.0, hitch_z, theta, frame_cg_x=xb0)
+        xb = 0.0
+    else:
+        # solve x_lever(xb, ballast_height) = needed / ballast
+        xb = (needed / ballast + gm.ballast_height * sn) / c
+    return _finish(gm, target, frame_mass, ballast, xb, hitch_z, theta)
+
+
+def _finish(gm, target, frame_mass, ballast, xb, hitch_z, theta, frame_cg_x=None):
+    fx = gm.frame_cg_behind_hitch if frame_cg_x is None else frame_cg_x
+    kx, ky, kz = gm.frame_gyration
+    r_frame = np.array([-fx, 0.0, gm.frame_cg_height])
+    I = _about_point(frame_mass, r_frame, np.diag([frame_mass * kx ** 2, frame_mass * ky ** 2,
+                                                    frame_mass * kz ** 2]))
+    mass = frame_mass + ballast
+    cg = frame_mass * r_frame
+    if ballast > 0:
+        r_b = np.array([-xb, 0.0, gm.ballast_height])
+        I = I + _about_point(ballast, r_b, _block_inertia(ballast, *gm.ballast_size))
+        cg = cg + ballast * r_b
+    return TrailerSetup(target, frame_mass, ballast, xb, hitch_z, theta, I, mass, cg / mass)
+
+
+class Trailer:
+    """The towed tyre test trailer, driving a tyre model over a road.
+
+    Parameters
+    ----------
+    model : TyreModel
+        Tyre and contact model of both wheels.
+    geometry : TrailerGeometry, optional
+        Assumed frame geometry (defaults documented in ARCHITECTURE.md).
+    load_case : str or float
+        ``"LC1"``, ``"LC2"``, ``"LC3"`` (thesis Table 3-4) or a wheel load [N].
+    """
+
+    def __init__(self, model: TyreModel, load_case="LC1", geometry: TrailerGeometry | None = None):
+        self.model = model
+        self.geometry = geometry or TrailerGeometry()
+        reference = float(load_cases().loc["LC1", "wheel_load_N"])
+        self.setup = trailer_setup(model.tyre, self.geometry, load_case, reference)
+        self.load_case = load_case
+
+    def params(self, speed: float) -> np.ndarray:
+        s, gm, ty = self.setup, self.geometry, self.model.tyre
+        tp = np.zeros(K.TP_SIZE)
+        tp[K.TP_SPEED] = speed
+        tp[K.TP_L] = gm.hitch_to_axle
+        tp[K.TP_TRACK] = gm.track
+        tp[K.TP_HITCH_Z] = s.hitch_height
+        tp[K.TP_MASS] = s.mass
+        tp[K.TP_CGX:K.TP_CGZ + 1] = s.cg
+        tp[K.TP_I:K.TP_I + 9] = s.inertia.ravel()
+        tp[K.TP_ISPIN] = max(ty.wheel_spin_inertia, 1e-3)
+        tp[K.TP_MWHEEL] = ty.wheel_mass
+        tp[K.TP_G] = G
+        tp[K.TP_ROAD_Y] = 0.5 * gm.track
+        return tp
+
+    def run(self, road: Road | str, speed: float, duration: float | None = None,
+            dt: float = 1e-3, output_rate: float = 1000.0, progress: bool | None = None):
+        """Tow the trailer over ``road`` at ``speed`` [m/s]; returns the signal table.
+
+        The test wheel starts at x = 0 in static equilibrium. Without
+        ``duration`` the run lasts until the test wheel reaches the end of
+        the road's extent.
+        """
+        road = road_from_spec(road)
+        if not (np.isfinite(speed) and speed > 0):
+            raise InputError(f"speed must be a positive number, got {speed}", field="speed")
+        if not (dt > 0 and output_rate > 0):
+            raise InputError("time step and output rate must be positive", field="dt")
+        xmin, xmax, _, _ = road.extent()
+        if duration is None:
+            duration = max(xmax, 1.0) / speed
+        if not (np.isfinite(duration) and duration > 0):
+            raise InputError(f"duration must be a positive number of seconds, got {duration}",
+                             field="duration")
+        grid = road.grid()
+        flat = Flat().grid()
+        args_r = self.model.kernel_args(grid)
+        args_l = self.model.kernel_args(flat)
+        tp = self.params(speed)
+        L = self.geometry.hitch_to_axle
+        s = self.setup
+        state = np.zeros(K.S_SIZE)
+        state[K.S_THETA] = s.pitch0
+        r_eff = self.model.tyre.unloaded_radius - self.model.tyre.static_deflection(s.wheel_load)
+        state[K.S_WR] = state[K.S_WL] = speed / r_eff
+        x_start = L * math.cos(s.pitch0)  # test wheel centre starts at x = 0
+        n_steps = int(round(duration / dt))
+        out_every = max(1, int(round(1.0 / (output_rate * dt))))
+
+        kernel = K.ENTRY[self.model.model_id]
+
+        def advance(n, out, row):
+            return kernel(*args_r, *args_l, tp, state, n, dt, out_every, out, row, x_start)
+
+        data = run_chunks(advance, n_steps, out_every, K.N_CH, dt, progress)
+        meta = {"rig": "trailer", "tyre": self.model.tyre.name, "model": self.model.contact,
+                "stiffness": self.model.tyre.stiffness, "road": road.name, "speed_m_s": speed,
+                "load_case": str(self.load_case), "static_wheel_load_N": s.wheel_load,
+                "pressure_Pa": self.model.tyre.pressure, "dt_s": dt,
+                "output_rate_Hz": 1.0 / (out_every * dt)}
+        return to_signal(data, K.CHANNELS, meta)

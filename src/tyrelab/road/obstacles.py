@@ -1,0 +1,236 @@
+"""Discrete obstacles and the flat road (thesis 3.4.2, 3.4.3).
+
+Each obstacle is a height field that is zero away from it. ``start`` is the
+x where the obstacle begins at the road centreline (y = 0). Sizes in metres.
+Grids place the obstacle's edges on grid nodes where the geometry allows it
+(perpendicular obstacles), so a sharp edge stays sharp under bilinear
+interpolation.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ..errors import InputError
+from .base import Road
+
+#: length of flat road after an obstacle [m], enough for the response to die out
+RUN_OUT = 15.0
+#: half width of obstacle roads [m] (the thesis tracks are 4 m wide)
+HALF_WIDTH = 2.0
+#: target grid spacing along the road for sharp-edged obstacles [m]
+EDGE_SPACING = 0.005
+
+
+def _positive(value, name):
+    if not (value is not None and np.isfinite(value) and value > 0):
+        raise InputError(f"must be a positive number of metres, got {value}", field=name)
+    return float(value)
+
+
+def _spacing_through(edges, target=EDGE_SPACING):
+    """A spacing <= target that puts every edge (relative to the first) on a node."""
+    edges = np.asarray(edges, float) - edges[0]
+    length = max(edges[-1], target)
+    n = max(1, int(math.ceil(length / target)))
+    # try spacings length/n, length/(n+1), ... until all edges fall on nodes
+    for k in range(n, 50 * n):
+        d = length / k
+        if np.all(np.abs(edges / d - np.round(edges / d)) < 1e-6):
+            return d
+    return target
+
+
+class Flat(Road):
+    """A level road at height zero."""
+
+    name = "flat"
+    default_spacing = (1.0, 1.0)
+
+    def height(self, x, y):
+        return np.zeros(np.broadcast(np.asarray(x), np.asarray(y)).shape)
+
+    def extent(self):
+        return (0.0, 1.0, -HALF_WIDTH, HALF_WIDTH)
+
+    def varies_in_y(self):
+        return False
+
+
+class Cleat(Road):
+    """A square (rectangular-section) cleat across the road.
+
+    On the grid the top corners are exact nodes and the side faces lean out
+    over one grid cell, so a rolling wheel meets the true corners.
+
+    Parameters
+    ----------
+    width, height : float
+        Cleat section [m] (thesis: 38 x 38 to 100 x 100 mm).
+    angle : float
+        Angle to the direction of travel [deg]: 0 = perpendicular, 45 = oblique.
+        Positive angles make the cleat reach the left side (y > 0) first.
+    bevel : float
+        Size of a 45-degree chamfer on both top edges [m] (0 = sharp).
+    start : float
+        x of the leading edge at y = 0 [m].
+    """
+
+    def __init__(self, width, height, angle=0.0, bevel=0.0, start=5.0):
+        self.width = _positive(width, "cleat width")
+        self.cleat_height = _positive(height, "cleat height")
+        if not (np.isfinite(angle) and -80.0 <= angle <= 80.0):
+            raise InputError(f"cleat angle must be between -80 and 80 degrees, got {angle}",
+                             field="cleat angle")
+        self.angle = float(angle)
+        if not (0.0 <= bevel <= min(self.width / 2, self.cleat_height)):
+            raise InputError(f"bevel must be between 0 and half the width / the height, got {bevel}",
+                             field="cleat bevel")
+        self.bevel = float(bevel)
+        self.start = float(start)
+        self.name = (f"cleat {self.width * 1e3:g} x {self.cleat_height * 1e3:g} mm "
+                     f"at {self.angle:g} deg")
+        if self.angle == 0.0:
+            self.default_spacing = (_spacing_through([0.0, self.width]), 1.0)
+        else:
+            self.default_spacing = (EDGE_SPACING, EDGE_SPACING)
+
+    def across(self, x, y):
+        """Coordinate across the cleat, 0 at the leading edge [m]."""
+        a = math.radians(self.angle)
+        return (np.asarray(x, float) - self.start) * math.cos(a) + np.asarray(y, float) * math.sin(a)
+
+    def height(self, x, y):
+        s = self.across(x, y)
+        w, h, b = self.width, self.cleat_height, self.bevel
+        inside = (s >= 0.0) & (s <= w)
+        top = np.minimum(h, np.minimum(h - b + s, h - b + (w - s))) if b > 0 else np.full(s.shape, h)
+        return np.where(inside, top, 0.0)
+
+    def extent(self):
+        a = math.radians(self.angle)
+        reach = HALF_WIDTH * abs(math.tan(a))
+        span = self.width / math.cos(a)
+        x0 = self.start - reach - 1.0
+        # start the grid exactly at the leading edge minus whole cells so edges sit on nodes
+        dx = self.default_spacing[0]
+        x0 = self.start - dx * math.ceil((self.start - x0) / dx)
+        return (x0, self.start + span + reach + RUN_OUT, -HALF_WIDTH, HALF_WIDTH)
+
+    def varies_in_y(self):
+        return self.angle != 0.0
+
+
+class TrapezoidalBump(Road):
+    """A trapezoidal bump across the road (the APG bump of thesis Figure 3-22).
+
+    Parameters
+    ----------
+    height : float
+        Bump height [m].
+    ramp_length, top_length : float, optional
+        Horizontal length of each ramp and of the flat top [m]. The thesis
+        gives these only in a figure; the defaults (ramps 4 x height, top
+        0.5 m) are assumptions stated in ARCHITECTURE.md.
+    """
+
+    def __init__(self, height, ramp_length=None, top_length=None, start=5.0):
+        self.bump_height = _positive(height, "bump height")
+        self.ramp_length = _positive(ramp_length if ramp_length is not None else 4.0 * self.bump_height,
+                                     "bump ramp length")
+        self.top_length = float(top_length) if top_length is not None else 0.5
+        if self.top_length < 0:
+            raise InputError(f"top length must be >= 0, got {top_length}", field="bump top length")
+        self.start = float(start)
+        self.name = (f"trapezoidal bump {self.bump_height * 1e3:g} mm, ramps "
+                     f"{self.ramp_length * 1e3:g} mm, top {self.top_length * 1e3:g} mm")
+        self.default_spacing = (_spacing_through(self._edges()), 1.0)
+
+    def _edges(self):
+        r, t = self.ramp_length, self.top_length
+        return [0.0, r, r + t, 2 * r + t]
+
+    def height(self, x, y):
+        s = np.asarray(x, float) - self.start
+        s = np.broadcast_to(s, np.broadcast(s, np.asarray(y)).shape)
+        return np.interp(s, self._edges(), [0.0, self.bump_height, self.bump_height, 0.0],
+                         left=0.0, right=0.0)
+
+    def extent(self):
+        dx = self.default_spacing[0]
+        x0 = self.start - dx * math.ceil(1.0 / dx)
+        return (x0, self.start + self._edges()[-1] + RUN_OUT, -HALF_WIDTH, HALF_WIDTH)
+
+    def varies_in_y(self):
+        return False
+
+
+class Step(Road):
+    """A step of ``height`` (negative: down) at x = ``start``."""
+
+    def __init__(self, height, start=5.0, spacing=EDGE_SPACING):
+        if not (np.isfinite(height) and height != 0.0):
+            raise InputError(f"step height must be a non-zero number of metres, got {height}",
+                             field="step height")
+        self.step_height = float(height)
+        self.start = float(start)
+        self.default_spacing = (float(spacing), 1.0)
+        self.name = f"step {self.step_height * 1e3:g} mm"
+
+    def height(self, x, y):
+        x = np.asarray(x, float)
+        shape = np.broadcast(x, np.asarray(y)).shape
+        return np.broadcast_to(np.where(x >= self.start, self.step_height, 0.0), shape)
+
+    def extent(self):
+        dx = self.default_spacing[0]
+        x0 = self.start - dx * math.ceil(1.0 / dx)
+        return (x0, self.start + RUN_OUT, -HALF_WIDTH, HALF_WIDTH)
+
+    def varies_in_y(self):
+        return False
+
+
+class Pothole(Road):
+    """A rectangular pothole ``depth`` deep, ``length`` long and ``width`` wide.
+
+    ``width=None`` makes it span the whole road (a trench). Centred on y = 0.
+    """
+
+    def __init__(self, depth, length, width=None, start=5.0):
+        self.depth = _positive(depth, "pothole depth")
+        self.length = _positive(length, "pothole length")
+        self.width = None if width is None else _positive(width, "pothole width")
+        self.start = float(start)
+        self.name = (f"pothole {self.depth * 1e3:g} mm deep, {self.length * 1e3:g} mm long"
+                     + ("" if self.width is None else f", {self.width * 1e3:g} mm wide"))
+        dx = _spacing_through([0.0, self.length])
+        if self.width is None:
+            self.default_spacing = (dx, 1.0)
+        else:
+            self.default_spacing = (dx, _spacing_through([0.0, self.width]))
+
+    def height(self, x, y):
+        x = np.asarray(x, float)
+        y = np.asarray(y, float)
+        # strict inequalities: the rim of the hole stays at road level on the
+        # grid nodes, so the edges a wheel rolls over are exact corners
+        inside = (x > self.start) & (x < self.start + self.length)
+        if self.width is not None:
+            inside &= np.abs(y) < self.width / 2
+        return np.where(inside, -self.depth, 0.0)
+
+    def extent(self):
+        dx = self.default_spacing[0]
+        x0 = self.start - dx * math.ceil(1.0 / dx)
+        if self.width is None:
+            return (x0, self.start + self.length + RUN_OUT, -HALF_WIDTH, HALF_WIDTH)
+        dy = self.default_spacing[1]
+        ny = math.ceil(HALF_WIDTH / dy)
+        y0 = -self.width / 2 - dy * ny
+        return (x0, self.start + self.length + RUN_OUT, y0, -y0)
+
+    def varies_in_y(self):
+        return self.width is not None

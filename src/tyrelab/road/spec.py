@@ -1,0 +1,110 @@
+"""Roads by name: the strings users type after ``--road``.
+
+Grammar (sizes in millimetres, angles in degrees, as engineers say them)::
+
+    flat
+    cleat:WxH[@ANGLE][/BEVEL]   square cleat W wide, H high; ANGLE 0 = perpendicular
+    bump:H[xRAMPxTOP]           trapezoidal bump (ramp and top lengths in mm)
+    step:H                      step of height H (negative: step down)
+    pothole:DEPTHxLENGTH[xWIDTH]
+    <track name>                a built-in test track (see :func:`road_names`)
+    path/to/file.crg[@V]        an OpenCRG road, driven at lateral offset V [m]
+
+Every obstacle starts at x = 5 m so a run can settle first.
+"""
+
+from __future__ import annotations
+
+import re
+from pathlib import Path
+
+from ..errors import InputError
+from .base import Road
+
+#: where each obstacle starts [m]; the wheel starts at x = 0
+OBSTACLE_START = 5.0
+
+_NUM = r"[+-]?\d+(?:\.\d*)?(?:[eE][+-]?\d+)?"
+
+
+def _tracks() -> dict:
+    try:
+        from .tracks import TRACKS
+    except ModuleNotFoundError as exc:
+        if exc.name != "tyrelab.road.tracks":
+            raise
+        return {}
+    return TRACKS
+
+
+def road_names() -> list[str]:
+    """Names accepted by :func:`road_from_spec` besides the obstacle grammar."""
+    return ["flat", "cleat:WxH[@ANGLE]", "bump:H[xRAMPxTOP]", "step:H",
+            "pothole:DEPTHxLENGTH[xWIDTH]", *sorted(_tracks()), "FILE.crg[@V]"]
+
+
+def _numbers(text: str, spec: str, count_min: int, count_max: int) -> list[float]:
+    parts = text.split("x")
+    if not (count_min <= len(parts) <= count_max) or not all(re.fullmatch(_NUM, p) for p in parts):
+        raise InputError(f"cannot read sizes '{text}' in road '{spec}'; expected "
+                         f"{count_min} to {count_max} numbers in mm separated by 'x'", field="road")
+    return [float(p) for p in parts]
+
+
+def road_from_spec(spec: str | Road) -> Road:
+    """A :class:`Road` from its name (see the module docstring)."""
+    if isinstance(spec, Road):
+        return spec
+    from . import obstacles as ob
+
+    text = str(spec).strip()
+    kind, _, args = text.partition(":")
+    kind = kind.lower()
+    if text.lower() == "flat":
+        return ob.Flat()
+    if kind == "cleat" and args:
+        bevel = 0.0
+        if "/" in args:
+            args, bevel_txt = args.split("/", 1)
+            bevel = _numbers(bevel_txt, text, 1, 1)[0]
+        angle = 0.0
+        if "@" in args:
+            args, angle_txt = args.split("@", 1)
+            if not re.fullmatch(_NUM, angle_txt):
+                raise InputError(f"cannot read angle '{angle_txt}' in road '{text}'; expected degrees",
+                                 field="road")
+            angle = float(angle_txt)
+        w, h = _numbers(args, text, 2, 2)
+        return ob.Cleat(width=w / 1e3, height=h / 1e3, angle=angle, bevel=bevel / 1e3,
+                        start=OBSTACLE_START)
+    if kind == "bump" and args:
+        vals = _numbers(args, text, 1, 3)
+        h = vals[0] / 1e3
+        ramp = vals[1] / 1e3 if len(vals) > 1 else None
+        top = vals[2] / 1e3 if len(vals) > 2 else None
+        return ob.TrapezoidalBump(height=h, ramp_length=ramp, top_length=top, start=OBSTACLE_START)
+    if kind == "step" and args:
+        (h,) = _numbers(args, text, 1, 1)
+        return ob.Step(height=h / 1e3, start=OBSTACLE_START)
+    if kind == "pothole" and args:
+        vals = _numbers(args, text, 2, 3)
+        width = vals[2] / 1e3 if len(vals) > 2 else None
+        return ob.Pothole(depth=vals[0] / 1e3, length=vals[1] / 1e3, width=width, start=OBSTACLE_START)
+    tracks = _tracks()
+    if text.lower() in tracks:
+        return tracks[text.lower()]()
+    path_text, _, offset = text.partition("@")
+    if path_text.lower().endswith(".crg"):
+        path = Path(path_text)
+        if not path.is_file():
+            raise InputError("no such OpenCRG file", source=str(path))
+        from .crg import CrgRoad
+        v = 0.0
+        if offset:
+            if not re.fullmatch(_NUM, offset):
+                raise InputError(f"cannot read lateral offset '{offset}' in road '{text}'; expected metres",
+                                 field="road")
+            v = float(offset)
+        return CrgRoad(path, v_offset=v)
+    raise InputError(f"unknown road '{text}'; expected one of: {', '.join(road_names())}",
+                     field="road")

@@ -1,0 +1,167 @@
+"""The signal table: one form for simulated and measured runs.
+
+A run is a :class:`pandas.DataFrame` with one row per time sample and SI
+columns. Column names follow TYDEX where TYDEX has a name for the quantity;
+the others are this project's and are listed here once.
+
+Sign convention (written down once, used everywhere)
+----------------------------------------------------
+Forces and moments are those of the road on the tyre (equivalently, at the
+hub, of the tyre on the rim), expressed in the TYDEX C-axis system of the
+wheel: origin in the wheel centre, x forward in the wheel plane and parallel
+to the ground, y along the spin axis pointing to the left of the direction of
+travel, z upward, turning with the inclination angle (TYDEX manual; SAE J2047
+C-axis). A tyre pressed onto the ground therefore shows a *positive* FZ.
+Contact-patch quantities (suffix ``W``) use the TYDEX W-axis system: origin
+in the contact point, z along the (effective) road normal, x the intersection
+of the wheel plane with the road plane.
+
+Positions and velocities are in the road (inertial) frame: x along the road,
+y to the left, z up. Time is in seconds.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pandas as pd
+
+#: column name -> (unit, description). Order is the order in files.
+CHANNELS: dict[str, tuple[str, str]] = {
+    "RUNTIME": ("s", "time since the start of the run"),
+    "DISTANCE": ("m", "distance travelled by the wheel centre along the road"),
+    # wheel-centre forces and moments, C-axis (TYDEX names)
+    "FX": ("N", "longitudinal force at the wheel centre, C-axis"),
+    "FY": ("N", "lateral force at the wheel centre, C-axis"),
+    "FZ": ("N", "vertical force at the wheel centre, C-axis"),
+    "MX": ("N m", "overturning moment at the wheel centre, C-axis"),
+    "MY": ("N m", "rolling-resistance moment at the wheel centre, C-axis"),
+    "MZ": ("N m", "aligning moment at the wheel centre, C-axis"),
+    # contact-patch forces, W-axis (TYDEX names)
+    "FXW": ("N", "longitudinal force in the contact point, W-axis"),
+    "FYW": ("N", "lateral force in the contact point, W-axis"),
+    "FZW": ("N", "normal force in the contact point, W-axis"),
+    # wheel state (project names)
+    "X_WC": ("m", "wheel-centre x, road frame"),
+    "Y_WC": ("m", "wheel-centre y, road frame"),
+    "Z_WC": ("m", "wheel-centre z, road frame"),
+    "VX_WC": ("m/s", "wheel-centre velocity x, road frame"),
+    "VY_WC": ("m/s", "wheel-centre velocity y, road frame"),
+    "VZ_WC": ("m/s", "wheel-centre velocity z, road frame"),
+    "ROTSPEED": ("rad/s", "wheel spin rate about its axis, positive rolling forward"),
+    "INCLANGL": ("rad", "inclination (camber) angle of the wheel plane to the road normal"),
+    "DEFLECT": ("m", "tyre radial deflection (positive in compression)"),
+    "X_CP": ("m", "contact point x, road frame"),
+    "Y_CP": ("m", "contact point y, road frame"),
+    "Z_CP": ("m", "contact point z, road frame"),
+}
+
+#: Channels that a force signal must never carry as NaN or negative.
+NORMAL_FORCE_CHANNELS = ("FZW",)
+
+
+def units(columns) -> dict[str, str]:
+    """Unit of each known column (unknown columns get '')."""
+    return {c: CHANNELS.get(c, ("", ""))[0] for c in columns}
+
+
+def make_signal(data: dict[str, np.ndarray], metadata: dict | None = None) -> pd.DataFrame:
+    """Build a signal table from arrays, in the standard column order.
+
+    Known channels come first in :data:`CHANNELS` order, then any extra
+    columns in the order given. ``metadata`` (run description: tyre, model,
+    road, speed ...) and the units go to ``DataFrame.attrs``.
+    """
+    known = [c for c in CHANNELS if c in data]
+    extra = [c for c in data if c not in CHANNELS]
+    df = pd.DataFrame({c: np.asarray(data[c], dtype=float) for c in known + extra})
+    df.attrs["units"] = units(df.columns)
+    df.attrs["metadata"] = dict(metadata or {})
+    return df
+
+
+def _atomic_target(path):
+    """A temporary sibling of ``path``; renamed over it only when complete."""
+    import os
+    import tempfile
+    directory = os.path.dirname(os.path.abspath(path)) or "."
+    fd, tmp = tempfile.mkstemp(prefix=".tyrelab-", suffix=".part", dir=directory)
+    os.close(fd)
+    return tmp
+
+
+def write_signal(df: pd.DataFrame, path) -> None:
+    """Write a signal table as Parquet (``.parquet``) or CSV (``.csv``).
+
+    Units and run metadata go into the Parquet schema metadata, or into
+    ``#`` comment lines at the top of a CSV. The file appears only when it is
+    complete (written to a temporary name, then renamed), so an interrupted
+    run never leaves a file that looks finished.
+    """
+    import json
+    import os
+    from pathlib import Path
+
+    from .errors import InputError
+
+    path = Path(path)
+    suffix = path.suffix.lower()
+    if suffix not in (".parquet", ".csv"):
+        raise InputError(f"unknown output format '{path.suffix}', expected .parquet or .csv",
+                         source=str(path))
+    meta = {"units": df.attrs.get("units", units(df.columns)),
+            "metadata": df.attrs.get("metadata", {})}
+    tmp = _atomic_target(path)
+    try:
+        if suffix == ".parquet":
+            import pyarrow as pa
+            import pyarrow.parquet as pq
+            table = pa.Table.from_pandas(df, preserve_index=False)
+            old = table.schema.metadata or {}
+            table = table.replace_schema_metadata({**old, b"tyrelab": json.dumps(meta).encode()})
+            pq.write_table(table, tmp)
+        else:
+            with open(tmp, "w", encoding="utf-8", newline="") as fh:
+                fh.write("# tyrelab " + json.dumps(meta) + "\n")
+                df.to_csv(fh, index=False, float_format="%.9g")
+        os.replace(tmp, path)
+    except BaseException:
+        if os.path.exists(tmp):
+            os.remove(tmp)
+        raise
+
+
+def read_signal(path) -> pd.DataFrame:
+    """Read a signal table written by :func:`write_signal`."""
+    import json
+    from pathlib import Path
+
+    from .errors import InputError
+
+    path = Path(path)
+    if not path.is_file():
+        raise InputError("no such file", source=str(path))
+    suffix = path.suffix.lower()
+    meta = {}
+    try:
+        if suffix == ".parquet":
+            import pyarrow.parquet as pq
+            table = pq.read_table(path)
+            raw = (table.schema.metadata or {}).get(b"tyrelab")
+            meta = json.loads(raw) if raw else {}
+            df = table.to_pandas()
+        elif suffix == ".csv":
+            with open(path, encoding="utf-8") as fh:
+                first = fh.readline()
+            if first.startswith("# tyrelab "):
+                meta = json.loads(first[len("# tyrelab "):])
+            df = pd.read_csv(path, comment="#")
+        else:
+            raise InputError(f"unknown signal format '{path.suffix}', expected .parquet or .csv",
+                             source=str(path))
+    except InputError:
+        raise
+    except Exception as exc:  # pyarrow / pandas parse errors
+        raise InputError(f"not a readable signal table ({exc})", source=str(path)) from None
+    df.attrs["units"] = meta.get("units", units(df.columns))
+    df.attrs["metadata"] = meta.get("metadata", {})
+    return df
