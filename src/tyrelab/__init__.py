@@ -1,0 +1,20 @@
+"""tyrelab: a virtual tyre test lab for rough and off-road terrain.
+
+Three lines from a notebook::
+
+    import tyrelab
+    run = tyrelab.simulate(model="point", road="cleat:50x50", speed=12 / 3.6, load="LC1")
+    run.plot(x="RUNTIME", y="FZW")
+
+Units are SI everywhere in Python; the command line takes km/h and kPa.
+See ARCHITECTURE.md for the layers and the sign conventions
+(:mod:`tyrelab.signal`).
+"""
+
+from .api import make_tyre_model, simulate
+from .errors import InputError
+from .signal import read_signal, write_signal
+from .tyre.library import load_tyre
+
+__version__ = "0.1.0"
+__all__ = ["simulate", "make_tyre_model", "load_tyre", "read_signal", "write_signal", "InputError"]

@@ -61,9 +61,9 @@ def _rotation(theta, phi, R):
 
 
 @nb.njit(cache=True)
-def trailer_steps(model,
-                  vpR, knR, coR, cpR, gpR, zR, ziR,
-                  vpL, knL, coL, cpL, gpL, zL, ziL,
+def trailer_steps(model, handling,
+                  vpR, knR, coR, cpR, hpR, gpR, zR, ziR, tsR,
+                  vpL, knL, coL, cpL, hpL, gpL, zL, ziL, tsL,
                   tp, state, n_steps, dt, out_every, out, row0, x_start):
     """Advance the trailer ``n_steps`` steps from ``state``; write every
     ``out_every``-th step into ``out`` starting at row ``row0``. Returns the
@@ -115,28 +115,22 @@ def trailer_steps(model,
             vy = wz * rx - wx * rz
             vz = wx * ry - wy * rx
             if side == 0:
-                wheel_force(model, vpR, knR, coR, cpR, gpR, zR, ziR, cx, cy + road_y, cz,
-                            ax, ay, az, vx, vy, vz, state[S_WR], geo, fR)
+                wheel_force(model, handling, vpR, knR, coR, cpR, hpR, gpR, zR, ziR, tsR,
+                            cx, cy + road_y, cz, ax, ay, az, vx, vy, vz, state[S_WR], dt, geo, fR)
                 fR[4] -= road_y  # contact point back to world y
                 f = fR
             else:
-                wheel_force(model, vpL, knL, coL, cpL, gpL, zL, ziL, cx, cy - road_y, cz,
-                            ax, ay, az, vx, vy, vz, state[S_WL], geo, fL)
+                wheel_force(model, handling, vpL, knL, coL, cpL, hpL, gpL, zL, ziL, tsL,
+                            cx, cy - road_y, cz, ax, ay, az, vx, vy, vz, state[S_WL], dt, geo, fL)
                 fL[4] += road_y
                 f = fL
-            # moment about the hitch of the force at the contact point
-            px = f[3] - hx
-            py = f[4]
-            pz = f[5] - hz
-            tau0 += py * f[2] - pz * f[1]
-            tau1 += pz * f[0] - px * f[2]
-            tau2 += px * f[1] - py * f[0]
-            # spin: moment about the axle of the force at the contact point
-            qx = f[3] - cx
-            qy = f[4] - cy
-            qz = f[5] - cz
-            sm = ((qy * f[2] - qz * f[1]) * ax + (qz * f[0] - qx * f[2]) * ay
-                  + (qx * f[1] - qy * f[0]) * az)
+            # moment about the hitch: the force at the wheel centre plus the
+            # tyre's moment about the centre
+            tau0 += ry * f[2] - rz * f[1] + f[14]
+            tau1 += rz * f[0] - rx * f[2] + f[15]
+            tau2 += rx * f[1] - ry * f[0] + f[16]
+            # spin: the tyre's moment about the axle
+            sm = f[14] * ax + f[15] * ay + f[16] * az
             if side == 0:
                 spinR = sm
                 if (step % out_every) == 0 and row < out.shape[0]:
@@ -234,17 +228,3 @@ def trailer_steps(model,
         state[S_T] = t + dt
     return row
 
-
-# One entry point per contact model. Calling the generic loop with a constant
-# model id lets numba compile it for that literal value only (dead branches
-# pruned), so each model pays only for its own compilation, and the result is
-# cached on disk. A model added to tyrelab.tyre.kernel.CONTACT_MODELS gets a
-# line here.
-@nb.njit(cache=True)
-def trailer_steps_point(vpR, knR, coR, cpR, gpR, zR, ziR, vpL, knL, coL, cpL, gpL, zL, ziL,
-                        tp, state, n_steps, dt, out_every, out, row0, x_start):
-    return trailer_steps(0, vpR, knR, coR, cpR, gpR, zR, ziR, vpL, knL, coL, cpL, gpL, zL, ziL,
-                         tp, state, n_steps, dt, out_every, out, row0, x_start)
-
-
-ENTRY = {0: trailer_steps_point}

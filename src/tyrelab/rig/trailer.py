@@ -29,6 +29,7 @@ from ..road.base import Road
 from ..road.obstacles import Flat
 from ..road.spec import road_from_spec
 from . import _trailer_kernel as K
+from ._entries import entry
 from .simulation import run_chunks, to_signal
 
 G = 9.80665
@@ -90,6 +91,16 @@ def _about_point(m, r, I_cg):
     return I_cg + m * (np.dot(r, r) * np.eye(3) - np.outer(r, r))
 
 
+def load_case_wheel_load(load_case: str) -> float:
+    """Static wheel load [N] of a load case of thesis Table 3-4."""
+    cases = load_cases()
+    key = str(load_case).upper()
+    if key not in cases.index:
+        raise InputError(f"unknown load case '{load_case}', expected one of "
+                         f"{', '.join(cases.index)} or a wheel load in N", field="load")
+    return float(cases.loc[key, "wheel_load_N"])
+
+
 def trailer_setup(tyre, geometry: TrailerGeometry, load_case: str | float,
                   reference_load: float) -> TrailerSetup:
     """Solve the frame and ballast masses so the static test-wheel load is exact.
@@ -102,13 +113,8 @@ def trailer_setup(tyre, geometry: TrailerGeometry, load_case: str | float,
     gm = geometry
     L = gm.hitch_to_axle
     if isinstance(load_case, str):
-        cases = load_cases()
-        key = load_case.upper()
-        if key not in cases.index:
-            raise InputError(f"unknown load case '{load_case}', expected one of "
-                             f"{', '.join(cases.index)} or a wheel load in N", field="load")
-        target = float(cases.loc[key, "wheel_load_N"])
-        ballast = float(cases.loc[key, "ballast_kg"])
+        target = load_case_wheel_load(load_case)
+        ballast = float(load_cases().loc[load_case.upper(), "ballast_kg"])
     else:
         target = float(load_case)
         if not (np.isfinite(target) and target > 0):
@@ -233,13 +239,16 @@ class Trailer:
         n_steps = int(round(duration / dt))
         out_every = max(1, int(round(1.0 / (output_rate * dt))))
 
-        kernel = K.ENTRY[self.model.model_id]
+        kernel = entry("trailer", self.model)
+        ts_r = self.model.initial_state(s.wheel_load)
+        ts_l = self.model.initial_state(s.wheel_load)
 
         def advance(n, out, row):
-            return kernel(*args_r, *args_l, tp, state, n, dt, out_every, out, row, x_start)
+            return kernel(*args_r, ts_r, *args_l, ts_l, tp, state, n, dt, out_every, out, row, x_start)
 
         data = run_chunks(advance, n_steps, out_every, K.N_CH, dt, progress)
         meta = {"rig": "trailer", "tyre": self.model.tyre.name, "model": self.model.contact,
+                "handling": self.model.handling,
                 "stiffness": self.model.tyre.stiffness, "road": road.name, "speed_m_s": speed,
                 "load_case": str(self.load_case), "static_wheel_load_N": s.wheel_load,
                 "pressure_Pa": self.model.tyre.pressure, "dt_s": dt,

@@ -234,3 +234,31 @@ class Pothole(Road):
 
     def varies_in_y(self):
         return self.width is not None
+
+
+class Ridge(Road):
+    """A square cleat running *along* the road (a longitudinal cleat), centred on y = 0.
+
+    The static lab press of thesis 3.3.4 puts cleats under the tyre both
+    across (a :class:`Cleat`) and along the wheel plane (this).
+    """
+
+    def __init__(self, width, height, length=2.0, start=-1.0):
+        self.width = _positive(width, "cleat width")
+        self.ridge_height = _positive(height, "cleat height")
+        self.length = _positive(length, "ridge length")
+        self.start = float(start)
+        self.name = f"longitudinal cleat {self.width * 1e3:g} x {self.ridge_height * 1e3:g} mm"
+        dy = _spacing_through([0.0, self.width])
+        self.default_spacing = (0.01, dy)
+
+    def height(self, x, y):
+        x = np.asarray(x, float)
+        y = np.asarray(y, float)
+        inside = (np.abs(y) <= self.width / 2) & (x >= self.start) & (x <= self.start + self.length)
+        return np.where(inside, self.ridge_height, 0.0)
+
+    def extent(self):
+        dy = self.default_spacing[1]
+        y0 = -self.width / 2 - dy * math.ceil(0.5 / dy)
+        return (self.start - 0.5, self.start + self.length + 0.5, y0, -y0)

@@ -1,77 +1,51 @@
-"""One compiled entry point for every tyre model: the force on a wheel.
+"""One compiled entry point for every tyre model: the loads on a wheel.
 
 Rigs call :func:`wheel_force` inside their compiled time loops with the
-wheel's pose and velocity; it returns the force of the road on the tyre. The
-contact model is chosen by a literal integer (``CONTACT_MODELS``), so numba
-compiles one specialised, cached loop per model and no dispatch happens at
-run time. Python assembles the arrays once with :meth:`TyreModel.kernel_args`.
+wheel's pose and velocity; it returns the force and moment of the road on
+the tyre. The contact model and the handling model are chosen by literal
+integers (:data:`CONTACT_MODELS`, :data:`HANDLING_MODELS`): each rig has one
+small entry function per combination (:mod:`tyrelab.rig._entries`), so numba
+compiles a specialised, disk-cached loop per combination and no dispatch
+happens at run time. Python assembles the arrays once with
+:meth:`TyreModel.kernel_args`.
 
-Output layout of ``out`` (all SI, road frame unless noted):
+Output layout of ``out`` (SI, road frame unless noted):
 
 ==========  ====================================================
 0:3         force of the road on the tyre [N]
-3:6         point it acts at (contact point) [m]
+3:6         contact point (where the resultant acts) [m]
 6:9         unit normal of the (effective) road plane
 9           deflection rho [m] (<= 0: no contact)
 10          deflection rate [m/s]
 11:14       FXW, FYW, FZW: force in the W-axis system [N]
+14:17       moment of the road on the tyre about the wheel centre [N m]
+17          longitudinal slip kappa [-]
+18          slip angle alpha [rad]
 ==========  ====================================================
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numba as nb
 import numpy as np
 
 from ..core.vec3 import cross, dot, unit
 from ..errors import InputError
-from .contact.point import GEO_NX, GEO_NY, GEO_NZ, GEO_PX, GEO_PY, GEO_PZ, GEO_RHO, GEO_SIZE, point_contact
+from .contact.enveloping import enveloping_contact, enveloping_params
+from .contact.point import GEO_NX, GEO_NY, GEO_NZ, GEO_PX, GEO_PY, GEO_PZ, GEO_RHO, point_contact
+from .contact.volume import volume_contact, volume_params
+from .handling.slip import handling_forces, handling_params
 from .params import Tyre
+from .ring.kernel import ring_wheel_force
 from .vertical import normal_force
 
 #: contact model name -> literal id used by the kernels
-CONTACT_MODELS = {"point": 0}
-OUT_SIZE = 14
-
-
-@dataclass
-class TyreModel:
-    """A tyre with the contact model that drives it.
-
-    Parameters
-    ----------
-    tyre : Tyre
-        Parameters (from a ``.tir`` or :func:`tyrelab.tyre.library.load_tyre`).
-    contact : str
-        ``"point"`` (more models join :data:`CONTACT_MODELS`).
-    """
-
-    tyre: Tyre
-    contact: str = "point"
-
-    def __post_init__(self):
-        if self.contact not in CONTACT_MODELS:
-            raise InputError(f"unknown model '{self.contact}', expected one of "
-                             f"{', '.join(CONTACT_MODELS)}", field="model")
-
-    @property
-    def model_id(self) -> int:
-        return CONTACT_MODELS[self.contact]
-
-    def contact_params(self, grid) -> np.ndarray:
-        """Model parameters packed for the kernel, for a road grid."""
-        step = min(grid.dx, grid.dy if grid.z.shape[1] > 2 else grid.dx)
-        return np.array([self.tyre.unloaded_radius, max(step, 1e-4)])
-
-    def kernel_args(self, grid) -> tuple:
-        """``(vp, knots, coefs, cp, gp, z, zinfo)`` for :func:`wheel_force`."""
-        law = self.tyre.vertical_law
-        zinfo = road_info(grid)
-        return (law.params, law.knots, law.coefs, self.contact_params(grid), grid.params, grid.z, zinfo)
-
-
+CONTACT_MODELS = {"point": 0, "volume": 1, "enveloping": 2, "ring": 3, "ring-tp": 4}
+#: handling model name -> literal id
+HANDLING_MODELS = {"none": 0, "pac89": 1, "mf": 2}
+OUT_SIZE = 19
 #: width of the road blocks whose maximum height bounds the contact search [m]
 BLOCK_LENGTH = 0.04
 
@@ -87,39 +61,121 @@ def road_info(grid) -> np.ndarray:
     nblocks = -(-z.shape[0] // per)
     col = z.max(axis=1)
     # a block's maximum includes its right edge node (bilinear cells span nodes)
-    maxima = np.array([col[i * per:min((i + 1) * per + 1, z.shape[0])].max() for i in range(nblocks)])
+    ends = np.minimum(np.arange(1, nblocks + 1) * per + 1, z.shape[0])
+    maxima = np.maximum.reduceat(col, np.arange(nblocks) * per)
+    maxima = np.maximum(maxima, col[ends - 1])
     return np.r_[z.min(), z.max(), grid.x0, per * grid.dx, nblocks, maxima]
+
+
+@dataclass
+class TyreModel:
+    """A tyre with the models that drive it.
+
+    Parameters
+    ----------
+    tyre : Tyre
+        Parameters (from a ``.tir`` or :func:`tyrelab.tyre.library.load_tyre`).
+    contact : str
+        Contact model: one of :data:`CONTACT_MODELS`.
+    handling : str
+        Handling (tangential force) model: ``"none"``, ``"pac89"`` or ``"mf"``.
+    """
+
+    tyre: Tyre
+    contact: str = "point"
+    handling: str = "none"
+    options: dict = field(default_factory=dict)
+
+    def __post_init__(self):
+        if self.contact not in CONTACT_MODELS:
+            raise InputError(f"unknown model '{self.contact}', expected one of "
+                             f"{', '.join(CONTACT_MODELS)}", field="model")
+        if self.handling not in HANDLING_MODELS:
+            raise InputError(f"unknown handling model '{self.handling}', expected one of "
+                             f"{', '.join(HANDLING_MODELS)}", field="handling")
+
+    @property
+    def model_id(self) -> int:
+        return CONTACT_MODELS[self.contact]
+
+    @property
+    def handling_id(self) -> int:
+        return HANDLING_MODELS[self.handling]
+
+    @property
+    def is_ring(self) -> bool:
+        return self.contact.startswith("ring")
+
+    def contact_params(self, grid) -> np.ndarray:
+        """Contact-model parameters packed for the kernel, for a road grid."""
+        if self.contact == "point":
+            step = min(grid.dx, grid.dy if grid.z.shape[1] > 2 else grid.dx)
+            return np.array([self.tyre.unloaded_radius, max(step, 1e-4)])
+        if self.contact == "volume":
+            return volume_params(self.tyre, grid, **self.options)
+        if self.contact == "enveloping":
+            return enveloping_params(self.tyre, grid, **self.options)
+        from .ring.model import ring_params
+        return ring_params(self.tyre, grid, tread_pattern=self.contact == "ring-tp", **self.options)
+
+    def initial_state(self, load: float) -> np.ndarray:
+        """Internal state of the tyre at a static ``load`` [N] (empty for analytic models)."""
+        if not self.is_ring:
+            return np.zeros(1)
+        from .ring.model import ring_initial_state
+        return ring_initial_state(self.tyre, load, tread_pattern=self.contact == "ring-tp",
+                                  **self.options)
+
+    def kernel_args(self, grid) -> tuple:
+        """``(vp, knots, coefs, cp, hp, gp, z, zinfo)`` for :func:`wheel_force`."""
+        law = self.tyre.vertical_law
+        return (law.params, law.knots, law.coefs, self.contact_params(grid),
+                handling_params(self.tyre, self.handling), grid.params, grid.z, road_info(grid))
 
 
 @nb.njit(cache=True)
 def contact_geometry(model, cp, gp, z, zinfo, cx, cy, cz, ax, ay, az, geo):
-    """Deflection, contact point and normal for contact model ``model``."""
+    """Deflection, contact point and normal for analytic contact model ``model``."""
     if model == 0:
         point_contact(cp[0], cp[1], gp, z, zinfo, cx, cy, cz, ax, ay, az, geo)
+    elif model == 1:
+        volume_contact(cp, gp, z, zinfo, cx, cy, cz, ax, ay, az, geo)
+    elif model == 2:
+        enveloping_contact(cp, gp, z, zinfo, cx, cy, cz, ax, ay, az, geo)
     else:
         geo[GEO_RHO] = -1.0
 
 
 @nb.njit(cache=True)
-def wheel_force(model, vp, knots, coefs, cp, gp, z, zinfo,
-                cx, cy, cz, ax, ay, az, vx, vy, vz, omega, geo, out):
-    """Force of the road on the tyre of a wheel at centre c with spin axis a.
+def wheel_force(model, handling, vp, knots, coefs, cp, hp, gp, z, zinfo, ts,
+                cx, cy, cz, ax, ay, az, vx, vy, vz, omega, dt, geo, out):
+    """Loads of the road on the tyre of a wheel at centre c with spin axis a.
 
-    ``v`` is the wheel-centre velocity, ``omega`` its spin rate. The normal
-    force follows thesis eq. 2.2 with the deflection rate ``-v . n`` (the
-    road does not move; the contact point slides along the road without
-    changing the distance to first order).
+    ``v`` is the wheel-centre velocity, ``omega`` the spin rate (positive
+    rolling forward), ``ts`` the tyre's internal state (advanced by ``dt``
+    for models that have one). Analytic contact models: the normal force is
+    thesis eq. 2.2 with the deflection rate ``-v . n`` (the road does not
+    move; the contact point slides along the road without changing the
+    distance to first order); the handling model adds FXW, FYW and an
+    aligning moment from the slip of the contact point.
     """
+    for k in range(OUT_SIZE):
+        out[k] = 0.0
+    if model >= 3:
+        ring_wheel_force(model, cp, ts, gp, z, zinfo, cx, cy, cz, ax, ay, az,
+                         vx, vy, vz, omega, dt, out)
+        return
     contact_geometry(model, cp, gp, z, zinfo, cx, cy, cz, ax, ay, az, geo)
     rho = geo[GEO_RHO]
     nx = geo[GEO_NX]
     ny = geo[GEO_NY]
     nz = geo[GEO_NZ]
-    for k in range(OUT_SIZE):
-        out[k] = 0.0
-    out[3] = geo[GEO_PX]
-    out[4] = geo[GEO_PY]
-    out[5] = geo[GEO_PZ]
+    px = geo[GEO_PX]
+    py = geo[GEO_PY]
+    pz = geo[GEO_PZ]
+    out[3] = px
+    out[4] = py
+    out[5] = pz
     out[6] = nx
     out[7] = ny
     out[8] = nz
@@ -128,8 +184,39 @@ def wheel_force(model, vp, knots, coefs, cp, gp, z, zinfo,
         return
     rho_dot = -dot(vx, vy, vz, nx, ny, nz)
     fz = normal_force(vp, knots, coefs, rho, rho_dot)
-    out[0] = fz * nx
-    out[1] = fz * ny
-    out[2] = fz * nz
     out[10] = rho_dot
     out[13] = fz
+    # W-axis: z along the normal, x in the wheel plane
+    tx, ty, tz = cross(ax, ay, az, nx, ny, nz)
+    wxx, wxy, wxz = unit(tx, ty, tz)
+    wyx, wyy, wyz = cross(nx, ny, nz, wxx, wxy, wxz)
+    fxw = 0.0
+    fyw = 0.0
+    mzw = 0.0
+    if handling != 0 and fz > 0.0:
+        rx, ry, rz = px - cx, py - cy, pz - cz
+        # velocity of the wheel material at the contact point: v + omega a x r
+        sx, sy, sz = cross(ax, ay, az, rx, ry, rz)
+        vcx = vx + omega * sx
+        vcy = vy + omega * sy
+        vcz = vz + omega * sz
+        v_long = dot(vx, vy, vz, wxx, wxy, wxz)
+        v_slip_x = dot(vcx, vcy, vcz, wxx, wxy, wxz)
+        v_slip_y = dot(vcx, vcy, vcz, wyx, wyy, wyz)
+        gamma = np.arcsin(max(-1.0, min(1.0, dot(ax, ay, az, nx, ny, nz))))
+        fxw, fyw, mzw, kappa, alpha = handling_forces(handling, hp, fz, v_long, v_slip_x, v_slip_y,
+                                                      gamma)
+        out[17] = kappa
+        out[18] = alpha
+    out[11] = fxw
+    out[12] = fyw
+    fx = fz * nx + fxw * wxx + fyw * wyx
+    fy = fz * ny + fxw * wxy + fyw * wyy
+    fzz = fz * nz + fxw * wxz + fyw * wyz
+    out[0] = fx
+    out[1] = fy
+    out[2] = fzz
+    mx, my, mz = cross(px - cx, py - cy, pz - cz, fx, fy, fzz)
+    out[14] = mx + mzw * nx
+    out[15] = my + mzw * ny
+    out[16] = mz + mzw * nz

@@ -129,11 +129,21 @@ class Tyre:
     # -- what the kernels take -------------------------------------------
     @property
     def vertical_law(self) -> VerticalLaw:
-        if self.stiffness == "table" and self.load_deflection is not None:
+        """The compiled-ready vertical law (rebuilt only when its inputs change)."""
+        use_table = self.stiffness == "table" and self.load_deflection is not None
+        key = (use_table, self.vertical_stiffness, self.vertical_damping, self.damping_ramp,
+               self.load_deflection.tobytes() if use_table else b"")
+        cached = self.__dict__.get("_law")
+        if cached is not None and cached[0] == key:
+            return cached[1]
+        if use_table:
             t = self.load_deflection
-            return VerticalLaw.table(t[:, 0], t[:, 1], self.vertical_damping, self.damping_ramp,
-                                     stiffness=self.vertical_stiffness, source=self.tir.source)
-        return VerticalLaw.linear(self.vertical_stiffness, self.vertical_damping, self.damping_ramp)
+            law = VerticalLaw.table(t[:, 0], t[:, 1], self.vertical_damping, self.damping_ramp,
+                                    stiffness=self.vertical_stiffness, source=self.tir.source)
+        else:
+            law = VerticalLaw.linear(self.vertical_stiffness, self.vertical_damping, self.damping_ramp)
+        self.__dict__["_law"] = (key, law)
+        return law
 
     def static_deflection(self, load: float) -> float:
         """Deflection [m] at which the vertical law carries ``load`` [N]."""

@@ -10,9 +10,14 @@ along the road normal at the contact point (so a pothole edge, whose
 supporting "plane" is tilted, pushes the wheel along that plane's normal and
 nothing else).
 
-Normal: its in-plane part points from the contact point to the centre (the
-supporting line of the section there, which is also well defined at a
-corner); its out-of-plane part comes from the road's lateral slope.
+The model reads the road only along its own section (a 2D road, like the
+roller model it is): the normal lies in the wheel plane, pointing from the
+contact point to the centre -- the supporting line of the section, well
+defined at a corner too. A road feature therefore gives no lateral force
+and no overturning moment about the contact point (an oblique cleat does
+not steer a rigid disc); the volume and enveloping models, which see the
+road across the tyre's width, do. On a banked road the contact point is the
+plane's, but the force stays in the wheel plane.
 """
 
 from __future__ import annotations
@@ -21,8 +26,8 @@ import math
 
 import numba as nb
 
-from ...core.vec3 import dot, unit, wheel_axes
-from ...road.grid import grid_height, grid_height_gradient
+from ...core.vec3 import unit, wheel_axes
+from ...road.grid import grid_height
 
 #: geometry output layout written by every contact model
 GEO_RHO, GEO_PX, GEO_PY, GEO_PZ, GEO_NX, GEO_NY, GEO_NZ = range(7)
@@ -69,18 +74,56 @@ def _segment_nearest(s0, q0, s1, q1):
     return ps, pq, ps * ps + pq * pq
 
 
+@nb.njit(cache=True, inline="always")
+def _depth(gp, z, cx, cy, cz, fx, fy, dz, hx, hy, base_q, s):
+    """Depth below the centre, along the in-plane down vector, of the section at s."""
+    return base_q + (grid_height(gp, z, cx + s * fx + hx, cy + s * fy + hy) - cz) * dz
+
+
 @nb.njit(cache=True)
 def _scan(gp, z, cx, cy, cz, fx, fy, dz, hx, hy, base_q, sa, sb, step, bs, bq, best):
-    """Nearest point to the centre on the section between s = sa and sb."""
+    """Nearest point to the centre on the section between s = sa and sb.
+
+    When the wheel heads along x (the rigs drive along x) the section is
+    sampled exactly where it crosses the grid's x nodes: between them the
+    bilinear road is linear along the section, so the piecewise-linear
+    section is exact and a sharp edge stays a sharp corner. Otherwise the
+    section is sampled every ``step``.
+    """
+    s0 = sa
+    q0 = _depth(gp, z, cx, cy, cz, fx, fy, dz, hx, hy, base_q, s0)
+    if abs(fx) > 0.9:
+        # node coordinates of the two ends, walked in the direction of s
+        u0 = (cx + sa * fx - gp[0]) * gp[4]
+        u1 = (cx + sb * fx - gp[0]) * gp[4]
+        k_first = int(math.floor(u0)) + 1 if u1 > u0 else int(math.ceil(u0)) - 1
+        k_last = int(math.ceil(u1)) - 1 if u1 > u0 else int(math.floor(u1)) + 1
+        direction = 1 if u1 > u0 else -1
+        count = (k_last - k_first) * direction + 1
+        for j in range(count + 1):
+            if j < count:
+                xk = gp[0] + (k_first + j * direction) * gp[2]
+                s1 = (xk - cx) / fx
+            else:
+                s1 = sb
+            if s1 <= s0:
+                continue
+            q1 = _depth(gp, z, cx, cy, cz, fx, fy, dz, hx, hy, base_q, s1)
+            ps, pq, d2 = _segment_nearest(s0, q0, s1, q1)
+            if d2 < best:
+                best = d2
+                bs = ps
+                bq = pq
+            s0 = s1
+            q0 = q1
+        return bs, bq, best
     n = int(math.ceil((sb - sa) / step)) + 1
     if n < 2:
         n = 2
     ds = (sb - sa) / (n - 1)
-    s0 = sa
-    q0 = base_q + (grid_height(gp, z, cx + s0 * fx + hx, cy + s0 * fy + hy) - cz) * dz
     for i in range(1, n):
         s1 = sa + i * ds
-        q1 = base_q + (grid_height(gp, z, cx + s1 * fx + hx, cy + s1 * fy + hy) - cz) * dz
+        q1 = _depth(gp, z, cx, cy, cz, fx, fy, dz, hx, hy, base_q, s1)
         ps, pq, d2 = _segment_nearest(s0, q0, s1, q1)
         if d2 < best:
             best = d2
@@ -184,17 +227,13 @@ def point_contact(r0, step, gp, z, zinfo, cx, cy, cz, ax, ay, az, geo):
     px = cx + bs * fx + bq * dx
     py = cy + bs * fy + bq * dy
     pz = cz + bs * fz + bq * dz
-    # in-plane normal: from the contact point to the centre
+    # the normal lies in the wheel plane: from the contact point to the
+    # centre (the supporting line of the section; well defined at a corner)
     ux, uy, uz = unit(cx - px, cy - py, cz - pz)
-    # out-of-plane part from the road's slope at the contact point
-    _, gx, gy = grid_height_gradient(gp, z, px, py)
-    rnx, rny, rnz = unit(-gx, -gy, 1.0)
-    sb = dot(rnx, rny, rnz, ax, ay, az)
-    cb = math.sqrt(max(0.0, 1.0 - sb * sb))
     geo[GEO_RHO] = r0 - dist
     geo[GEO_PX] = px
     geo[GEO_PY] = py
     geo[GEO_PZ] = pz
-    geo[GEO_NX] = ux * cb + ax * sb
-    geo[GEO_NY] = uy * cb + ay * sb
-    geo[GEO_NZ] = uz * cb + az * sb
+    geo[GEO_NX] = ux
+    geo[GEO_NY] = uy
+    geo[GEO_NZ] = uz

@@ -1,0 +1,104 @@
+"""Quarter-vehicle rig: a sprung mass on a suspension over one wheel.
+
+For users who have a vehicle rather than a test trailer: the body mass
+carried by one wheel, the suspension spring and damper, the wheel (tyre +
+rim + hub) as the unsprung mass, rolling at constant speed.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..errors import InputError
+from ..road.base import Road
+from ..road.spec import road_from_spec
+from ..tyre.kernel import TyreModel
+from . import _quarter_kernel as K
+from ._entries import entry
+from .simulation import run_chunks, to_signal
+
+G = 9.80665
+
+
+@dataclass
+class QuarterVehicle:
+    """Quarter vehicle (SI).
+
+    Parameters
+    ----------
+    model : TyreModel
+    sprung_mass : float
+        Body mass carried by this wheel [kg].
+    unsprung_mass : float, optional
+        Wheel, hub and half the suspension links [kg]; the tyre's wheel mass
+        by default.
+    suspension_stiffness, suspension_damping : float
+        [N/m], [N s/m]. Defaults: 1.5 Hz body bounce, 30 % of critical.
+    """
+
+    model: TyreModel
+    sprung_mass: float = 2135.0
+    unsprung_mass: float | None = None
+    suspension_stiffness: float | None = None
+    suspension_damping: float | None = None
+    spring_length: float = 0.5
+
+    def __post_init__(self):
+        if self.unsprung_mass is None:
+            self.unsprung_mass = self.model.tyre.wheel_mass or 0.1 * self.sprung_mass
+        ms = self.sprung_mass
+        if not (ms > 0 and self.unsprung_mass > 0):
+            raise InputError("masses must be positive", field="mass")
+        if self.suspension_stiffness is None:
+            self.suspension_stiffness = ms * (2 * math.pi * 1.5) ** 2
+        if self.suspension_damping is None:
+            self.suspension_damping = 0.3 * 2 * math.sqrt(self.suspension_stiffness * ms)
+
+    @property
+    def wheel_load(self) -> float:
+        """Static wheel load [N]."""
+        return (self.sprung_mass + self.unsprung_mass) * G
+
+    def run(self, road: Road | str, speed: float, duration: float | None = None,
+            dt: float = 1e-3, output_rate: float = 1000.0, progress: bool | None = None):
+        """Drive over ``road`` at ``speed`` [m/s] from static equilibrium; signal table."""
+        road = road_from_spec(road)
+        if not (np.isfinite(speed) and speed > 0):
+            raise InputError(f"speed must be a positive number, got {speed}", field="speed")
+        if duration is None:
+            duration = max(road.extent()[1], 1.0) / speed
+        tyre = self.model.tyre
+        ms, mu = self.sprung_mass, self.unsprung_mass
+        qp = np.zeros(K.QP_SIZE)
+        qp[K.QP_SPEED] = speed
+        qp[K.QP_MS] = ms
+        qp[K.QP_MU] = mu
+        qp[K.QP_KS] = self.suspension_stiffness
+        qp[K.QP_CS] = self.suspension_damping
+        qp[K.QP_D0] = self.spring_length + ms * G / self.suspension_stiffness
+        qp[K.QP_ISPIN] = max(tyre.wheel_spin_inertia, 1e-3)
+        qp[K.QP_G] = G
+        state = np.zeros(K.Q_SIZE)
+        zu = tyre.unloaded_radius - tyre.static_deflection(self.wheel_load) + road.height(0.0, 0.0)
+        state[K.Q_ZU] = zu
+        state[K.Q_ZS] = zu + self.spring_length
+        state[K.Q_W] = speed / (tyre.unloaded_radius - tyre.static_deflection(self.wheel_load))
+        args = self.model.kernel_args(road.grid())
+        n_steps = int(round(duration / dt))
+        out_every = max(1, int(round(1.0 / (output_rate * dt))))
+        kernel = entry("quarter", self.model)
+        ts = self.model.initial_state(self.wheel_load)
+
+        def advance(n, out, row):
+            return kernel(*args, ts, qp, state, n, dt, out_every, out, row)
+
+        data = run_chunks(advance, n_steps, out_every, K.N_CH, dt, progress)
+        meta = {"rig": "quarter-vehicle", "tyre": tyre.name, "model": self.model.contact,
+                "handling": self.model.handling,
+                "stiffness": tyre.stiffness, "road": road.name, "speed_m_s": speed,
+                "static_wheel_load_N": self.wheel_load, "pressure_Pa": tyre.pressure, "dt_s": dt,
+                "output_rate_Hz": 1.0 / (out_every * dt)}
+        return to_signal(data, K.CHANNELS, meta)

@@ -1,0 +1,1 @@
+"""The flexible ring tyre model (FTire class): belt segments, tread blocks."""
