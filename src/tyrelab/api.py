@@ -15,18 +15,46 @@ from .tyre.params import Tyre
 RIGS = ("trailer", "quarter-vehicle")
 
 
+def default_handling(tyre: Tyre) -> str:
+    """The handling model a property file describes: its format picks it.
+
+    PAC89 coefficients (``[LATERAL_COEFFICIENTS]`` with ``A0``) -> ``"pac89"``;
+    Magic Formula 5.2/6.x (``FITTYP`` or ``PROPERTY_FILE_FORMAT`` 'MF_05',
+    'PAC2002', 'MF_61', 'MF_62') -> ``"mf"``; otherwise ``"none"``.
+    """
+    tir = tyre.tir
+    fmt = str(tir.get("MODEL", "PROPERTY_FILE_FORMAT", "")).upper()
+    if tir.has("LATERAL_COEFFICIENTS", "A0") or fmt.startswith("PAC89"):
+        return "pac89"
+    if tir.has("MODEL", "FITTYP") or fmt in ("MF_05", "PAC2002", "MF_61", "MF_62", "MF_52"):
+        from .tyre.handling.mf import detect_version
+        try:
+            detect_version(tir)
+        except InputError as exc:
+            import warnings
+            warnings.warn(f"no handling forces: {exc}", stacklevel=3)
+            return "none"
+        return "mf"
+    return "none"
+
+
 def make_tyre_model(tyre: str | Tyre = DEFAULT_TYRE, model: str = "point", pressure: float | None = None,
-                    stiffness: str | None = None) -> TyreModel:
-    """A :class:`TyreModel` from a tyre name or file, a contact model and options."""
+                    stiffness: str | None = None, handling: str | None = None) -> TyreModel:
+    """A :class:`TyreModel` from a tyre name or file, a contact model and options.
+
+    ``handling=None`` takes the handling model the property file describes
+    (:func:`default_handling`).
+    """
     t = tyre if isinstance(tyre, Tyre) else load_tyre(tyre, pressure)
     if stiffness is not None:
         t = t.with_stiffness(stiffness)
-    return TyreModel(t, contact=model)
+    return TyreModel(t, contact=model, handling=handling or default_handling(t))
 
 
 def simulate(tyre: str | Tyre = DEFAULT_TYRE, model: str = "point", road="cleat:50x50",
              speed: float = 12 / 3.6, load="LC1", pressure: float | None = None,
-             stiffness: str | None = None, rig: str = "trailer", duration: float | None = None,
+             stiffness: str | None = None, handling: str | None = None,
+             rig: str = "trailer", duration: float | None = None,
              dt: float = 1e-3, output_rate: float = 1000.0, progress: bool | None = None):
     """Run a tyre model on a rig over a road; returns the signal table.
 
@@ -46,12 +74,14 @@ def simulate(tyre: str | Tyre = DEFAULT_TYRE, model: str = "point", road="cleat:
         Inflation pressure [Pa] (built-in tyres only).
     stiffness : {"table", "linear"}, optional
         Vertical stiffness: load-deflection spline or linear.
+    handling : {"none", "pac89", "mf"}, optional
+        Tangential force model; by default the one the property file describes.
     rig : {"trailer", "quarter-vehicle"}
     duration, dt, output_rate : float
         Simulated time [s] (default: until the road ends), time step [s],
         output sample rate [Hz].
     """
-    tm = make_tyre_model(tyre, model, pressure, stiffness)
+    tm = make_tyre_model(tyre, model, pressure, stiffness, handling)
     if rig == "trailer":
         from .rig.trailer import Trailer
         return Trailer(tm, load).run(road, speed, duration, dt, output_rate, progress)

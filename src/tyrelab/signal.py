@@ -50,9 +50,22 @@ CHANNELS: dict[str, tuple[str, str]] = {
     "ROTSPEED": ("rad/s", "wheel spin rate about its axis, positive rolling forward"),
     "INCLANGL": ("rad", "inclination (camber) angle of the wheel plane to the road normal"),
     "DEFLECT": ("m", "tyre radial deflection (positive in compression)"),
+    "LONGSLIP": ("-", "longitudinal slip kappa (ISO/TYDEX W, > 0 driving)"),
+    "SLIPANGL": ("rad", "slip angle alpha (ISO/TYDEX W)"),
+    "LONGVEL": ("m/s", "longitudinal speed of the wheel centre"),
     "X_CP": ("m", "contact point x, road frame"),
     "Y_CP": ("m", "contact point y, road frame"),
     "Z_CP": ("m", "contact point z, road frame"),
+    # rig channels (project names)
+    "FX_HUB": ("N", "load-cell force at the hub, C-axis x (tyre force less wheel inertia)"),
+    "FY_HUB": ("N", "load-cell force at the hub, C-axis y"),
+    "FZ_HUB": ("N", "load-cell force at the hub, C-axis z"),
+    "FZ_LEFT": ("N", "normal force of the trailer's left (non-test) wheel"),
+    "PITCH": ("rad", "trailer pitch about the hitch (positive: rear up)"),
+    "ROLL": ("rad", "trailer roll about its longitudinal axis"),
+    "Z_BODY": ("m", "quarter vehicle: sprung-mass height"),
+    "VZ_BODY": ("m/s", "quarter vehicle: sprung-mass vertical velocity"),
+    "F_SUSP": ("N", "quarter vehicle: suspension force (compression positive)"),
 }
 
 #: Channels that a force signal must never carry as NaN or negative.

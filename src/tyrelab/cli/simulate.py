@@ -19,6 +19,8 @@ def register(sub):
     p.add_argument("--stiffness", choices=("table", "linear"), default=None,
                    help="vertical stiffness: load-deflection spline (table, default when the file has one) "
                         "or linear")
+    p.add_argument("--handling", choices=("none", "pac89", "mf"), default=None,
+                   help="tangential force model (default: what the property file describes)")
     p.add_argument("--road", default="cleat:50x50",
                    help="road: flat, cleat:WxH[@ANGLE], bump:H, step:H, pothole:DxL[xW], a track name "
                         "or FILE.crg (sizes in mm; default cleat:50x50)")
@@ -44,7 +46,8 @@ def run(args) -> int:
 
     output_path(args.output)
     table = simulate(tyre=args.tyre, model=args.model, road=args.road, speed=args.speed,
-                     load=args.load, pressure=args.pressure, stiffness=args.stiffness, rig=args.rig,
+                     load=args.load, pressure=args.pressure, stiffness=args.stiffness,
+                     handling=args.handling, rig=args.rig,
                      duration=args.duration, dt=args.dt, output_rate=args.rate)
     write_signal(table, args.output)
     fz = table["FZW"]

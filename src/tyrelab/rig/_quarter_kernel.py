@@ -8,15 +8,16 @@ from ..tyre.kernel import OUT_SIZE, wheel_force
 from .frames import c_axis_loads
 
 # parameter layout
-QP_SPEED, QP_MS, QP_MU, QP_KS, QP_CS, QP_D0, QP_ISPIN, QP_G = range(8)
-QP_SIZE = 8
+QP_SPEED, QP_MS, QP_MU, QP_KS, QP_CS, QP_D0, QP_ISPIN, QP_G, QP_X0 = range(9)
+QP_SIZE = 9
 # state layout
 Q_ZS, Q_VS, Q_ZU, Q_VU, Q_W, Q_T = range(6)
 Q_SIZE = 6
 
 CHANNELS = ("RUNTIME", "DISTANCE", "FX", "FY", "FZ", "MX", "MY", "MZ", "FXW", "FYW", "FZW",
             "X_WC", "Y_WC", "Z_WC", "VX_WC", "VY_WC", "VZ_WC", "ROTSPEED", "INCLANGL", "DEFLECT",
-            "X_CP", "Y_CP", "Z_CP", "FX_HUB", "FY_HUB", "FZ_HUB", "Z_BODY", "VZ_BODY", "F_SUSP")
+            "X_CP", "Y_CP", "Z_CP", "FX_HUB", "FY_HUB", "FZ_HUB", "Z_BODY", "VZ_BODY", "F_SUSP",
+            "LONGSLIP", "SLIPANGL")
 N_CH = len(CHANNELS)
 
 
@@ -42,7 +43,7 @@ def quarter_steps(model, handling, vp, kn, co, cp, hp, gp, z, zi, ts, qp, state,
     row = row0
     for step in range(n_steps):
         t = state[Q_T]
-        cx = V * t
+        cx = qp[QP_X0] + V * t
         zs, vs, zu, vu = state[Q_ZS], state[Q_VS], state[Q_ZU], state[Q_VU]
         wheel_force(model, handling, vp, kn, co, cp, hp, gp, z, zi, ts, cx, 0.0, zu, 0.0, 1.0, 0.0,
                     V, 0.0, vu, state[Q_W], dt, geo, f)
@@ -54,7 +55,7 @@ def quarter_steps(model, handling, vp, kn, co, cp, hp, gp, z, zi, ts, qp, state,
             c_axis_loads(cx, 0.0, zu, 0.0, 1.0, 0.0, f, cax)
             o = out[row]
             o[0] = t
-            o[1] = cx
+            o[1] = cx - qp[QP_X0]
             for k in range(6):
                 o[2 + k] = cax[k]
             o[8] = f[11]
@@ -78,6 +79,8 @@ def quarter_steps(model, handling, vp, kn, co, cp, hp, gp, z, zi, ts, qp, state,
             o[26] = zs
             o[27] = vs
             o[28] = fsp
+            o[29] = f[17]
+            o[30] = f[18]
             row += 1
         state[Q_VS] = vs + dt * a_s
         state[Q_VU] = vu + dt * a_u

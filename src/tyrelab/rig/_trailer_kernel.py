@@ -40,7 +40,8 @@ S_SIZE = 10
 # output columns
 CHANNELS = ("RUNTIME", "DISTANCE", "FX", "FY", "FZ", "MX", "MY", "MZ", "FXW", "FYW", "FZW",
             "X_WC", "Y_WC", "Z_WC", "VX_WC", "VY_WC", "VZ_WC", "ROTSPEED", "INCLANGL", "DEFLECT",
-            "X_CP", "Y_CP", "Z_CP", "FX_HUB", "FY_HUB", "FZ_HUB", "FZ_LEFT", "PITCH", "ROLL")
+            "X_CP", "Y_CP", "Z_CP", "FX_HUB", "FY_HUB", "FZ_HUB", "FZ_LEFT", "PITCH", "ROLL",
+            "LONGSLIP", "SLIPANGL")
 N_CH = len(CHANNELS)
 
 
@@ -170,6 +171,8 @@ def trailer_steps(model, handling,
                     o[25] = cax[2] - mw * (acx * R[0, 2] + acy * R[1, 2] + acz * R[2, 2])
                     o[27] = th
                     o[28] = ph
+                    o[29] = fR[17]
+                    o[30] = fR[18]
                 state[S_VXR] = vx
                 state[S_VYR] = vy
                 state[S_VZR] = vz

@@ -18,7 +18,7 @@ from ..road.spec import road_from_spec
 from ..tyre.kernel import TyreModel
 from . import _quarter_kernel as K
 from ._entries import entry
-from .simulation import run_chunks, to_signal
+from .simulation import levelled_grid, run_chunks, to_signal
 
 G = 9.80665
 
@@ -68,8 +68,9 @@ class QuarterVehicle:
         road = road_from_spec(road)
         if not (np.isfinite(speed) and speed > 0):
             raise InputError(f"speed must be a positive number, got {speed}", field="speed")
+        x0_road = road.run_start
         if duration is None:
-            duration = max(road.extent()[1], 1.0) / speed
+            duration = max(road.extent()[1] - x0_road, 1.0) / speed
         tyre = self.model.tyre
         ms, mu = self.sprung_mass, self.unsprung_mass
         qp = np.zeros(K.QP_SIZE)
@@ -81,12 +82,13 @@ class QuarterVehicle:
         qp[K.QP_D0] = self.spring_length + ms * G / self.suspension_stiffness
         qp[K.QP_ISPIN] = max(tyre.wheel_spin_inertia, 1e-3)
         qp[K.QP_G] = G
+        qp[K.QP_X0] = x0_road
         state = np.zeros(K.Q_SIZE)
-        zu = tyre.unloaded_radius - tyre.static_deflection(self.wheel_load) + road.height(0.0, 0.0)
+        zu = tyre.unloaded_radius - tyre.static_deflection(self.wheel_load)
         state[K.Q_ZU] = zu
         state[K.Q_ZS] = zu + self.spring_length
         state[K.Q_W] = speed / (tyre.unloaded_radius - tyre.static_deflection(self.wheel_load))
-        args = self.model.kernel_args(road.grid())
+        args = self.model.kernel_args(levelled_grid(road, x0_road))
         n_steps = int(round(duration / dt))
         out_every = max(1, int(round(1.0 / (output_rate * dt))))
         kernel = entry("quarter", self.model)

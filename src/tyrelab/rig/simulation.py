@@ -47,6 +47,22 @@ def run_chunks(advance, n_steps: int, out_every: int, n_channels: int, dt: float
     return out[:row]
 
 
+def levelled_grid(road, x0: float, y0: float = 0.0):
+    """The road's grid shifted in height so the run starts at height zero.
+
+    A rig stands on level ground at z = 0 (the trailer's hitch and left
+    wheel, the quarter vehicle's start); measured roads (OpenCRG) carry
+    absolute heights, so the road under test is levelled to its height at
+    the start of the run.
+    """
+    from ..road.grid import RoadGrid
+    grid = road.grid()
+    offset = float(grid.height(x0, y0))
+    if offset == 0.0:
+        return grid
+    return RoadGrid(grid.x0, grid.y0, grid.dx, grid.dy, grid.z - offset)
+
+
 class SimulationError(RuntimeError):
     """A run produced a non-finite value or a negative normal force."""
 

@@ -30,7 +30,7 @@ from ..road.obstacles import Flat
 from ..road.spec import road_from_spec
 from . import _trailer_kernel as K
 from ._entries import entry
-from .simulation import run_chunks, to_signal
+from .simulation import levelled_grid, run_chunks, to_signal
 
 G = 9.80665
 
@@ -218,13 +218,14 @@ class Trailer:
             raise InputError(f"speed must be a positive number, got {speed}", field="speed")
         if not (dt > 0 and output_rate > 0):
             raise InputError("time step and output rate must be positive", field="dt")
-        xmin, xmax, _, _ = road.extent()
+        x0_road = road.run_start
+        xmax = road.extent()[1]
         if duration is None:
-            duration = max(xmax, 1.0) / speed
+            duration = max(xmax - x0_road, 1.0) / speed
         if not (np.isfinite(duration) and duration > 0):
             raise InputError(f"duration must be a positive number of seconds, got {duration}",
                              field="duration")
-        grid = road.grid()
+        grid = levelled_grid(road, x0_road)
         flat = Flat().grid()
         args_r = self.model.kernel_args(grid)
         args_l = self.model.kernel_args(flat)
@@ -235,7 +236,7 @@ class Trailer:
         state[K.S_THETA] = s.pitch0
         r_eff = self.model.tyre.unloaded_radius - self.model.tyre.static_deflection(s.wheel_load)
         state[K.S_WR] = state[K.S_WL] = speed / r_eff
-        x_start = L * math.cos(s.pitch0)  # test wheel centre starts at x = 0
+        x_start = x0_road + L * math.cos(s.pitch0)  # test wheel centre starts at run_start
         n_steps = int(round(duration / dt))
         out_every = max(1, int(round(1.0 / (output_rate * dt))))
 
@@ -247,6 +248,7 @@ class Trailer:
             return kernel(*args_r, ts_r, *args_l, ts_l, tp, state, n, dt, out_every, out, row, x_start)
 
         data = run_chunks(advance, n_steps, out_every, K.N_CH, dt, progress)
+        data[:, K.CHANNELS.index("DISTANCE")] = data[:, K.CHANNELS.index("X_WC")] - x0_road
         meta = {"rig": "trailer", "tyre": self.model.tyre.name, "model": self.model.contact,
                 "handling": self.model.handling,
                 "stiffness": self.model.tyre.stiffness, "road": road.name, "speed_m_s": speed,

@@ -24,6 +24,8 @@ class Road(ABC):
     name: str = "road"
     #: grid spacing (dx, dy) [m] that resolves the road's features
     default_spacing: tuple[float, float] = (0.01, 0.01)
+    #: x [m] where a run starts by default (the test wheel's first position)
+    run_start: float = 0.0
 
     @abstractmethod
     def height(self, x, y) -> np.ndarray:

@@ -182,7 +182,10 @@ class Step(Road):
     def height(self, x, y):
         x = np.asarray(x, float)
         shape = np.broadcast(x, np.asarray(y)).shape
-        return np.broadcast_to(np.where(x >= self.start, self.step_height, 0.0), shape)
+        # the edge itself belongs to the upper level: that corner is what a
+        # wheel rolls over, and on the grid it must be a node
+        after = x >= self.start if self.step_height > 0 else x > self.start
+        return np.broadcast_to(np.where(after, self.step_height, 0.0), shape)
 
     def extent(self):
         dx = self.default_spacing[0]

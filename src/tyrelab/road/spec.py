@@ -7,6 +7,8 @@ Grammar (sizes in millimetres, angles in degrees, as engineers say them)::
     bump:H[xRAMPxTOP]           trapezoidal bump (ramp and top lengths in mm)
     step:H                      step of height H (negative: step down)
     pothole:DEPTHxLENGTH[xWIDTH]
+    iso8608:CLASS[@SEED]        ISO 8608 random road, class A-H, 100 m x 4 m
+    powerlaw:A,N[@SEED]         random road with S = A phi^-N (thesis eq. 3.8)
     <track name>                a built-in test track (see :func:`road_names`)
     path/to/file.crg[@V]        an OpenCRG road, driven at lateral offset V [m]
 
@@ -40,7 +42,8 @@ def _tracks() -> dict:
 def road_names() -> list[str]:
     """Names accepted by :func:`road_from_spec` besides the obstacle grammar."""
     return ["flat", "cleat:WxH[@ANGLE]", "bump:H[xRAMPxTOP]", "step:H",
-            "pothole:DEPTHxLENGTH[xWIDTH]", *sorted(_tracks()), "FILE.crg[@V]"]
+            "pothole:DEPTHxLENGTH[xWIDTH]", "iso8608:CLASS[@SEED]", "powerlaw:A,N[@SEED]",
+            *sorted(_tracks()), "FILE.crg[@V]"]
 
 
 def _numbers(text: str, spec: str, count_min: int, count_max: int) -> list[float]:
@@ -90,6 +93,27 @@ def road_from_spec(spec: str | Road) -> Road:
         vals = _numbers(args, text, 2, 3)
         width = vals[2] / 1e3 if len(vals) > 2 else None
         return ob.Pothole(depth=vals[0] / 1e3, length=vals[1] / 1e3, width=width, start=OBSTACLE_START)
+    if kind in ("iso8608", "powerlaw") and args:
+        from .iso8608 import RandomRoad
+        body, _, seed_txt = args.partition("@")
+        seed = 0
+        if seed_txt:
+            if not seed_txt.isdigit():
+                raise InputError(f"cannot read seed '{seed_txt}' in road '{text}'; expected an integer",
+                                 field="road")
+            seed = int(seed_txt)
+        if kind == "iso8608":
+            if body.upper() not in tuple("ABCDEFGH"):
+                raise InputError(f"unknown ISO 8608 class '{body}' in road '{text}'; expected A to H",
+                                 field="road")
+            spec_ = body.upper()
+        else:
+            parts = body.split(",")
+            if len(parts) != 2 or not all(re.fullmatch(_NUM, p) for p in parts) or float(parts[0]) <= 0:
+                raise InputError(f"cannot read '{body}' in road '{text}'; expected A,N with A > 0 "
+                                 "(A in m^2/(cycles/m), N the road exponent)", field="road")
+            spec_ = (float(parts[0]), float(parts[1]))
+        return RandomRoad(spec_, seed=seed, start=OBSTACLE_START, taper=2.0)
     tracks = _tracks()
     if text.lower() in tracks:
         return tracks[text.lower()]()

@@ -84,6 +84,10 @@ KEY_DIMENSIONS: dict[str, tuple[int, int, int, int, int]] = {
     # ranges
     "ALPMIN": _dim(A=1), "ALPMAX": _dim(A=1), "CAMMIN": _dim(A=1), "CAMMAX": _dim(A=1),
     "FZMIN": _dim(F=1), "FZMAX": _dim(F=1),
+    "PRESMIN": _dim(F=1, L=-2), "PRESMAX": _dim(F=1, L=-2),
+    # [STRUCTURAL]
+    "LONGITUDINAL_STIFFNESS": _dim(F=1, L=-1), "LATERAL_STIFFNESS": _dim(F=1, L=-1),
+    "YAW_STIFFNESS": _dim(F=1, L=1, A=-1),
 }
 
 #: dimension of each column of known table sections

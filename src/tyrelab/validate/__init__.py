@@ -13,6 +13,7 @@ from .segments import (Segments, segments_from_geometry, segments_from_signal,
                        segments_from_speed)
 from .spectra import band_rms, compare_psd, psd
 from .tables import (metrics_table, rank_models, summary_html, summary_markdown,
+                     table_markdown_by_metric,
                      summary_table, table_html, table_markdown)
 
 __all__ = [n for n in dir() if not n.startswith("_")]

@@ -1,0 +1,167 @@
+"""Compiled entry points of the Magic Formula: one sample and arrays.
+
+:func:`mf_forces` is the function other compiled kernels call in their time
+step loop; :func:`mf_evaluate_many` fills every output MFeval reports for
+arrays of inputs.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numba
+import numpy as np
+
+from . import coefficients as C
+from .forces import combined_fx_weight, combined_fy_weight, kappa_induced_fy, pure_fx, pure_fy, sign
+from .geometry import contact_patch, deflection_61, deflection_62, effective_rolling_radius, relaxation
+from .limits import NEGATIVE_MUY, NON_FINITE, decode_use_mode, prepare_inputs
+from .moments import aligning_moment, overturning_moment, rolling_resistance, trail_and_residual
+
+#: columns of the full output row written by :func:`mf_evaluate`
+OUTPUTS = ("Fx", "Fy", "Mx", "My", "Mz", "flags", "Fz", "kappa", "alpha", "gamma", "Vx", "P",
+           "Re", "rho", "contact_length_2a", "t", "mux", "muy", "omega", "Rl",
+           "contact_width_2b", "Mzr", "Cx", "Cy", "Cz", "Kya", "sigmax", "sigmay", "Kxk",
+           "alpha_used")
+N_OUTPUTS = len(OUTPUTS)
+COL = {name: i for i, name in enumerate(OUTPUTS)}
+COL_FLAGS = 5
+
+
+@numba.njit(cache=True, error_model="numpy")
+def _steady_state(c, use_mode, fz, kappa, alpha, gamma, vx, pressure):
+    """All steady-state quantities of one sample, as a tuple (see ``mf_evaluate``)."""
+    check, star = decode_use_mode(use_mode)
+    p = pressure if pressure > 0.0 else c[C.INFLPRES]
+    kappa_in = kappa
+    (fz_u, fz, fz_low, kappa, kappa_out, alpha, alpha_out, gamma, p,
+     low, smooth, flags) = prepare_inputs(c, check, fz, kappa, alpha, gamma, vx, p)
+    fz0p = c[C.FNOMIN] * c[C.LFZO]  # (4.E1)
+    dfz = (fz - fz0p) / fz0p  # (4.E2a)
+    dpi = (p - c[C.NOMPRES]) / c[C.NOMPRES]  # (4.E2b)
+    if star:
+        alpha_s = math.tan(alpha) * sign(vx)  # (4.E3)
+        gamma_s = math.sin(gamma)  # (4.E4)
+    else:
+        alpha_s, gamma_s = alpha, gamma
+    vc = math.sqrt(vx * vx + (math.tan(alpha) * abs(vx)) ** 2)
+    cos_alpha_prime = vx / (vc + 1e-6)  # cos(alpha') (4.E6, 4.E6a), |Vx| <= Vc
+
+    fx0, mux, kxk, flags = pure_fx(c, fz, kappa, gamma, dfz, dpi, vx, smooth, check, flags)
+    fy0, muy, kya, shy, svy, by, cy, flags = pure_fy(c, fz, alpha_s, gamma_s, dfz, dpi, vx,
+                                                     smooth, star, check, flags)
+    gxa, flags = combined_fx_weight(c, kappa, alpha_s, gamma_s, dfz, check, flags)
+    gyk, flags = combined_fy_weight(c, kappa, alpha_s, gamma_s, dfz, check, flags)
+    svyk = kappa_induced_fy(c, fz, muy, kappa, alpha_s, gamma_s, dfz, smooth)
+    fx = gxa * fx0  # (4.E50)
+    fy = gyk * fy0 + svyk  # (4.E58)
+
+    alphar, alphat, dt, bt, ct, et, dr, br, kya_p, flags = trail_and_residual(
+        c, fz, fz_low, check, alpha_s, gamma, gamma_s, dfz, dpi, vx, kya, shy, svy, by, cy, flags)
+    if gamma_s == 0.0 or c[C.VERSION] == 52.0:
+        fy0_flat = fy0  # Fy0 at zero camber (4.E74) is Fy0 itself; MF5.2 does not use it
+    else:
+        fy0_flat = pure_fy(c, fz, alpha_s, 0.0, dfz, dpi, vx, smooth, star, check, 0)[0]
+    mx = overturning_moment(c, fz, fy, gamma, dpi)
+    my = rolling_resistance(c, fz_u, fx, kappa_in, gamma, vx, p)
+    mz, t, mzr = aligning_moment(c, kappa, gamma, dfz, cos_alpha_prime, smooth, alphar, alphat, kxk,
+                                 kya_p, dt, bt, ct, et, dr, br, fx, fy, gyk * fy0_flat, svyk)
+    if check and muy < 0.0:
+        flags |= NEGATIVE_MUY
+    return (fx, fy, mx, my, mz, flags, fz_u, fz, fz_low, kappa_out, alpha, alpha_out, gamma, p,
+            dpi, t, mux, muy, mzr, kya, kxk)
+
+
+@numba.njit(cache=True, error_model="numpy")
+def _finite(value, flags):
+    """(value, flags), or (0, flags | NON_FINITE) for an infinite or NaN value."""
+    if math.isfinite(value):
+        return value, flags
+    return 0.0, flags | NON_FINITE
+
+
+@numba.njit(cache=True, error_model="numpy")
+def mf_forces(coefficients, use_mode, fz, kappa, alpha, gamma, vx, pressure, out):
+    """Steady-state Magic Formula forces and moments of one sample.
+
+    Writes Fx, Fy, Mx, My, Mz (N, N m) into ``out[0:5]``; if ``out`` has a
+    sixth element, ``out[5]`` receives the limit flag word (bits in
+    :mod:`.limits`). No allocation, no Python objects: call it from other
+    ``njit`` kernels.
+
+    Sign convention: ISO-W (TYDEX W) axes as MFeval -- forces and moments
+    of the road on the tyre, x forward along the wheel heading in the road
+    plane, y to the left, z up; kappa > 0 when driving (Fx > 0); alpha > 0
+    when the contact centre slides to the left, Vy/Vx > 0 (a normal tyre
+    then gives Fy < 0); gamma > 0 with the wheel top tilted to the left
+    (about +x); Mz > 0 anticlockwise seen from above.
+
+    Inputs: ``coefficients`` from :func:`.coefficients.pack`; ``fz`` (N,
+    negative read as 0), ``kappa`` (-), ``alpha``, ``gamma`` (rad), ``vx``
+    (m/s), ``pressure`` (Pa; <= 0 means the file's INFLPRES).
+
+    ``use_mode`` is MFeval's 3-digit useMode: hundreds 1 = limit checks
+    (clip to ALPMIN/ALPMAX, CAMMIN/CAMMAX, FZMAX, PRESMIN/PRESMAX,
+    KPUMIN/KPUMAX, FZMIN in moments, curvature factors <= 1, low-speed model
+    below VXLOW), 2 = none; tens 1 = alpha* = alpha, gamma* = gamma (TNO
+    MF-Tyre), 2 = alpha* = tan(alpha) sign(Vx), gamma* = sin(gamma) (Pacejka
+    2012 4.E3-4.E4); units 1 = combined slip without turn slip (turn slip,
+    2, is not implemented and is evaluated as 1). 111 and 121 are the modes
+    checked against MFeval.
+    """
+    r = _steady_state(coefficients, use_mode, fz, kappa, alpha, gamma, vx, pressure)
+    flags = r[5]
+    out[0], flags = _finite(r[0], flags)
+    out[1], flags = _finite(r[1], flags)
+    out[2], flags = _finite(r[2], flags)
+    out[3], flags = _finite(r[3], flags)
+    out[4], flags = _finite(r[4], flags)
+    if out.shape[0] > 5:
+        out[5] = flags
+
+
+@numba.njit(cache=True, error_model="numpy")
+def mf_evaluate(c, use_mode, fz, kappa, alpha, gamma, vx, pressure, out):
+    """Every MFeval output of one sample, in the order of ``OUTPUTS``, into ``out``."""
+    (fx, fy, mx, my, mz, flags, fz_u, fz_c, fz_low, kappa_out, alpha_c, alpha_out, gamma_c, p,
+     dpi, t, mux, muy, mzr, kya, kxk) = _steady_state(c, use_mode, fz, kappa, alpha, gamma, vx,
+                                                        pressure)
+    check = decode_use_mode(use_mode)[0]
+    re, r_omega, omega = effective_rolling_radius(c, fz_u, kappa, vx, dpi)
+    if c[C.VERSION] == 62.0:
+        rho, rl, cz = deflection_62(c, fz_u, fz_c, gamma_c, fx, fy, omega, r_omega, dpi)
+    else:
+        rho, rl, cz = deflection_61(c, fz_low, fx, fy, omega, r_omega, dpi)
+    a, b = contact_patch(c, fz_u, dpi)
+    cx, cy, sx, sy = relaxation(c, fz_c, gamma_c, dpi, kxk, kya)
+    values = (fx, fy, mx, my, mz, float(flags), fz_u, kappa_out, alpha_out, gamma, vx, p,
+              re, rho, 2.0 * a, t, mux, abs(muy) if check else muy, omega, rl, 2.0 * b, mzr,
+              cx, cy, cz, kya, sx, sy, kxk, alpha_c)
+    bad = False
+    for i in range(len(values)):
+        value = values[i]
+        if not math.isfinite(value):
+            value = 0.0
+            bad = True
+        out[i] = value
+    if bad:
+        out[COL_FLAGS] = float(flags | NON_FINITE)
+
+
+@numba.njit(cache=True, error_model="numpy")
+def mf_evaluate_many(c, use_mode, fz, kappa, alpha, gamma, vx, pressure, out):
+    """``mf_evaluate`` over 1-D arrays of equal length; ``out`` has shape (n, N_OUTPUTS)."""
+    for i in range(fz.shape[0]):
+        mf_evaluate(c, use_mode, fz[i], kappa[i], alpha[i], gamma[i], vx[i], pressure[i], out[i])
+
+
+@numba.njit(cache=True, error_model="numpy")
+def mf_forces_many(c, use_mode, fz, kappa, alpha, gamma, vx, pressure, out):
+    """``mf_forces`` over 1-D arrays; ``out`` has shape (n, 5) or (n, 6)."""
+    for i in range(fz.shape[0]):
+        mf_forces(c, use_mode, fz[i], kappa[i], alpha[i], gamma[i], vx[i], pressure[i], out[i])
+
+
+def empty_outputs(n: int) -> np.ndarray:
+    """An output array for ``mf_evaluate_many``."""
+    return np.empty((n, N_OUTPUTS))

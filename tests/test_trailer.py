@@ -1,0 +1,58 @@
+"""The towed test trailer (thesis 3.4, 5.2)."""
+
+import numpy as np
+import pytest
+
+from tyrelab.road.obstacles import Flat
+from tyrelab.rig.trailer import Trailer
+from tyrelab.tyre.kernel import TyreModel
+
+G = 9.80665
+# thesis Table 3-4: wheel load [kg] per load case
+TABLE_3_4 = {"LC1": 2375, "LC2": 3895, "LC3": 5095}
+
+
+@pytest.mark.parametrize("case", ["LC1", "LC2", "LC3"])
+@pytest.mark.parametrize("stiffness", ["table", "linear"])
+def test_static_test_wheel_load_is_the_load_case(xzl, case, stiffness):
+    run = Trailer(TyreModel(xzl.with_stiffness(stiffness)), case).run(Flat(), 12 / 3.6, duration=3.0)
+    target = TABLE_3_4[case] * G
+    assert run["FZW"].iloc[-500:].mean() == pytest.approx(target, rel=0.005)
+    assert run["FZ"].iloc[-500:].mean() == pytest.approx(target, rel=0.005)
+    # the left wheel, on the same flat ground, carries the same load
+    assert run["FZ_LEFT"].iloc[-500:].mean() == pytest.approx(target, rel=0.005)
+    # and the trailer does not drift: it starts in equilibrium
+    assert run["FZW"].std() < 1e-6 * target
+
+
+def test_wheel_load_in_newtons(xzl):
+    run = Trailer(TyreModel(xzl), 30000.0).run(Flat(), 5.0, duration=1.0)
+    assert run["FZW"].mean() == pytest.approx(30000.0, rel=0.005)
+
+
+def test_cleat_run_conserves_and_stays_physical(xzl):
+    run = Trailer(TyreModel(xzl), "LC1").run("cleat:50x50", 12 / 3.6)
+    fz = run["FZW"].to_numpy()
+    assert np.all(np.isfinite(run.to_numpy()))
+    assert fz.min() >= 0.0
+    # before the cleat the wheel rolls at the static load
+    before = run["X_WC"] < 4.0
+    assert fz[before.to_numpy()] == pytest.approx(TABLE_3_4["LC1"] * G, rel=1e-6)
+    # the cleat loads the wheel well above static, and the wheel leaves the
+    # ground after it (the rigid disc's impulse-like response, thesis Fig 5-4)
+    assert fz.max() > 2.0 * TABLE_3_4["LC1"] * G
+    assert fz.min() == 0.0
+    # the point contact pushes back on the cleat's leading corner (FX < 0)
+    on_cleat = (run["X_CP"] > 4.99) & (run["X_CP"] < 5.0001) & (run["FZW"] > 0)
+    assert (run.loc[on_cleat, "FX"] < 0).all() and on_cleat.any()
+
+
+def test_perpendicular_cleat_gives_no_lateral_force(xzl):
+    run = Trailer(TyreModel(xzl), "LC1").run("cleat:50x50", 12 / 3.6, duration=3.0)
+    assert np.abs(run["FY"]).max() < 1e-6 * run["FZW"].max()
+
+
+def test_results_are_deterministic(xzl):
+    a = Trailer(TyreModel(xzl), "LC2").run("bump:150", 8 / 3.6)
+    b = Trailer(TyreModel(xzl), "LC2").run("bump:150", 8 / 3.6)
+    np.testing.assert_array_equal(a.to_numpy(), b.to_numpy())
