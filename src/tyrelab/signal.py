@@ -77,6 +77,14 @@ def units(columns) -> dict[str, str]:
     return {c: CHANNELS.get(c, ("", ""))[0] for c in columns}
 
 
+def signal_from_array(data: np.ndarray, channels, metadata: dict | None = None) -> pd.DataFrame:
+    """A signal table from a 2D array whose columns are ``channels`` (no copy)."""
+    df = pd.DataFrame(np.asarray(data, dtype=float), columns=list(channels), copy=False)
+    df.attrs["units"] = units(df.columns)
+    df.attrs["metadata"] = dict(metadata or {})
+    return df
+
+
 def make_signal(data: dict[str, np.ndarray], metadata: dict | None = None) -> pd.DataFrame:
     """Build a signal table from arrays, in the standard column order.
 

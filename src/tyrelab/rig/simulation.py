@@ -7,7 +7,7 @@ import time
 
 import numpy as np
 
-from ..signal import make_signal
+from ..signal import signal_from_array
 
 #: runs expected to take longer than this [s] show a progress bar by default
 PROGRESS_AFTER = 2.0
@@ -80,4 +80,4 @@ def to_signal(data: np.ndarray, channels, metadata: dict):
     for name in ("FZW", "FZ_LEFT"):
         if name in channels and np.any(data[:, list(channels).index(name)] < 0):
             raise SimulationError(f"negative normal force in {name}")
-    return make_signal({name: data[:, k] for k, name in enumerate(channels)}, metadata)
+    return signal_from_array(data, channels, metadata)
