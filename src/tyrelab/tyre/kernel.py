@@ -28,8 +28,13 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
+import math
+
 import numba as nb
 import numpy as np
+from numba.core import types
+from numba.core.errors import TypingError
+from numba.extending import overload
 
 from ..core.vec3 import cross, dot, unit
 from ..errors import InputError
@@ -133,38 +138,83 @@ class TyreModel:
                 handling_params(self.tyre, self.handling), grid.params, grid.z, road_info(grid))
 
 
-@nb.njit(cache=True)
+def _literal(value, what):
+    if not isinstance(value, types.IntegerLiteral):
+        raise TypingError(f"the {what} id must be a compile-time constant (see rig/_entries.py)")
+    return value.literal_value
+
+
 def contact_geometry(model, cp, gp, z, zinfo, cx, cy, cz, ax, ay, az, geo):
-    """Deflection, contact point and normal for analytic contact model ``model``."""
-    if model == 0:
-        point_contact(cp[0], cp[1], gp, z, zinfo, cx, cy, cz, ax, ay, az, geo)
-    elif model == 1:
-        volume_contact(cp, gp, z, zinfo, cx, cy, cz, ax, ay, az, geo)
-    elif model == 2:
-        enveloping_contact(cp, gp, z, zinfo, cx, cy, cz, ax, ay, az, geo)
+    """Deflection, contact point and normal of analytic contact model ``model``.
+
+    Compiled by overload: ``model`` must be a compile-time constant, and only
+    the chosen model's code is compiled.
+    """
+    raise NotImplementedError("compiled only")
+
+
+@overload(contact_geometry, prefer_literal=True)
+def _contact_geometry(model, cp, gp, z, zinfo, cx, cy, cz, ax, ay, az, geo):
+    m = _literal(model, "contact model")
+    if m == 0:
+        def impl(model, cp, gp, z, zinfo, cx, cy, cz, ax, ay, az, geo):
+            point_contact(cp[0], cp[1], gp, z, zinfo, cx, cy, cz, ax, ay, az, geo)
+    elif m == 1:
+        def impl(model, cp, gp, z, zinfo, cx, cy, cz, ax, ay, az, geo):
+            volume_contact(cp, gp, z, zinfo, cx, cy, cz, ax, ay, az, geo)
+    elif m == 2:
+        def impl(model, cp, gp, z, zinfo, cx, cy, cz, ax, ay, az, geo):
+            enveloping_contact(cp, gp, z, zinfo, cx, cy, cz, ax, ay, az, geo)
     else:
-        geo[GEO_RHO] = -1.0
+        raise TypingError(f"contact model {m} is not an analytic contact model")
+    return impl
 
 
-@nb.njit(cache=True)
 def wheel_force(model, handling, vp, knots, coefs, cp, hp, gp, z, zinfo, ts,
                 cx, cy, cz, ax, ay, az, vx, vy, vz, omega, dt, geo, out):
     """Loads of the road on the tyre of a wheel at centre c with spin axis a.
 
     ``v`` is the wheel-centre velocity, ``omega`` the spin rate (positive
     rolling forward), ``ts`` the tyre's internal state (advanced by ``dt``
-    for models that have one). Analytic contact models: the normal force is
-    thesis eq. 2.2 with the deflection rate ``-v . n`` (the road does not
-    move; the contact point slides along the road without changing the
-    distance to first order); the handling model adds FXW, FYW and an
-    aligning moment from the slip of the contact point.
+    for models that have one). ``model`` and ``handling`` must be
+    compile-time constants: the overload compiles only the chosen models.
+    """
+    raise NotImplementedError("compiled only")
+
+
+@overload(wheel_force, prefer_literal=True)
+def _wheel_force(model, handling, vp, knots, coefs, cp, hp, gp, z, zinfo, ts,
+                 cx, cy, cz, ax, ay, az, vx, vy, vz, omega, dt, geo, out):
+    m = _literal(model, "contact model")
+    _literal(handling, "handling model")
+    if m >= 3:
+        def impl(model, handling, vp, knots, coefs, cp, hp, gp, z, zinfo, ts,
+                 cx, cy, cz, ax, ay, az, vx, vy, vz, omega, dt, geo, out):
+            for k in range(OUT_SIZE):
+                out[k] = 0.0
+            ring_wheel_force(model, cp, ts, gp, z, zinfo, cx, cy, cz, ax, ay, az,
+                             vx, vy, vz, omega, dt, out)
+        return impl
+
+    def impl(model, handling, vp, knots, coefs, cp, hp, gp, z, zinfo, ts,
+             cx, cy, cz, ax, ay, az, vx, vy, vz, omega, dt, geo, out):
+        analytic_wheel_force(model, handling, vp, knots, coefs, cp, hp, gp, z, zinfo,
+                             cx, cy, cz, ax, ay, az, vx, vy, vz, omega, geo, out)
+    return impl
+
+
+@nb.njit(cache=True)
+def analytic_wheel_force(model, handling, vp, knots, coefs, cp, hp, gp, z, zinfo,
+                         cx, cy, cz, ax, ay, az, vx, vy, vz, omega, geo, out):
+    """:func:`wheel_force` for the analytic contact models.
+
+    The normal force is thesis eq. 2.2 with the deflection rate ``-v . n``
+    (the road does not move; the contact point slides along the road
+    without changing the distance to first order); the handling model adds
+    FXW, FYW and an aligning moment from the slip of the contact point.
     """
     for k in range(OUT_SIZE):
         out[k] = 0.0
-    if model >= 3:
-        ring_wheel_force(model, cp, ts, gp, z, zinfo, cx, cy, cz, ax, ay, az,
-                         vx, vy, vz, omega, dt, out)
-        return
     contact_geometry(model, cp, gp, z, zinfo, cx, cy, cz, ax, ay, az, geo)
     rho = geo[GEO_RHO]
     nx = geo[GEO_NX]
@@ -190,24 +240,16 @@ def wheel_force(model, handling, vp, knots, coefs, cp, hp, gp, z, zinfo, ts,
     tx, ty, tz = cross(ax, ay, az, nx, ny, nz)
     wxx, wxy, wxz = unit(tx, ty, tz)
     wyx, wyy, wyz = cross(nx, ny, nz, wxx, wxy, wxz)
-    fxw = 0.0
-    fyw = 0.0
-    mzw = 0.0
-    if handling != 0 and fz > 0.0:
-        rx, ry, rz = px - cx, py - cy, pz - cz
-        # velocity of the wheel material at the contact point: v + omega a x r
-        sx, sy, sz = cross(ax, ay, az, rx, ry, rz)
-        vcx = vx + omega * sx
-        vcy = vy + omega * sy
-        vcz = vz + omega * sz
-        v_long = dot(vx, vy, vz, wxx, wxy, wxz)
-        v_slip_x = dot(vcx, vcy, vcz, wxx, wxy, wxz)
-        v_slip_y = dot(vcx, vcy, vcz, wyx, wyy, wyz)
-        gamma = np.arcsin(max(-1.0, min(1.0, dot(ax, ay, az, nx, ny, nz))))
-        fxw, fyw, mzw, kappa, alpha = handling_forces(handling, hp, fz, v_long, v_slip_x, v_slip_y,
-                                                      gamma)
-        out[17] = kappa
-        out[18] = alpha
+    rx, ry, rz = px - cx, py - cy, pz - cz
+    # velocity of the wheel material at the contact point: v + omega a x r
+    sx, sy, sz = cross(ax, ay, az, rx, ry, rz)
+    v_long = dot(vx, vy, vz, wxx, wxy, wxz)
+    v_slip_x = dot(vx + omega * sx, vy + omega * sy, vz + omega * sz, wxx, wxy, wxz)
+    v_slip_y = dot(vx + omega * sx, vy + omega * sy, vz + omega * sz, wyx, wyy, wyz)
+    gamma = math.asin(max(-1.0, min(1.0, dot(ax, ay, az, nx, ny, nz))))
+    fxw, fyw, mzw, kappa, alpha = handling_forces(handling, hp, fz, v_long, v_slip_x, v_slip_y, gamma)
+    out[17] = kappa
+    out[18] = alpha
     out[11] = fxw
     out[12] = fyw
     fx = fz * nx + fxw * wxx + fyw * wyx
@@ -216,7 +258,7 @@ def wheel_force(model, handling, vp, knots, coefs, cp, hp, gp, z, zinfo, ts,
     out[0] = fx
     out[1] = fy
     out[2] = fzz
-    mx, my, mz = cross(px - cx, py - cy, pz - cz, fx, fy, fzz)
+    mx, my, mz = cross(rx, ry, rz, fx, fy, fzz)
     out[14] = mx + mzw * nx
     out[15] = my + mzw * ny
     out[16] = mz + mzw * nz

@@ -16,6 +16,9 @@ import math
 
 import numba as nb
 import numpy as np
+from numba.core import types
+from numba.core.errors import TypingError
+from numba.extending import overload
 
 from ...errors import InputError
 from .mf.kernel import mf_forces
@@ -40,24 +43,38 @@ def handling_params(tyre, handling: str) -> np.ndarray:
 
 
 @nb.njit(cache=True)
-def _mf(hp, fz, kappa, alpha, gamma, vx):
-    out = np.empty(6)
-    mf_forces(hp[2:], int(hp[0]), fz, kappa, alpha, gamma, vx, hp[1], out)
-    return out[0], out[1], out[4]
-
-
-@nb.njit(cache=True)
-def handling_forces(handling, hp, fz, v_long, v_slip_x, v_slip_y, gamma):
-    """``(FXW, FYW, MZW, kappa, alpha)`` of the handling model ``handling``."""
+def slip(v_long, v_slip_x, v_slip_y):
+    """``(kappa, alpha)`` from the contact point's velocities (module docstring)."""
     vx = abs(v_long)
     if vx < VXLOW:
         vx = VXLOW
-    kappa = -v_slip_x / vx
-    alpha = math.atan(v_slip_y / vx)
-    if handling == 1:
-        fx, fy, mz = pac89_forces(hp, fz, kappa, alpha, gamma)
-    elif handling == 2:
-        fx, fy, mz = _mf(hp, fz, kappa, alpha, gamma, v_long)
+    return -v_slip_x / vx, math.atan(v_slip_y / vx)
+
+
+def handling_forces(handling, hp, fz, v_long, v_slip_x, v_slip_y, gamma):
+    """``(FXW, FYW, MZW, kappa, alpha)`` of handling model ``handling`` (a compile-time constant)."""
+    raise NotImplementedError("compiled only")
+
+
+@overload(handling_forces, prefer_literal=True)
+def _handling_forces(handling, hp, fz, v_long, v_slip_x, v_slip_y, gamma):
+    if not isinstance(handling, types.IntegerLiteral):
+        raise TypingError("the handling model id must be a compile-time constant")
+    h = handling.literal_value
+    if h == 0:
+        def impl(handling, hp, fz, v_long, v_slip_x, v_slip_y, gamma):
+            return 0.0, 0.0, 0.0, 0.0, 0.0
+    elif h == 1:
+        def impl(handling, hp, fz, v_long, v_slip_x, v_slip_y, gamma):
+            kappa, alpha = slip(v_long, v_slip_x, v_slip_y)
+            fx, fy, mz = pac89_forces(hp, fz, kappa, alpha, gamma)
+            return fx, fy, mz, kappa, alpha
+    elif h == 2:
+        def impl(handling, hp, fz, v_long, v_slip_x, v_slip_y, gamma):
+            kappa, alpha = slip(v_long, v_slip_x, v_slip_y)
+            out = np.empty(6)
+            mf_forces(hp[2:], int(hp[0]), fz, kappa, alpha, gamma, v_long, hp[1], out)
+            return out[0], out[1], out[4], kappa, alpha
     else:
-        fx, fy, mz = 0.0, 0.0, 0.0
-    return fx, fy, mz, kappa, alpha
+        raise TypingError(f"unknown handling model {h}")
+    return impl
