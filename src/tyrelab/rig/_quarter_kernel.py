@@ -86,7 +86,8 @@ def quarter_steps(model, handling, vp, kn, co, cp, hp, gp, z, zi, ts, qp, state,
         state[Q_VU] = vu + dt * a_u
         state[Q_ZS] = zs + dt * state[Q_VS]
         state[Q_ZU] = zu + dt * state[Q_VU]
-        state[Q_W] += dt * spin / qp[QP_ISPIN]
+        # linearly implicit Euler: the slip stiffness makes the spin stiff
+        state[Q_W] += dt * spin / (qp[QP_ISPIN] - dt * min(f[19], 0.0))
         state[Q_T] = t + dt
     return row
 

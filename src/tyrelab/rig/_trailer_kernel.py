@@ -104,6 +104,8 @@ def trailer_steps(model, handling,
         tau2 = 0.0
         spinR = 0.0
         spinL = 0.0
+        dspinR = 0.0
+        dspinL = 0.0
         for side in range(2):
             by = -half if side == 0 else half   # right (test) wheel first
             rx = -L * R[0, 0] + by * R[0, 1]
@@ -130,10 +132,12 @@ def trailer_steps(model, handling,
             tau0 += ry * f[2] - rz * f[1] + f[14]
             tau1 += rz * f[0] - rx * f[2] + f[15]
             tau2 += rx * f[1] - ry * f[0] + f[16]
-            # spin: the tyre's moment about the axle
+            # spin: the tyre's moment about the axle, and its slope in omega
             sm = f[14] * ax + f[15] * ay + f[16] * az
+            dsm = f[19]
             if side == 0:
                 spinR = sm
+                dspinR = dsm
                 if (step % out_every) == 0 and row < out.shape[0]:
                     c_axis_loads(cx, cy, cz, ax, ay, az, fR, cax)
                     o = out[row]
@@ -178,6 +182,7 @@ def trailer_steps(model, handling,
                 state[S_VZR] = vz
             else:
                 spinL = sm
+                dspinL = dsm
                 if (step % out_every) == 0 and row < out.shape[0]:
                     out[row, 26] = fL[13]
         if (step % out_every) == 0 and row < out.shape[0]:
@@ -226,8 +231,10 @@ def trailer_steps(model, handling,
         state[S_DPHI] = dph + dt * ddph
         state[S_THETA] = th + dt * state[S_DTHETA]
         state[S_PHI] = ph + dt * state[S_DPHI]
-        state[S_WR] += dt * spinR / ispin
-        state[S_WL] += dt * spinL / ispin
+        # linearly implicit Euler for the spins: the slip stiffness makes them
+        # stiff (time constant I V / (r^2 C_kappa), below a millisecond)
+        state[S_WR] += dt * spinR / (ispin - dt * min(dspinR, 0.0))
+        state[S_WL] += dt * spinL / (ispin - dt * min(dspinL, 0.0))
         state[S_T] = t + dt
     return row
 

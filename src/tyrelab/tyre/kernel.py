@@ -21,6 +21,8 @@ Output layout of ``out`` (SI, road frame unless noted):
 14:17       moment of the road on the tyre about the wheel centre [N m]
 17          longitudinal slip kappa [-]
 18          slip angle alpha [rad]
+19          d(spin moment)/d(omega) [N m s]: lets rigs integrate the
+            spin implicitly (tyre slip stiffness makes it a stiff DOF)
 ==========  ====================================================
 """
 
@@ -41,7 +43,7 @@ from ..errors import InputError
 from .contact.enveloping import enveloping_contact, enveloping_params
 from .contact.point import GEO_NX, GEO_NY, GEO_NZ, GEO_PX, GEO_PY, GEO_PZ, GEO_RHO, point_contact
 from .contact.volume import volume_contact, volume_params
-from .handling.slip import handling_forces, handling_params
+from .handling.slip import VXLOW, handling_forces, handling_params
 from .params import Tyre
 from .ring.kernel import ring_wheel_force
 from .vertical import normal_force
@@ -50,7 +52,7 @@ from .vertical import normal_force
 CONTACT_MODELS = {"point": 0, "volume": 1, "enveloping": 2, "ring": 3, "ring-tp": 4}
 #: handling model name -> literal id
 HANDLING_MODELS = {"none": 0, "pac89": 1, "mf": 2}
-OUT_SIZE = 19
+OUT_SIZE = 20
 #: width of the road blocks whose maximum height bounds the contact search [m]
 BLOCK_LENGTH = 0.04
 
@@ -247,9 +249,17 @@ def analytic_wheel_force(model, handling, vp, knots, coefs, cp, hp, gp, z, zinfo
     v_slip_x = dot(vx + omega * sx, vy + omega * sy, vz + omega * sz, wxx, wxy, wxz)
     v_slip_y = dot(vx + omega * sx, vy + omega * sy, vz + omega * sz, wyx, wyy, wyz)
     gamma = math.asin(max(-1.0, min(1.0, dot(ax, ay, az, nx, ny, nz))))
-    fxw, fyw, mzw, kappa, alpha = handling_forces(handling, hp, fz, v_long, v_slip_x, v_slip_y, gamma)
+    fxw, fyw, mzw, kappa, alpha, dfx = handling_forces(handling, hp, fz, v_long, v_slip_x, v_slip_y,
+                                                       gamma)
     out[17] = kappa
     out[18] = alpha
+    if dfx != 0.0:
+        # spin moment of FXW at the contact point: ((r x w_x) . a) FXW, and
+        # d kappa / d omega = -((a x r) . w_x) / max(|V_x|, VXLOW)
+        lx, ly, lz = cross(rx, ry, rz, wxx, wxy, wxz)
+        lever = dot(lx, ly, lz, ax, ay, az)
+        vref = abs(v_long) if abs(v_long) > VXLOW else VXLOW
+        out[19] = lever * dfx * (-dot(sx, sy, sz, wxx, wxy, wxz) / vref)
     out[11] = fxw
     out[12] = fyw
     fx = fz * nx + fxw * wxx + fyw * wyx

@@ -26,6 +26,8 @@ from .pac89 import pac89_forces, pac89_params
 
 #: speed below which slip is computed with this speed instead [m/s]
 VXLOW = 1.0
+#: slip step of the forward difference giving the slip stiffness
+DKAPPA = 1e-5
 
 
 def handling_params(tyre, handling: str) -> np.ndarray:
@@ -52,7 +54,11 @@ def slip(v_long, v_slip_x, v_slip_y):
 
 
 def handling_forces(handling, hp, fz, v_long, v_slip_x, v_slip_y, gamma):
-    """``(FXW, FYW, MZW, kappa, alpha)`` of handling model ``handling`` (a compile-time constant)."""
+    """``(FXW, FYW, MZW, kappa, alpha, dFXW/dkappa)`` of handling model ``handling``.
+
+    ``handling`` is a compile-time constant. The slip stiffness dFXW/dkappa
+    (a forward difference) lets a rig integrate the wheel spin implicitly.
+    """
     raise NotImplementedError("compiled only")
 
 
@@ -63,18 +69,21 @@ def _handling_forces(handling, hp, fz, v_long, v_slip_x, v_slip_y, gamma):
     h = handling.literal_value
     if h == 0:
         def impl(handling, hp, fz, v_long, v_slip_x, v_slip_y, gamma):
-            return 0.0, 0.0, 0.0, 0.0, 0.0
+            return 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
     elif h == 1:
         def impl(handling, hp, fz, v_long, v_slip_x, v_slip_y, gamma):
             kappa, alpha = slip(v_long, v_slip_x, v_slip_y)
             fx, fy, mz = pac89_forces(hp, fz, kappa, alpha, gamma)
-            return fx, fy, mz, kappa, alpha
+            fx2, _, _ = pac89_forces(hp, fz, kappa + DKAPPA, alpha, gamma)
+            return fx, fy, mz, kappa, alpha, (fx2 - fx) / DKAPPA
     elif h == 2:
         def impl(handling, hp, fz, v_long, v_slip_x, v_slip_y, gamma):
             kappa, alpha = slip(v_long, v_slip_x, v_slip_y)
             out = np.empty(6)
+            mf_forces(hp[2:], int(hp[0]), fz, kappa + DKAPPA, alpha, gamma, v_long, hp[1], out)
+            fx2 = out[0]
             mf_forces(hp[2:], int(hp[0]), fz, kappa, alpha, gamma, v_long, hp[1], out)
-            return out[0], out[1], out[4], kappa, alpha
+            return out[0], out[1], out[4], kappa, alpha, (fx2 - out[0]) / DKAPPA
     else:
         raise TypingError(f"unknown handling model {h}")
     return impl
