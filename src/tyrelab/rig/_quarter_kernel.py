@@ -5,7 +5,7 @@ import numpy as np
 
 from ..tyre.contact.point import GEO_SIZE
 from ..tyre.kernel import OUT_SIZE, wheel_force
-from .frames import c_axis_loads
+from .frames import N_WHEEL, WHEEL_CHANNELS, wheel_row
 
 # parameter layout
 QP_SPEED, QP_MS, QP_MU, QP_KS, QP_CS, QP_D0, QP_ISPIN, QP_G, QP_X0 = range(9)
@@ -14,10 +14,7 @@ QP_SIZE = 9
 Q_ZS, Q_VS, Q_ZU, Q_VU, Q_W, Q_T = range(6)
 Q_SIZE = 6
 
-CHANNELS = ("RUNTIME", "DISTANCE", "FX", "FY", "FZ", "MX", "MY", "MZ", "FXW", "FYW", "FZW",
-            "X_WC", "Y_WC", "Z_WC", "VX_WC", "VY_WC", "VZ_WC", "ROTSPEED", "INCLANGL", "DEFLECT",
-            "X_CP", "Y_CP", "Z_CP", "FX_HUB", "FY_HUB", "FZ_HUB", "Z_BODY", "VZ_BODY", "F_SUSP",
-            "LONGSLIP", "SLIPANGL")
+CHANNELS = WHEEL_CHANNELS + ("FX_HUB", "FY_HUB", "FZ_HUB", "Z_BODY", "VZ_BODY", "F_SUSP")
 N_CH = len(CHANNELS)
 
 
@@ -52,35 +49,14 @@ def quarter_steps(model, handling, vp, kn, co, cp, hp, gp, z, zi, ts, qp, state,
         a_u = (f[2] - fsp) / mu - g
         spin = f[15]   # the tyre's moment about the axle (+y)
         if (step % out_every) == 0 and row < out.shape[0]:
-            c_axis_loads(cx, 0.0, zu, 0.0, 1.0, 0.0, f, cax)
             o = out[row]
-            o[0] = t
-            o[1] = cx - qp[QP_X0]
-            for k in range(6):
-                o[2 + k] = cax[k]
-            o[8] = f[11]
-            o[9] = f[12]
-            o[10] = f[13]
-            o[11] = cx
-            o[12] = 0.0
-            o[13] = zu
-            o[14] = V
-            o[15] = 0.0
-            o[16] = vu
-            o[17] = state[Q_W]
-            o[18] = np.arcsin(max(-1.0, min(1.0, f[7])))
-            o[19] = f[9] if f[9] > 0.0 else 0.0
-            o[20] = f[3]
-            o[21] = f[4]
-            o[22] = f[5]
-            o[23] = cax[0]
-            o[24] = cax[1]
-            o[25] = cax[2] - mu * a_u   # load-cell reading, tared with the wheel hanging free
-            o[26] = zs
-            o[27] = vs
-            o[28] = fsp
-            o[29] = f[17]
-            o[30] = f[18]
+            wheel_row(o, t, cx - qp[QP_X0], cx, 0.0, zu, V, 0.0, vu, state[Q_W], 0.0, 1.0, 0.0, f, cax)
+            o[N_WHEEL] = cax[0]
+            o[N_WHEEL + 1] = cax[1]
+            o[N_WHEEL + 2] = cax[2] - mu * a_u   # load-cell reading, tared with the wheel hanging free
+            o[N_WHEEL + 3] = zs
+            o[N_WHEEL + 4] = vs
+            o[N_WHEEL + 5] = fsp
             row += 1
         state[Q_VS] = vs + dt * a_s
         state[Q_VU] = vu + dt * a_u

@@ -22,7 +22,7 @@ import numpy as np
 
 from ..tyre.kernel import OUT_SIZE, wheel_force
 from ..tyre.contact.point import GEO_SIZE
-from .frames import c_axis_loads
+from .frames import N_WHEEL, WHEEL_CHANNELS, wheel_row
 
 # trailer parameter layout (tp)
 TP_SPEED, TP_L, TP_TRACK, TP_HITCH_Z, TP_MASS, TP_CGX, TP_CGY, TP_CGZ = range(8)
@@ -38,10 +38,7 @@ S_THETA, S_PHI, S_DTHETA, S_DPHI, S_WR, S_WL, S_T, S_VXR, S_VYR, S_VZR = range(1
 S_SIZE = 10
 
 # output columns
-CHANNELS = ("RUNTIME", "DISTANCE", "FX", "FY", "FZ", "MX", "MY", "MZ", "FXW", "FYW", "FZW",
-            "X_WC", "Y_WC", "Z_WC", "VX_WC", "VY_WC", "VZ_WC", "ROTSPEED", "INCLANGL", "DEFLECT",
-            "X_CP", "Y_CP", "Z_CP", "FX_HUB", "FY_HUB", "FZ_HUB", "FZ_LEFT", "PITCH", "ROLL",
-            "LONGSLIP", "SLIPANGL")
+CHANNELS = WHEEL_CHANNELS + ("FX_HUB", "FY_HUB", "FZ_HUB", "FZ_LEFT", "PITCH", "ROLL")
 N_CH = len(CHANNELS)
 
 
@@ -139,27 +136,8 @@ def trailer_steps(model, handling,
                 spinR = sm
                 dspinR = dsm
                 if (step % out_every) == 0 and row < out.shape[0]:
-                    c_axis_loads(cx, cy, cz, ax, ay, az, fR, cax)
                     o = out[row]
-                    o[0] = t
-                    o[1] = cx - (x_start - L)
-                    for k in range(6):
-                        o[2 + k] = cax[k]
-                    o[8] = fR[11]
-                    o[9] = fR[12]
-                    o[10] = fR[13]
-                    o[11] = cx
-                    o[12] = cy
-                    o[13] = cz
-                    o[14] = vx
-                    o[15] = vy
-                    o[16] = vz
-                    o[17] = state[S_WR]
-                    o[18] = math.asin(max(-1.0, min(1.0, ax * fR[6] + ay * fR[7] + az * fR[8])))
-                    o[19] = fR[9] if fR[9] > 0.0 else 0.0
-                    o[20] = fR[3]
-                    o[21] = fR[4]
-                    o[22] = fR[5]
+                    wheel_row(o, t, 0.0, cx, cy, cz, vx, vy, vz, state[S_WR], ax, ay, az, fR, cax)
                     # load-cell reading: tyre force less the wheel's inertia force,
                     # load cells tared with the wheel hanging free
                     if step > 0:
@@ -170,13 +148,11 @@ def trailer_steps(model, handling,
                         acx = 0.0
                         acy = 0.0
                         acz = 0.0
-                    o[23] = cax[0] - mw * (acx * R[0, 0] + acy * R[1, 0] + acz * R[2, 0])
-                    o[24] = cax[1] - mw * (acx * ax + acy * ay + acz * az)
-                    o[25] = cax[2] - mw * (acx * R[0, 2] + acy * R[1, 2] + acz * R[2, 2])
-                    o[27] = th
-                    o[28] = ph
-                    o[29] = fR[17]
-                    o[30] = fR[18]
+                    o[N_WHEEL] = cax[0] - mw * (acx * R[0, 0] + acy * R[1, 0] + acz * R[2, 0])
+                    o[N_WHEEL + 1] = cax[1] - mw * (acx * ax + acy * ay + acz * az)
+                    o[N_WHEEL + 2] = cax[2] - mw * (acx * R[0, 2] + acy * R[1, 2] + acz * R[2, 2])
+                    o[N_WHEEL + 4] = th
+                    o[N_WHEEL + 5] = ph
                 state[S_VXR] = vx
                 state[S_VYR] = vy
                 state[S_VZR] = vz
@@ -184,7 +160,7 @@ def trailer_steps(model, handling,
                 spinL = sm
                 dspinL = dsm
                 if (step % out_every) == 0 and row < out.shape[0]:
-                    out[row, 26] = fL[13]
+                    out[row, N_WHEEL + 3] = fL[13]
         if (step % out_every) == 0 and row < out.shape[0]:
             row += 1
         # gravity about the hitch: r_cg x (0, 0, -m g)

@@ -63,3 +63,31 @@ class Road(ABC):
 
     def __repr__(self) -> str:
         return f"<{type(self).__name__}: {self.name}>"
+
+
+class GriddedRoad(Road):
+    """A road defined by heights on its own regular grid (files, synthesised roads).
+
+    Subclasses set ``self._grid`` (a :class:`RoadGrid`) and
+    ``self._varies_in_y``; heights between nodes are bilinear, exactly as the
+    compiled kernels see them.
+    """
+
+    _grid: RoadGrid
+    _varies_in_y: bool = True
+
+    def height(self, x, y) -> np.ndarray:
+        return self._grid.height(x, y)
+
+    def extent(self) -> tuple[float, float, float, float]:
+        g = self._grid
+        return (g.x0, g.x0 + g.dx * (g.z.shape[0] - 1), g.y0, g.y0 + g.dy * (g.z.shape[1] - 1))
+
+    def varies_in_y(self) -> bool:
+        return self._varies_in_y
+
+    def grid(self, spacing: tuple[float, float] | None = None) -> RoadGrid:
+        """The road's own grid (exact) unless another spacing is asked for."""
+        if spacing is None or np.allclose(spacing, (self._grid.dx, self._grid.dy), rtol=1e-12, atol=0):
+            return self._grid
+        return super().grid(spacing)

@@ -42,7 +42,7 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import InputError
-from .base import Road
+from .base import GriddedRoad, Road
 from .grid import RoadGrid
 
 #: the four OpenCRG data formats: K/L = binary/text, R/D = single/double
@@ -167,7 +167,7 @@ def _regular_v(v: np.ndarray, max_nodes: int = 100_000) -> tuple[float, np.ndarr
     return dv, nodes
 
 
-class CrgRoad(Road):
+class CrgRoad(GriddedRoad):
     """An OpenCRG road file as a :class:`Road` (see the module docstring).
 
     Parameters
@@ -199,26 +199,12 @@ class CrgRoad(Road):
         # a run starts at the file's first cross section (measured files often
         # start far from u = 0); rigs level the road to its height there
         self.run_start = float(g.u[0])
-        self._flat_across = bool(np.all(elevation == elevation[:, :1]))
+        self._varies_in_y = not bool(np.all(elevation == elevation[:, :1]))
         at = f" at v = {self.v_offset:g} m" if self.v_offset else ""
         self.name = f"OpenCRG {self.path.name}{at}"
 
-    def height(self, x, y) -> np.ndarray:
-        """Height [m] at u = x, v = y + v_offset: bilinear on the file's nodes, as OpenCRG."""
-        return self._grid.height(x, y)
-
-    def extent(self) -> tuple[float, float, float, float]:
-        g = self._grid
-        return (g.x0, g.x0 + g.dx * (g.z.shape[0] - 1), g.y0, g.y0 + g.dy * (g.z.shape[1] - 1))
-
-    def varies_in_y(self) -> bool:
-        return not self._flat_across
-
-    def grid(self, spacing: tuple[float, float] | None = None) -> RoadGrid:
-        """The file's own nodes (exact) unless another spacing is asked for."""
-        if spacing is None or np.allclose(spacing, self.default_spacing, rtol=1e-12, atol=0):
-            return self._grid
-        return super().grid(spacing)
+    # height (u = x, v = y + v_offset, bilinear on the file's nodes as OpenCRG),
+    # extent and grid come from GriddedRoad
 
 
 def write_crg(road, path, spacing: tuple[float, float] | None = None, fmt: str = "KDBI",

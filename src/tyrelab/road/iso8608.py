@@ -31,7 +31,7 @@ import numpy as np
 from scipy import fft, stats
 
 from ..errors import InputError
-from .base import Road
+from .base import GriddedRoad, Road
 from .grid import RoadGrid
 
 #: ISO 8608 reference spatial frequency [cycles/m]
@@ -179,7 +179,7 @@ def _taper(nx: int, dx: float, length: float) -> np.ndarray:
     return w
 
 
-class RandomRoad(Road):
+class RandomRoad(GriddedRoad):
     """A random road of an ISO 8608 class or power law ``(A, n)`` (eq. 3.8), as a :class:`Road`.
 
     Parameters
@@ -215,24 +215,9 @@ class RandomRoad(Road):
             width, dy = 4.0, 4.0
             y0 = -2.0
         z *= _taper(z.shape[0], dx, taper)[:, None]
-        self._profile_only = z.shape[1] == 2 and dy == width
+        self._varies_in_y = not (z.shape[1] == 2 and dy == width)
         self._grid = RoadGrid(float(start), y0, dx, dy, z)
         self.default_spacing = (dx, dy)
         label = spec.upper() if isinstance(spec, str) else f"A = {self.a:.3g}, n = {self.n:.3g}"
         self.name = f"random road ({label}), {length:g} m x {width:g} m, seed {seed}"
 
-    def height(self, x, y) -> np.ndarray:
-        return self._grid.height(x, y)
-
-    def extent(self) -> tuple[float, float, float, float]:
-        g = self._grid
-        return (g.x0, g.x0 + g.dx * (g.z.shape[0] - 1), g.y0, g.y0 + g.dy * (g.z.shape[1] - 1))
-
-    def varies_in_y(self) -> bool:
-        return not self._profile_only
-
-    def grid(self, spacing: tuple[float, float] | None = None) -> RoadGrid:
-        """The synthesis grid itself unless another spacing is asked for."""
-        if spacing is None or np.allclose(spacing, self.default_spacing, rtol=1e-12, atol=0):
-            return self._grid
-        return super().grid(spacing)
