@@ -258,7 +258,9 @@ class Ridge(Road):
     def height(self, x, y):
         x = np.asarray(x, float)
         y = np.asarray(y, float)
-        inside = (np.abs(y) <= self.width / 2) & (x >= self.start) & (x <= self.start + self.length)
+        # a relative tolerance keeps the edge nodes (y = +-width/2 up to rounding) on the ridge
+        half = self.width / 2 * (1 + 1e-9)
+        inside = (np.abs(y) <= half) & (x >= self.start) & (x <= self.start + self.length)
         return np.where(inside, self.ridge_height, 0.0)
 
     def extent(self):

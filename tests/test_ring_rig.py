@@ -1,0 +1,171 @@
+"""The ring on the rigs: static equilibrium against the load-deflection table,
+enveloping over a cleat, static press and footprint, tread pattern, CLI."""
+
+import numba as nb
+import numpy as np
+import pytest
+
+from tyrelab.road.obstacles import Flat
+from tyrelab.tyre.contact.point import GEO_SIZE
+from tyrelab.tyre.kernel import OUT_SIZE, TyreModel, road_info, wheel_force
+from tyrelab.tyre.library import load_cases, load_tyre
+from tyrelab.tyre.ring.kernel import ring_wheel_force
+
+G = 9.80665
+
+
+@pytest.fixture(scope="module")
+def xzl300():
+    return load_tyre("xzl-16.00R20", 300e3)
+
+
+def _stand(model, load, seconds=1.5, dt=1e-3):
+    """A rim of mass load/g standing on the ring on a flat road (free vertically,
+    no spin); returns the centre heights."""
+    tyre = model.tyre
+    grid = Flat().grid()
+    zi = road_info(grid)
+    cp = model.contact_params(grid)
+    ts = model.initial_state(load)
+    mass = load / G
+    z = tyre.unloaded_radius - tyre.static_deflection(load)
+    vz = 0.0
+    out = np.zeros(OUT_SIZE)
+    heights = []
+    for _ in range(int(seconds / dt)):
+        ring_wheel_force(model.model_id, cp, ts, grid.params, grid.z, zi, 0.0, 0.0, z, 0.0, 1.0,
+                         0.0, 0.0, 0.0, vz, 0.0, dt, out)
+        assert np.all(np.isfinite(out)) and out[13] >= 0.0
+        vz += dt * (out[2] / mass - G)
+        z += dt * vz
+        heights.append(z)
+    return np.array(heights)
+
+
+@pytest.mark.parametrize("pressure,case", [
+    (300e3, "LC1"), (550e3, "LC3"),
+    # 100 kPa is held out of the identification; the model is ~20 % too soft
+    # there (docs/ring.md), so it stands ~25 mm too low: a known failure
+    pytest.param(100e3, "LC1", marks=pytest.mark.xfail(
+        strict=True, reason="held-out 100 kPa prediction is ~20 % too soft"))])
+def test_standing_tyre_sits_at_table_deflection(pressure, case):
+    tyre = load_tyre("xzl-16.00R20", pressure)
+    load = float(load_cases().loc[case, "wheel_load_N"])
+    z = _stand(TyreModel(tyre, contact="ring"), load)
+    table = tyre.static_deflection(load)
+    model = tyre.unloaded_radius - z[-300:].mean()
+    # within 10 % of the deflection the load-deflection table gives
+    assert abs(model - table) < 0.1 * table, f"model {model * 1e3:.1f} mm, table {table * 1e3:.1f} mm"
+
+
+@pytest.mark.slow
+def test_free_rolling_tyre_sits_at_table_deflection(xzl300):
+    from tyrelab.rig.trailer import Trailer
+    trailer = Trailer(TyreModel(xzl300, contact="ring"), "LC1")
+    run = trailer.run("flat", 12 / 3.6, 2.0)
+    table = xzl300.static_deflection(trailer.setup.wheel_load)
+    model = xzl300.unloaded_radius - run["Z_WC"].iloc[-1000:].mean()
+    assert abs(model - table) < 0.1 * table
+    assert np.all(run["FZW"] >= 0)
+
+
+def test_ring_envelops_a_cleat_rigid_disc_does_not(xzl300):
+    """Rolling at constant axle height over a cleat shorter than the contact
+    patch: the ring's vertical force dips when the cleat is mid-patch
+    (Zegelaar 1998, Schmeitz 2004); the rigid disc's force peaks there."""
+    from tyrelab.road.obstacles import Cleat
+    from tyrelab.tyre.ring.rolling import roll_over
+    load = float(load_cases().loc["LC3", "wheel_load_N"])
+    height = xzl300.unloaded_radius - xzl300.static_deflection(load)
+    cleat = Cleat(0.0254, 0.0254, start=1.0)
+    centre = 1.0 + 0.0127
+    ring = roll_over(TyreModel(xzl300, contact="ring"), cleat, height, 0.6, 1.45, speed=0.25)
+    x, fz = ring["x"], ring["FZ"]
+    smooth = np.convolve(fz, np.ones(41) / 41, mode="same")
+    mid = np.abs(x - centre) < 0.01
+    peak_zone = (np.abs(x - centre) > 0.03) & (np.abs(x - centre) < 0.3)
+    assert smooth[mid].mean() < 0.98 * smooth[peak_zone].max()
+    # rigid disc (point contact) at the same axle height
+    disc = TyreModel(xzl300, contact="point")
+    vp, kn, co, cp, hp, gp, z, zi = disc.kernel_args(cleat.grid())
+    xs = np.linspace(0.6, 1.45, 851)
+    f = np.zeros(xs.size)
+    _disc_forces(vp, kn, co, cp, hp, gp, z, zi, xs, height, f)
+    assert f[np.abs(xs - centre) < 0.01].mean() >= 0.999 * f.max()
+
+
+@nb.njit
+def _disc_forces(vp, kn, co, cp, hp, gp, z, zi, xs, height, res):
+    geo = np.zeros(GEO_SIZE)
+    out = np.zeros(OUT_SIZE)
+    for k in range(xs.shape[0]):
+        wheel_force(0, 0, vp, kn, co, cp, hp, gp, z, zi, np.zeros(1), xs[k], 0.0, height,
+                    0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1e-3, geo, out)
+        res[k] = out[2]
+
+
+def test_static_press_plate_and_cleat(xzl300):
+    from tyrelab.rig.static_press import static_press
+    model = TyreModel(xzl300, contact="ring")
+    d = np.array([0.0, 0.02, 0.04, 0.06])
+    plate = static_press(model, d)
+    assert list(plate.columns) == ["deflection", "load", "FX", "FY", "DEFLECT"]
+    assert abs(plate["load"].iloc[0]) < 50.0
+    assert np.all(np.diff(plate["load"]) > 0)
+    assert np.all(np.abs(plate["FX"]) < 0.02 * plate["load"].max())
+    for direction in ("lateral", "longitudinal"):
+        cleat = static_press(model, d, "cleat:51x51", direction)
+        # on a cleat the tyre is softer than on the plate (thesis 3.3.4)
+        assert np.all(cleat["load"].iloc[1:].to_numpy() < plate["load"].iloc[1:].to_numpy())
+        assert np.all(np.diff(cleat["load"]) > 0)
+
+
+def test_footprint_and_png(xzl300, tmp_path):
+    from tyrelab.report.footprint import plot_footprint
+    from tyrelab.tyre.ring.static import ring_footprint
+    res = ring_footprint(TyreModel(xzl300, contact="ring"), 40e3)
+    for key in ("x", "y", "pressure", "outline", "length", "width", "load"):
+        assert key in res
+    assert res["force"].sum() == pytest.approx(res["load"], rel=0.05)
+    assert abs(res["load"] - 40e3) < 0.15 * 40e3
+    assert res["outline"].shape[1] == 2 and np.allclose(res["outline"][0], res["outline"][-1])
+    path = plot_footprint(res, tmp_path / "fp.png")
+    assert path.stat().st_size > 1000
+
+
+def test_tread_pattern_blocks(xzl300):
+    from tyrelab.tyre.ring import layout as L
+    from tyrelab.tyre.ring.model import ring_params
+    even = ring_params(xzl300, None)
+    tp = ring_params(xzl300, None, tread_pattern=True)
+    n, nb = int(even[L.CP_N]), int(even[L.CP_NB])
+    area = lambda cp: cp[int(cp[L.CP_OFF_BK]):int(cp[L.CP_OFF_BK]) + n * nb]  # noqa: E731
+    assert area(tp).sum() == pytest.approx(area(even).sum())
+    # the blocks carry the rubber of their cells: grooves empty some cells, and
+    # the areas vary with the pattern
+    assert np.sum(area(tp) == 0) > 0
+    assert np.std(area(tp)) > 0.2 * np.mean(area(tp))
+    pattern = {"pitch": 0.1, "width": 0.3, "rows": ["##..", "..##"]}
+    custom = ring_params(xzl300, None, tread_pattern=True, pattern=pattern)
+    assert np.sum(area(custom) == 0) > 0
+
+
+def test_modal_cli(capsys):
+    from tyrelab.cli.main import main
+    assert main(["modal", "--pressure", "300"]) == 0
+    text = capsys.readouterr().out
+    assert "lateral translation" in text and "measured_Hz" in text
+    assert main(["modal", "--tyre", "nonexistent.tir"]) == 2
+
+
+@pytest.mark.slow
+def test_trailer_over_cleat_ring_envelops(xzl300):
+    """The trailer over the 50 mm cleat at 12 km/h: the ring runs, stays finite
+    with a non-negative normal force, and its peak is below the rigid disc's."""
+    from tyrelab.rig.trailer import Trailer
+    runs = {m: Trailer(TyreModel(xzl300, contact=m), "LC1").run("cleat:50x50", 12 / 3.6, 2.5)
+            for m in ("ring", "ring-tp", "point")}
+    for m in ("ring", "ring-tp"):
+        assert np.all(np.isfinite(runs[m].to_numpy(dtype=float)))
+        assert runs[m]["FZW"].min() >= 0.0
+        assert runs[m]["FZW"].max() < runs["point"]["FZW"].max()
