@@ -1,0 +1,35 @@
+"""``tyrelab fit``: parameter identification from test data."""
+
+from __future__ import annotations
+
+
+def register(sub):
+    p = sub.add_parser("fit", help="identify model parameters from test data")
+    fsub = p.add_subparsers(dest="fit_kind", metavar="MODEL")
+    r = fsub.add_parser("ring", help="identify the flexible ring of a built-in tyre from its lab data",
+                        description="Fit the ring model to the tyre's flat-plate load-deflection and "
+                                    "modal frequencies at 300 and 550 kPa and the eq. 2.3 contact "
+                                    "length; reports fitted and held-out errors (several minutes).")
+    r.add_argument("--tyre", default="xzl-16.00R20", help="built-in tyre with lab data")
+    r.add_argument("--max-evaluations", type=int, default=25, help="optimizer budget (default 25)")
+    r.add_argument("-o", "--output", default="ring.tir", help="ring property file to write")
+    r.set_defaults(func=run_ring)
+    p.set_defaults(func=lambda args: (p.print_help(), 1)[1])
+
+
+def run_ring(args) -> int:
+    from ..errors import InputError
+    from ..fit.ring import fit_ring, markdown_table, write_ring_file
+    from ..tyre.library import BUILT_IN
+
+    if args.tyre not in BUILT_IN:
+        raise InputError(f"ring identification needs the lab data of a built-in tyre "
+                         f"({', '.join(BUILT_IN)}), got '{args.tyre}'", field="--tyre")
+    if args.max_evaluations < 1:
+        raise InputError("--max-evaluations must be at least 1", field="--max-evaluations")
+    params, fitted, held = fit_ring(args.tyre, max_nfev=args.max_evaluations, verbose=2)
+    write_ring_file(params, args.output)
+    print("fitted data:\n" + markdown_table(fitted))
+    print("\nheld-out predictions:\n" + markdown_table(held))
+    print(f"\n{args.output}: ring parameters")
+    return 0
