@@ -105,7 +105,10 @@ class Cleat(Road):
     def height(self, x, y):
         s = self.across(x, y)
         w, h, b = self.width, self.cleat_height, self.bevel
-        inside = (s >= 0.0) & (s <= w)
+        # a relative tolerance keeps both top corners (up to rounding of the
+        # grid's node positions) on the cleat
+        eps = 1e-9 * max(1.0, abs(self.start))
+        inside = (s >= -eps) & (s <= w + eps)
         top = np.minimum(h, np.minimum(h - b + s, h - b + (w - s))) if b > 0 else np.full(s.shape, h)
         return np.where(inside, top, 0.0)
 

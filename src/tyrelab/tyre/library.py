@@ -22,6 +22,8 @@ from .tir import read_tir
 
 #: built-in tyre -> measured pressures [Pa]
 BUILT_IN = {"xzl-16.00R20": (100e3, 300e3, 550e3)}
+#: built-in tyres described at one pressure only, by their file in tyre/data
+SINGLE_FILE = {"hmmwv-pac89": "hmmwv-pac89.tir"}
 DEFAULT_TYRE = "xzl-16.00R20"
 DEFAULT_PRESSURE = 300e3
 
@@ -38,12 +40,19 @@ def _built_in_file(name: str, pressure: float) -> Tyre:
 def load_tyre(name: str | Path = DEFAULT_TYRE, pressure: float | None = None) -> Tyre:
     """A built-in tyre by name at ``pressure`` [Pa], or a ``.tir`` file by path."""
     key = str(name)
+    single = {k.lower(): k for k in SINGLE_FILE}.get(key.lower())
+    if single is not None:
+        with resources.as_file(_data(SINGLE_FILE[single])) as path:
+            tyre = Tyre.from_tir(read_tir(path), name=single)
+        if pressure is not None and not (np.isfinite(tyre.pressure) and np.isclose(pressure, tyre.pressure)):
+            raise InputError(f"{single} is described at one pressure only", field="pressure")
+        return tyre
     match = {k.lower(): k for k in BUILT_IN}.get(key.lower())
     if match is None:
         path = Path(key)
         if path.suffix.lower() != ".tir" and not path.exists():
             raise InputError(f"unknown tyre '{key}'; expected a built-in tyre "
-                             f"({', '.join(BUILT_IN)}) or a .tir file", field="tyre")
+                             f"({', '.join([*BUILT_IN, *SINGLE_FILE])}) or a .tir file", field="tyre")
         tyre = Tyre.from_tir(read_tir(path), name=path.stem)
         if pressure is not None and not np.isclose(pressure, tyre.pressure):
             raise InputError(f"{path} describes {tyre.pressure / 1e3:g} kPa only; "

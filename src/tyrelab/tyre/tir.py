@@ -73,6 +73,8 @@ KEY_DIMENSIONS: dict[str, tuple[int, int, int, int, int]] = {
     "VERTICAL_STIFFNESS": _dim(F=1, L=-1), "VERTICAL_DAMPING": _dim(F=1, T=1, L=-1),
     "FNOMIN": _dim(F=1), "BOTTOM_OFFST": _dim(L=1), "BOTTOM_STIFF": _dim(F=1, L=-1),
     "DAMPING_RAMP": _dim(L=1),
+    # [CONTACT_MODEL] (MF-Swift enveloping)
+    "ELLIPS_MAX_STEP": _dim(L=1),
     # [OPERATING_CONDITIONS] / [TIRE_CONDITIONS]
     "INFLPRES": _dim(F=1, L=-2), "NOMPRES": _dim(F=1, L=-2), "IP": _dim(F=1, L=-2), "IP_NOM": _dim(F=1, L=-2),
     # [INERTIA]

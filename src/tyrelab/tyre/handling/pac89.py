@@ -1,21 +1,174 @@
-"""Pacejka '89 handling forces -- placeholder until built.
+"""Pacejka '89 handling forces: Fx, Fy and Mz (thesis 2.3, the PAC89 of ADAMS/Tire).
 
-Interface (kept by the implementation): ``pac89_params(tyre) -> float64
-array`` (A0-A13, B0-B10, C0-C17 in the Adams/Bakker convention, read from
-the tyre's property file); ``pac89_forces(hp, fz, kappa, alpha, gamma)``
-(numba, cache=True) returns ``(Fx, Fy, Mz)`` in SI, W-axis, from fz [N],
-kappa [-], alpha [rad], gamma [rad].
+The Magic Formula of Bakker, Nyborg and Pacejka (1989), "Tyre modelling for
+use in vehicle dynamics studies", SAE 870421 / 890087, with the coefficient
+names of the ADAMS/Tire PAC89 property file (A0-A13 lateral, B0-B10
+longitudinal, C0-C17 aligning). Every curve has the form::
+
+    y(X) = D sin(C atan(B X1 - E (B X1 - atan(B X1)))) + Sv,   X1 = X + Sh
+
+with, **inside the formula only**, the load Fz in kN, the slip angle alpha
+and camber gamma in degrees and the longitudinal slip kappa in percent;
+forces come out in N and the moment in N m.
+
+Sign conventions
+----------------
+The coefficients are written for the "modified SAE" axes of Bakker et al.
+(x forward, y right, z down, slip angle positive when the wheel moves to
+the left of its heading, so that a positive cornering stiffness gives a
+positive Fy). The interface of this module is the ISO / TYDEX W-axis of
+:mod:`tyrelab.tyre.handling.slip` (x forward, y left, z up; kappa > 0 when
+driving; alpha = atan(V_sy/|V_x|) > 0 when the contact point slides left).
+The two slip angles are the same number, so the conversion is on the
+outputs only::
+
+    Fx_W = Fx_pac(kappa_% = 100 kappa)
+    Fy_W = -Fy_pac(alpha_deg = degrees(alpha))
+    Mz_W = -Mz_pac(alpha_deg)
+
+Camber is passed unchanged (degrees): positive camber is the top of the
+wheel leaning to the right (-y) in both systems. This is the conversion of
+Project Chrono's ``ChPac89Tire`` (which reads the same coefficients).
 """
 
+from __future__ import annotations
+
+import math
+
 import numba as nb
+import numpy as np
 
 from ...errors import InputError
 
+#: property-file sections and key counts of the three curves (ADAMS PAC89 layout)
+SECTIONS = (("LATERAL_COEFFICIENTS", "A", 14), ("LONGITUDINAL_COEFFICIENTS", "B", 11),
+            ("ALIGNING_COEFFICIENTS", "C", 18))
+#: offsets of A0, B0, C0 in the packed parameter array
+IA, IB, IC = 0, 14, 25
+N_PARAMS = 43
 
-def pac89_params(tyre):
-    raise InputError("the PAC89 handling model is not available yet", field="handling")
+
+def pac89_params(tyre) -> np.ndarray:
+    """Coefficients ``[A0..A13, B0..B10, C0..C17]`` from the tyre's property file.
+
+    Parameters
+    ----------
+    tyre : Tyre
+        Its ``tir`` must hold ``[LATERAL_COEFFICIENTS]`` A0-A13,
+        ``[LONGITUDINAL_COEFFICIENTS]`` B0-B10 and ``[ALIGNING_COEFFICIENTS]``
+        C0-C17 (keys are case-insensitive, as the reader upper-cases them).
+
+    Raises
+    ------
+    InputError
+        Naming the file, the section and the first missing key.
+    """
+    tir = tyre.tir
+    out = np.zeros(N_PARAMS)
+    k = 0
+    for section, letter, count in SECTIONS:
+        for i in range(count):
+            key = f"{letter}{i}"
+            value = tir.get(section, key)
+            if value is None:
+                raise InputError(f"no PAC89 coefficient {key} in section [{section}]; the "
+                                 "pac89 handling model needs A0-A13, B0-B10 and C0-C17",
+                                 source=tir.source, field=key)
+            out[k] = tir.number(section, key)
+            k += 1
+    return out
+
+
+@nb.njit(cache=True)
+def magic_formula(x, b, c, d, e):
+    """``D sin(C atan(B x - E (B x - atan(B x))))`` (Bakker et al. 1989, eq. 1)."""
+    bx = b * x
+    return d * math.sin(c * math.atan(bx - e * (bx - math.atan(bx))))
+
+
+@nb.njit(cache=True)
+def _stiffness_factor(bcd, c, d):
+    """B = BCD / (C D), zero when the peak or shape factor vanishes (no NaN)."""
+    cd = c * d
+    if cd == 0.0 or not math.isfinite(bcd / cd):
+        return 0.0
+    return bcd / cd
+
+
+@nb.njit(cache=True)
+def pac89_longitudinal(hp, fz_kn, kappa_pct):
+    """Fx [N] in the PAC89 axes from Fz [kN] and kappa [%] (coefficients B0-B10)."""
+    b = hp[IB:IB + 11]
+    c = b[0]
+    d = max((b[1] * fz_kn + b[2]) * fz_kn, 0.0)
+    bcd = (b[3] * fz_kn * fz_kn + b[4] * fz_kn) * math.exp(-b[5] * fz_kn)
+    e = b[6] * fz_kn * fz_kn + b[7] * fz_kn + b[8]
+    sh = b[9] * fz_kn + b[10]
+    return magic_formula(kappa_pct + sh, _stiffness_factor(bcd, c, d), c, d, e)
+
+
+@nb.njit(cache=True)
+def pac89_lateral(hp, fz_kn, alpha_deg, gamma_deg):
+    """Fy [N] in the PAC89 axes from Fz [kN], alpha and gamma [deg] (A0-A13)."""
+    a = hp[IA:IA + 14]
+    c = a[0]
+    d = max((a[1] * fz_kn + a[2]) * fz_kn, 0.0)
+    bcd = 0.0
+    if a[4] != 0.0:
+        bcd = a[3] * math.sin(2.0 * math.atan(fz_kn / a[4])) * (1.0 - a[5] * abs(gamma_deg))
+    e = a[6] * fz_kn + a[7]
+    sh = a[8] * gamma_deg + a[9] * fz_kn + a[10]
+    sv = a[11] * fz_kn * gamma_deg + a[12] * fz_kn + a[13]
+    return magic_formula(alpha_deg + sh, _stiffness_factor(bcd, c, d), c, d, e) + sv
+
+
+@nb.njit(cache=True)
+def pac89_aligning(hp, fz_kn, alpha_deg, gamma_deg):
+    """Mz [N m] in the PAC89 axes from Fz [kN], alpha and gamma [deg] (C0-C17)."""
+    q = hp[IC:IC + 18]
+    c = q[0]
+    d = q[1] * fz_kn * fz_kn + q[2] * fz_kn
+    bcd = ((q[3] * fz_kn * fz_kn + q[4] * fz_kn) * (1.0 - q[6] * abs(gamma_deg))
+           * math.exp(-q[5] * fz_kn))
+    e = (q[7] * fz_kn * fz_kn + q[8] * fz_kn + q[9]) * (1.0 - q[10] * abs(gamma_deg))
+    sh = q[11] * gamma_deg + q[12] * fz_kn + q[13]
+    sv = (q[14] * fz_kn * fz_kn + q[15] * fz_kn) * gamma_deg + q[16] * fz_kn + q[17]
+    return magic_formula(alpha_deg + sh, _stiffness_factor(bcd, c, d), c, d, e) + sv
 
 
 @nb.njit(cache=True)
 def pac89_forces(hp, fz, kappa, alpha, gamma):
-    return 0.0, 0.0, 0.0
+    """Pure-slip PAC89 forces in the W-axis system.
+
+    Parameters
+    ----------
+    hp : float64 array
+        :func:`pac89_params`.
+    fz : float
+        Normal load [N] (no force at fz <= 0).
+    kappa : float
+        Longitudinal slip [-], > 0 driving; clipped to [-1, 1].
+    alpha : float
+        Slip angle [rad], > 0 when the contact point slides left; clipped
+        to +-89.5 deg.
+    gamma : float
+        Camber [rad].
+
+    Returns
+    -------
+    (Fx, Fy, Mz) : floats
+        [N], [N], [N m]; road on tyre, x forward, y left, z up (see the
+        module docstring for the conversion from the PAC89 axes).
+    """
+    if not (fz > 0.0) or not math.isfinite(fz):
+        return 0.0, 0.0, 0.0
+    fz_kn = fz * 1e-3
+    kappa_pct = 100.0 * min(1.0, max(-1.0, kappa))
+    alpha_deg = min(89.5, max(-89.5, math.degrees(alpha)))
+    gamma_deg = math.degrees(gamma)
+    fx = pac89_longitudinal(hp, fz_kn, kappa_pct)
+    fy = pac89_lateral(hp, fz_kn, alpha_deg, gamma_deg)
+    mz = pac89_aligning(hp, fz_kn, alpha_deg, gamma_deg)
+    if not (math.isfinite(fx) and math.isfinite(fy) and math.isfinite(mz)):
+        return 0.0, 0.0, 0.0
+    return fx, -fy, -mz

@@ -1,0 +1,226 @@
+"""3D enveloping contact: Schmeitz's elliptical cams (thesis 2.3.3, 4.4).
+
+The XZL's cams are ellipses (PCE = 2): a cam that rests on a sharp corner at
+distance d from its lowest point stands at ``H - e(d)`` with
+``e(d) = b_e (1 - sqrt(1 - (d/a_e)^2))``. With that and eqs. 2.3 and 2.6 the
+effective plane over a cleat or a step is computed here by hand.
+"""
+
+import math
+
+import numpy as np
+import pytest
+
+from tyrelab.errors import InputError
+from tyrelab.road.grid import RoadGrid
+from tyrelab.road.obstacles import Flat, Step
+from tyrelab.tyre.contact.cams import cam_height
+from tyrelab.tyre.contact.enveloping import (AE, BE, CAP, TN, TOFF, contact_patch, enveloping_contact,
+                                             enveloping_params)
+from tyrelab.tyre.contact.point import point_contact
+from tyrelab.tyre.kernel import road_info
+from tyrelab.tyre.library import load_tyre
+from tyrelab.tyre.tir import parse_tir
+
+R0, W0 = 0.6715, 0.438
+AE_, BE_ = 0.72 * R0, 1.0 * R0   # thesis 4.4: PAE 0.72, PBE 1, PCE 2
+H = 0.05
+
+
+def drop(d):
+    d = abs(d)
+    return BE_ * (1 - math.sqrt(1 - (d / AE_) ** 2)) if d < AE_ else math.inf
+
+
+def half_length(rho):
+    """Eq. 2.3 with PA1 = 0.15, PA2 = 7.06."""
+    x = rho / R0
+    return 0.15 * R0 * (x + 7.06 * math.sqrt(x))
+
+
+class GridRoad:
+    """A road given directly as a grid (so the test owns every node)."""
+
+    def __init__(self, grid):
+        self._grid = grid
+
+    def grid(self):
+        return self._grid
+
+
+def cleat(width=0.05, height=H, dx=0.005):
+    """A square cleat from x = 0 to x = width; top corners on nodes, faces one cell wide."""
+    n0, n1 = 400, 400 + int(round(width / dx))
+    z = np.zeros(801)
+    z[n0:n1 + 1] = height
+    return GridRoad(RoadGrid(-n0 * dx, -2.0, dx, 4.0, np.column_stack([z, z])))
+
+
+def geometry(road, x, cz, tyre=None, **options):
+    tyre = tyre or load_tyre("xzl-16.00R20", 300e3)
+    grid = road.grid()
+    cp = enveloping_params(tyre, grid, **options)
+    geo = np.zeros(8)
+    enveloping_contact(cp, grid.params, grid.z, road_info(grid), x, 0.0, cz, 0.0, 1.0, 0.0, geo)
+    return geo
+
+
+def test_flat_road_is_the_effective_plane():
+    for road in (Flat(), Step(0.05, start=20.0)):
+        geo = geometry(road, 1.3, R0 - 0.047)
+        assert geo[0] == pytest.approx(0.047, abs=1e-12)
+        np.testing.assert_allclose(geo[1:7], [1.3, 0.0, 0.0, 0.0, 0.0, 1.0], atol=1e-12)
+
+
+def test_one_cam_rests_on_the_corner_of_a_step():
+    grid = Step(H, start=0.0).grid()
+    cp = enveloping_params(load_tyre(), grid)
+    args = (cp, int(cp[TOFF]), int(cp[TN]), cp[AE], cp[BE], cp[CAP], cp, int(cp[17]), 0.005,
+            grid.params, grid.z)
+    for x in (-0.4, -0.2, -0.1, -0.03, -0.001):
+        w = cam_height(*args, x, 0.0, 1.0, 0.0, H)[0]
+        assert w == pytest.approx(max(0.0, H - drop(x)), abs=1e-6)
+    assert cam_height(*args, 0.2, 0.0, 1.0, 0.0, H)[0] == pytest.approx(H, abs=1e-12)
+
+
+def expected_on_cleat(xc, cz, left=0.0, right=H):
+    """Deflection by hand for the 15 x 10 cams with the wheel centre at xc over the
+    cleat [left, right] (symmetric rows: a 2D road; no tilt across)."""
+    def cam(u):
+        d = 0.0 if left <= u <= right else min(abs(u - left), abs(u - right))
+        return max(0.0, H - drop(d))
+    rho0 = R0 - (cz - cam(xc))        # the centre cam sizes the patch
+    ls = 2 * 0.9 * half_length(rho0)   # eq. 2.6
+    u = np.linspace(-ls / 2, ls / 2, 15)
+    w = np.array([cam(xc + ui) for ui in u])
+    su = (u * w).sum() / (u * u).sum()
+    s_star = su * AE_ ** 2 / math.sqrt(BE_ ** 2 + su ** 2 * AE_ ** 2)  # where the contour has slope su
+    w0 = w.mean() - (su * s_star - drop(s_star))
+    return R0 - (cz - w0) / math.sqrt(1 + su * su), su
+
+
+@pytest.mark.parametrize("xc", [-0.45, -0.2, 0.0, 0.025, 0.1, 0.3])
+def test_cleat_effective_plane_by_hand(xc):
+    cz = R0 - 0.05
+    geo = geometry(cleat(), xc, cz)
+    rho, su = expected_on_cleat(xc, cz)
+    assert geo[0] == pytest.approx(rho, abs=2e-6)
+    # forward slope su tilts the normal back: n = (-su, 0, 1) / |.|
+    np.testing.assert_allclose(geo[4:7], np.array([-su, 0, 1]) / math.sqrt(1 + su * su), atol=1e-5)
+
+
+def test_swallowing_peak_below_the_rigid_disc():
+    """Over the 50 mm cleat the rigid disc (point model) is lifted the full 50 mm; the
+    cams are lifted less: the mean over cams of which only those near the cleat rise."""
+    tyre = load_tyre("xzl-16.00R20", 300e3)
+    grid = cleat().grid()
+    cz = R0 - 0.05
+    xs = np.linspace(-0.8, 0.85, 331)
+    env = np.array([geometry(cleat(), x, cz)[0] for x in xs[::10]])
+    assert np.all(env >= 0.05 - 1e-12)
+    point = []
+    geo = np.zeros(8)
+    for x in xs:
+        point_contact(R0, grid.dx, grid.params, grid.z, road_info(grid), x, 0.0, cz, 0.0, 1.0, 0.0, geo)
+        point.append(geo[0])
+    assert max(point) == pytest.approx(0.05 + H, abs=1e-12)
+    by_hand = np.array([expected_on_cleat(x, cz)[0] for x in xs[::10]])
+    np.testing.assert_allclose(env, by_hand, atol=2e-6)
+    assert by_hand.max() < 0.05 + 0.7 * H
+    k = tyre.vertical_stiffness
+    assert k * env.max() < k * max(point)
+
+
+def test_lengthening_over_a_long_step():
+    """The effective height starts to rise when the foremost cam reaches the step
+    (ls/2 + a_e before it; the rigid disc only at sqrt(R0^2 - (R0 - H)^2) = 0.25 m)
+    and is complete only when the rearmost cam has passed it (ls/2 after; the
+    rigid disc is on top at the step)."""
+    cz = R0 - 0.05
+    ls_low = 2 * 0.9 * half_length(0.05)
+    ls_top = 2 * 0.9 * half_length(0.10)
+    start = -(ls_low / 2 + AE_)
+    disc_reach = math.sqrt(R0 ** 2 - (R0 - H) ** 2)
+    dx = 0.005
+    xs = np.arange(-1.0, 0.6, dx)
+    rho = np.array([geometry(Step(H, start=0.0), x, cz)[0] for x in xs])
+    assert np.all(np.abs(rho[xs < start - dx] - 0.05) < 1e-12)
+    assert rho[np.searchsorted(xs, -disc_reach - 0.05)] > 0.05 + 1e-4  # before the disc touches
+    on_top = xs[rho >= 0.10 - 1e-9]
+    assert on_top.min() >= ls_top / 2 - dx
+    assert on_top.min() <= ls_top / 2 + 2 * dx
+    assert np.all(np.diff(rho) > -1e-9)  # no overshoot on a step
+
+
+def test_contact_patch_formulas():
+    cp = enveloping_params(load_tyre(), Flat().grid())
+    a, b = contact_patch(cp, 0.06)
+    assert a == pytest.approx(half_length(0.06), rel=1e-12)
+    # the thesis's PB fit gives ~1.9 m at 60 mm: clipped to half the tyre width
+    x = 0.06 / R0
+    assert 0.0017 * W0 * (x + 16006.5 * math.sqrt(x) - 77819.1 * x * math.sqrt(x)) > 1.5
+    assert b == pytest.approx(W0 / 2)
+
+
+TIR = """
+[UNITS]
+LENGTH = 'meter'
+[DIMENSION]
+UNLOADED_RADIUS = 0.5
+WIDTH = 0.3
+[VERTICAL]
+VERTICAL_STIFFNESS = 3e5
+[CONTACT_PATCH]
+{patch}
+[CONTACT_WIDTH_CURVE]
+0.00 0.05
+0.04 0.13
+0.08 0.11
+"""
+
+
+def tyre_from(patch, table=True):
+    from tyrelab.tyre.params import Tyre
+    text = TIR.format(patch=patch)
+    if not table:
+        text = text[:text.index("[CONTACT_WIDTH_CURVE]")]
+    return Tyre.from_tir(parse_tir(text, "test.tir"))
+
+
+def test_width_table_and_swift_keys():
+    adams = tyre_from("PA1 = 0.2\nPA2 = 5.0\nPAE = 0.9\nPBE = 1.1\nPCE = 1.7\nPLS = 0.8\n"
+                      "N_WIDTH = 4\nN_LENGTH = 6")
+    swift = tyre_from("PA1 = 0.2\nPA2 = 5.0\nELLIPS_LENGTH = 0.9\nELLIPS_HEIGHT = 1.1\n"
+                      "ELLIPS_ORDER = 1.7\nELLIPS_SHIFT = 0.8\nELLIPS_NWIDTH = 4\nELLIPS_NLENGTH = 6")
+    grid = Flat().grid()
+    np.testing.assert_array_equal(enveloping_params(adams, grid), enveloping_params(swift, grid))
+    cp = enveloping_params(adams, grid)
+    assert contact_patch(cp, 0.02)[1] == pytest.approx(0.09)   # table, by hand: 0.05 + 0.5 * 0.08
+    assert contact_patch(cp, 0.06)[1] == pytest.approx(0.12)
+    assert contact_patch(cp, 0.2)[1] == pytest.approx(0.11)    # clamped at the last row
+    # MF-Swift length law: a = R0 (Q_RA2 x + Q_RA1 sqrt x)
+    mf = tyre_from("Q_RA1 = 0.6\nQ_RA2 = 1.2\nQ_RB1 = 0.5\nQ_RB2 = 0.1", table=False)
+    cp = enveloping_params(mf, grid)
+    x = 0.03 / 0.5
+    a, b = contact_patch(cp, 0.03)
+    assert a == pytest.approx(0.5 * (1.2 * x + 0.6 * math.sqrt(x)))
+    assert b == pytest.approx(0.3 * (0.1 * x + 0.5 * x ** (1 / 3)))
+    with pytest.raises(InputError):
+        enveloping_params(mf, grid, width_table=True)
+    with pytest.raises(InputError):
+        enveloping_params(mf, grid, bogus=True)
+
+
+def test_max_step_limits_what_a_cam_sees():
+    """ELLIPS_MAX_STEP = 10 mm: a cam ignores road it could only reach by rising more."""
+    patch = "PAE = 0.72\nPBE = 1.0\nPCE = 2.0\nELLIPS_MAX_STEP = 0.01"
+    tyre = tyre_from(patch, table=False)
+    grid = Step(H, start=0.0).grid()
+    cp = enveloping_params(tyre, grid)
+    ae, be = 0.72 * 0.5, 0.5
+    reach = ae * math.sqrt(1 - (1 - 0.01 / be) ** 2)   # where e(s) = 10 mm
+    assert cp[CAP] == pytest.approx(reach)
+    args = (cp, int(cp[TOFF]), int(cp[TN]), cp[AE], cp[BE], cp[CAP], cp, int(cp[17]), 0.005,
+            grid.params, grid.z)
+    assert cam_height(*args, -(reach + 0.01), 0.0, 1.0, 0.0, H)[0] == 0.0
+    assert cam_height(*args, -(reach - 0.01), 0.0, 1.0, 0.0, H)[0] > 0.0
