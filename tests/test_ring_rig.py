@@ -44,10 +44,10 @@ def _stand(model, load, seconds=1.5, dt=1e-3):
 
 @pytest.mark.parametrize("pressure,case", [
     (300e3, "LC1"), (550e3, "LC3"),
-    # 100 kPa is held out of the identification; the model is ~20 % too soft
-    # there (docs/ring.md), so it stands ~25 mm too low: a known failure
+    # 100 kPa is held out of the identification; the model is 10-17 % too soft
+    # there (docs/ring.md), so it stands ~17 mm too low: a known failure
     pytest.param(100e3, "LC1", marks=pytest.mark.xfail(
-        strict=True, reason="held-out 100 kPa prediction is ~20 % too soft"))])
+        strict=True, reason="held-out 100 kPa prediction is 10-17 % too soft"))])
 def test_standing_tyre_sits_at_table_deflection(pressure, case):
     tyre = load_tyre("xzl-16.00R20", pressure)
     load = float(load_cases().loc[case, "wheel_load_N"])
