@@ -2,11 +2,10 @@
 
 import dataclasses
 
-import numpy as np
 import pytest
 
-from tyrelab.tyre.library import load_tyre, modal_table
-from tyrelab.tyre.ring.parameters import RingParameters, ring_parameters
+from tyrelab.tyre.library import load_tyre
+from tyrelab.tyre.ring.parameters import RingParameters
 
 
 # How well the identified ring reproduces its fitted data and predicts the

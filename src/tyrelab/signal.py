@@ -77,12 +77,17 @@ def units(columns) -> dict[str, str]:
     return {c: CHANNELS.get(c, ("", ""))[0] for c in columns}
 
 
-def signal_from_array(data: np.ndarray, channels, metadata: dict | None = None) -> pd.DataFrame:
-    """A signal table from a 2D array whose columns are ``channels`` (no copy)."""
-    df = pd.DataFrame(np.asarray(data, dtype=float), columns=list(channels), copy=False)
+def _described(df: pd.DataFrame, metadata: dict | None) -> pd.DataFrame:
+    """Attach the units of the columns and the run metadata to a table."""
     df.attrs["units"] = units(df.columns)
     df.attrs["metadata"] = dict(metadata or {})
     return df
+
+
+def signal_from_array(data: np.ndarray, channels, metadata: dict | None = None) -> pd.DataFrame:
+    """A signal table from a 2D array whose columns are ``channels`` (no copy)."""
+    return _described(pd.DataFrame(np.asarray(data, dtype=float), columns=list(channels), copy=False),
+                      metadata)
 
 
 def make_signal(data: dict[str, np.ndarray], metadata: dict | None = None) -> pd.DataFrame:
@@ -94,10 +99,8 @@ def make_signal(data: dict[str, np.ndarray], metadata: dict | None = None) -> pd
     """
     known = [c for c in CHANNELS if c in data]
     extra = [c for c in data if c not in CHANNELS]
-    df = pd.DataFrame({c: np.asarray(data[c], dtype=float) for c in known + extra})
-    df.attrs["units"] = units(df.columns)
-    df.attrs["metadata"] = dict(metadata or {})
-    return df
+    return _described(pd.DataFrame({c: np.asarray(data[c], dtype=float) for c in known + extra}),
+                      metadata)
 
 
 def _atomic_target(path):

@@ -35,7 +35,7 @@ def run_chunks(advance, n_steps: int, out_every: int, n_channels: int, dt: float
         if bar is None and progress is not False and done < n_steps:
             elapsed = time.perf_counter() - started
             expected = elapsed * n_steps / done
-            if progress or (expected > PROGRESS_AFTER and sys.stderr.isatty()) or progress is True:
+            if progress or (expected > PROGRESS_AFTER and sys.stderr.isatty()):
                 from tqdm import tqdm
                 bar = tqdm(total=n_steps * dt, unit="s sim", desc="simulating", file=sys.stderr,
                            bar_format="{l_bar}{bar}| {n:.1f}/{total:.1f} s simulated [{elapsed}<{remaining}]")

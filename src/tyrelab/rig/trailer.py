@@ -139,19 +139,16 @@ def trailer_setup(tyre, geometry: TrailerGeometry, load_case: str | float,
     frame_lever = x_lever(gm.frame_cg_behind_hitch, gm.frame_cg_height)
     wheel_lever = L * c
     needed = 2.0 * target * wheel_lever / G - frame_mass * frame_lever  # kg m from ballast
-    if ballast is None:  # a load in N: ballast of the LC3 size, or none if not needed
-        ballast = 0.0 if abs(needed) < 1e-9 else max(needed / (L * c), 0.0)
-    if ballast == 0.0:
-        if abs(needed) > 1e-6 * frame_mass * L:
-            # no ballast: the bare trailer's own load; move its centre of mass instead
-            frame_lever_needed = 2.0 * target * wheel_lever / (G * frame_mass)
-            xb0 = (frame_lever_needed + gm.frame_cg_height * sn) / c
-            return _finish(gm, target, frame_mass, 0.0, 0.0, hitch_z, theta, frame_cg_x=xb0)
-        xb = 0.0
-    else:
+    if ballast is None:  # a load in N: ballast over the axle when the bare trailer is too light
+        ballast = max(needed / (L * c), 0.0)
+    if ballast > 0.0:
         # solve x_lever(xb, ballast_height) = needed / ballast
         xb = (needed / ballast + gm.ballast_height * sn) / c
-    return _finish(gm, target, frame_mass, ballast, xb, hitch_z, theta)
+        return _finish(gm, target, frame_mass, ballast, xb, hitch_z, theta)
+    # no ballast: the bare trailer's centre of mass sits where its weight gives the load
+    frame_lever_needed = 2.0 * target * wheel_lever / (G * frame_mass)
+    x_frame = (frame_lever_needed + gm.frame_cg_height * sn) / c
+    return _finish(gm, target, frame_mass, 0.0, 0.0, hitch_z, theta, frame_cg_x=x_frame)
 
 
 def _finish(gm, target, frame_mass, ballast, xb, hitch_z, theta, frame_cg_x=None):

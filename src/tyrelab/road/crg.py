@@ -42,7 +42,7 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import InputError
-from .base import GriddedRoad, Road
+from .base import GriddedRoad
 from .grid import RoadGrid
 
 #: the four OpenCRG data formats: K/L = binary/text, R/D = single/double

@@ -31,7 +31,7 @@ import numpy as np
 from scipy import fft, stats
 
 from ..errors import InputError
-from .base import GriddedRoad, Road
+from .base import GriddedRoad
 from .grid import RoadGrid
 
 #: ISO 8608 reference spatial frequency [cycles/m]

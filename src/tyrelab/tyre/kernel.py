@@ -238,28 +238,33 @@ def analytic_wheel_force(model, handling, vp, knots, coefs, cp, hp, gp, z, zinfo
     fz = normal_force(vp, knots, coefs, rho, rho_dot)
     out[10] = rho_dot
     out[13] = fz
-    # W-axis: z along the normal, x in the wheel plane
-    tx, ty, tz = cross(ax, ay, az, nx, ny, nz)
-    wxx, wxy, wxz = unit(tx, ty, tz)
-    wyx, wyy, wyz = cross(nx, ny, nz, wxx, wxy, wxz)
     rx, ry, rz = px - cx, py - cy, pz - cz
-    # velocity of the wheel material at the contact point: v + omega a x r
-    sx, sy, sz = cross(ax, ay, az, rx, ry, rz)
-    v_long = dot(vx, vy, vz, wxx, wxy, wxz)
-    v_slip_x = dot(vx + omega * sx, vy + omega * sy, vz + omega * sz, wxx, wxy, wxz)
-    v_slip_y = dot(vx + omega * sx, vy + omega * sy, vz + omega * sz, wyx, wyy, wyz)
-    gamma = math.asin(max(-1.0, min(1.0, dot(ax, ay, az, nx, ny, nz))))
-    fxw, fyw, mzw, kappa, alpha, dfx = handling_forces(handling, hp, fz, v_long, v_slip_x, v_slip_y,
-                                                       gamma)
-    out[17] = kappa
-    out[18] = alpha
-    if dfx != 0.0:
-        # spin moment of FXW at the contact point: ((r x w_x) . a) FXW, and
-        # d kappa / d omega = -((a x r) . w_x) / max(|V_x|, VXLOW)
-        lx, ly, lz = cross(rx, ry, rz, wxx, wxy, wxz)
-        lever = dot(lx, ly, lz, ax, ay, az)
-        vref = abs(v_long) if abs(v_long) > VXLOW else VXLOW
-        out[19] = lever * dfx * (-dot(sx, sy, sz, wxx, wxy, wxz) / vref)
+    fxw = 0.0
+    fyw = 0.0
+    mzw = 0.0
+    wxx = wxy = wxz = wyx = wyy = wyz = 0.0
+    if handling != 0:
+        # W-axis: z along the normal, x in the wheel plane
+        tx, ty, tz = cross(ax, ay, az, nx, ny, nz)
+        wxx, wxy, wxz = unit(tx, ty, tz)
+        wyx, wyy, wyz = cross(nx, ny, nz, wxx, wxy, wxz)
+        # velocity of the wheel material at the contact point: v + omega a x r
+        sx, sy, sz = cross(ax, ay, az, rx, ry, rz)
+        v_long = dot(vx, vy, vz, wxx, wxy, wxz)
+        v_slip_x = dot(vx + omega * sx, vy + omega * sy, vz + omega * sz, wxx, wxy, wxz)
+        v_slip_y = dot(vx + omega * sx, vy + omega * sy, vz + omega * sz, wyx, wyy, wyz)
+        gamma = math.asin(max(-1.0, min(1.0, dot(ax, ay, az, nx, ny, nz))))
+        fxw, fyw, mzw, kappa, alpha, dfx = handling_forces(handling, hp, fz, v_long, v_slip_x,
+                                                           v_slip_y, gamma)
+        out[17] = kappa
+        out[18] = alpha
+        if dfx != 0.0:
+            # spin moment of FXW at the contact point: ((r x w_x) . a) FXW, and
+            # d kappa / d omega = -((a x r) . w_x) / max(|V_x|, VXLOW)
+            lx, ly, lz = cross(rx, ry, rz, wxx, wxy, wxz)
+            lever = dot(lx, ly, lz, ax, ay, az)
+            vref = abs(v_long) if abs(v_long) > VXLOW else VXLOW
+            out[19] = lever * dfx * (-dot(sx, sy, sz, wxx, wxy, wxz) / vref)
     out[11] = fxw
     out[12] = fyw
     fx = fz * nx + fxw * wxx + fyw * wyx

@@ -75,6 +75,15 @@ def _segment_nearest(s0, q0, s1, q1):
 
 
 @nb.njit(cache=True, inline="always")
+def _nearer(s0, q0, s1, q1, bs, bq, best):
+    """The segment's nearest point if it beats the best (squared distance) so far."""
+    ps, pq, d2 = _segment_nearest(s0, q0, s1, q1)
+    if d2 < best:
+        return ps, pq, d2
+    return bs, bq, best
+
+
+@nb.njit(cache=True, inline="always")
 def _depth(gp, z, cx, cy, cz, fx, fy, dz, hx, hy, base_q, s):
     """Depth below the centre, along the in-plane down vector, of the section at s."""
     return base_q + (grid_height(gp, z, cx + s * fx + hx, cy + s * fy + hy) - cz) * dz
@@ -109,11 +118,7 @@ def _scan(gp, z, cx, cy, cz, fx, fy, dz, hx, hy, base_q, sa, sb, step, bs, bq, b
             if s1 <= s0:
                 continue
             q1 = _depth(gp, z, cx, cy, cz, fx, fy, dz, hx, hy, base_q, s1)
-            ps, pq, d2 = _segment_nearest(s0, q0, s1, q1)
-            if d2 < best:
-                best = d2
-                bs = ps
-                bq = pq
+            bs, bq, best = _nearer(s0, q0, s1, q1, bs, bq, best)
             s0 = s1
             q0 = q1
         return bs, bq, best
@@ -124,11 +129,7 @@ def _scan(gp, z, cx, cy, cz, fx, fy, dz, hx, hy, base_q, sa, sb, step, bs, bq, b
     for i in range(1, n):
         s1 = sa + i * ds
         q1 = _depth(gp, z, cx, cy, cz, fx, fy, dz, hx, hy, base_q, s1)
-        ps, pq, d2 = _segment_nearest(s0, q0, s1, q1)
-        if d2 < best:
-            best = d2
-            bs = ps
-            bq = pq
+        bs, bq, best = _nearer(s0, q0, s1, q1, bs, bq, best)
         s0 = s1
         q0 = q1
     return bs, bq, best

@@ -248,7 +248,6 @@ def contour_height(tyre, rp: RingParameters, y: np.ndarray) -> np.ndarray:
     """Block height above the belt [m] at lateral offsets ``y``:
     ``depth - CONTOUR_FACTOR R0 (1 - r(|y|))``, r the [SHAPE] radius ratio."""
     r0 = tyre.unloaded_radius
-    rb = r0 - rp.tread_depth
     shape = tyre.shape
     half_w = 0.5 * tyre.width if tyre.width > 0 else 0.3 * r0
     y = np.abs(np.asarray(y, float))

@@ -34,8 +34,6 @@ def press_path(cp, ts, gp, z, zinfo, z_start, heights, rate, hold, window, dt, r
     ``window`` of the hold at height k; if ``blocks`` has a row per height,
     it receives each block's normal force at the end of the hold.
     """
-    n = int(cp[L.CP_N])
-    nbk = int(cp[L.CP_NB])
     rim = np.zeros(6)
     acc = np.zeros(ACC_SIZE)
     none = np.zeros(1)
