@@ -15,8 +15,8 @@ from tyrelab.errors import InputError
 from tyrelab.road.grid import RoadGrid
 from tyrelab.road.obstacles import Flat, Step
 from tyrelab.tyre.contact.cams import cam_height
-from tyrelab.tyre.contact.enveloping import (AE, BE, CAP, TN, TOFF, contact_patch, enveloping_contact,
-                                             enveloping_params)
+from tyrelab.tyre.contact.enveloping import (AE, BE, CAP, CM, PER, TN, TOFF, contact_patch,
+                                             enveloping_contact, enveloping_params)
 from tyrelab.tyre.contact.point import point_contact
 from tyrelab.tyre.kernel import road_info
 from tyrelab.tyre.library import load_tyre
@@ -75,12 +75,12 @@ def test_flat_road_is_the_effective_plane():
 def test_one_cam_rests_on_the_corner_of_a_step():
     grid = Step(H, start=0.0).grid()
     cp = enveloping_params(load_tyre(), grid)
-    args = (cp, int(cp[TOFF]), int(cp[TN]), cp[AE], cp[BE], cp[CAP], cp, int(cp[17]), 0.005,
-            grid.params, grid.z)
+    args = (cp, int(cp[TOFF]), int(cp[TN]), cp[AE], cp[BE], cp[CAP], cp, int(cp[CM]), int(cp[PER]),
+            0.005, grid.params, grid.z)
     for x in (-0.4, -0.2, -0.1, -0.03, -0.001):
-        w = cam_height(*args, x, 0.0, 1.0, 0.0, H)[0]
+        w = cam_height(*args, x, 0.0, 1.0, 0.0, H)
         assert w == pytest.approx(max(0.0, H - drop(x)), abs=1e-6)
-    assert cam_height(*args, 0.2, 0.0, 1.0, 0.0, H)[0] == pytest.approx(H, abs=1e-12)
+    assert cam_height(*args, 0.2, 0.0, 1.0, 0.0, H) == pytest.approx(H, abs=1e-12)
 
 
 def expected_on_cleat(xc, cz, left=0.0, right=H):
@@ -220,7 +220,53 @@ def test_max_step_limits_what_a_cam_sees():
     ae, be = 0.72 * 0.5, 0.5
     reach = ae * math.sqrt(1 - (1 - 0.01 / be) ** 2)   # where e(s) = 10 mm
     assert cp[CAP] == pytest.approx(reach)
-    args = (cp, int(cp[TOFF]), int(cp[TN]), cp[AE], cp[BE], cp[CAP], cp, int(cp[17]), 0.005,
-            grid.params, grid.z)
-    assert cam_height(*args, -(reach + 0.01), 0.0, 1.0, 0.0, H)[0] == 0.0
-    assert cam_height(*args, -(reach - 0.01), 0.0, 1.0, 0.0, H)[0] > 0.0
+    args = (cp, int(cp[TOFF]), int(cp[TN]), cp[AE], cp[BE], cp[CAP], cp, int(cp[CM]), int(cp[PER]),
+            0.005, grid.params, grid.z)
+    assert cam_height(*args, -(reach + 0.01), 0.0, 1.0, 0.0, H) == 0.0
+    assert cam_height(*args, -(reach - 0.01), 0.0, 1.0, 0.0, H) > 0.0
+
+
+def paved_row_road(seed=7, dx=0.01):
+    """A 3 m x 5-row road of flat-topped blocks (random heights, one-cell faces,
+    some blocks with a slope on top): plateaus, kinks and pieces of every slope."""
+    rng = np.random.default_rng(seed)
+    nx, ny = 301, 5
+    z = np.zeros((nx, ny))
+    for j in range(ny):
+        k = 0
+        while k < nx:
+            n = int(rng.integers(6, 18))
+            z[k:k + n, j] = rng.normal(0.0, 0.015) + rng.choice([0.0, 0.0, 0.004]) * np.arange(
+                min(n, nx - k))
+            k += n + 1
+    return RoadGrid(-1.5, -0.02, dx, 0.01, z)
+
+
+@pytest.mark.parametrize("max_step", [None, 0.004])
+@pytest.mark.parametrize("blocks", [True, False])
+def test_row_of_cams_is_the_exact_maximum(max_step, blocks):
+    """Each cam of a row rests at max over |x - xc| <= cap of h(x) - e(x - xc): checked
+    against a dense search of the piecewise-linear row (200 samples per cell, plus the
+    window's ends) with the cam contour of eq. 2.5 in closed form."""
+    from tyrelab.tyre.contact.cams import cam_row
+    patch = "PAE = 0.72\nPBE = 1.0\nPCE = 2.0" + (f"\nELLIPS_MAX_STEP = {max_step}" if max_step else "")
+    tyre = tyre_from(patch, table=False)
+    grid = paved_row_road()
+    cp = enveloping_params(tyre, grid)
+    ae, be, cap = cp[AE], cp[BE], cp[CAP]
+    cm, per = (int(cp[CM]), int(cp[PER])) if blocks else (0, 1)
+    assert cp[CM] > 0 and (max_step is None) == (cap == ae)
+    j, wy = 2, 0.3
+    nodes = grid.params[0] + grid.params[2] * np.arange(grid.z.shape[0])
+    row = grid.z[:, j] * (1 - wy) + grid.z[:, j + 1] * wy
+    dense = np.linspace(nodes[0], nodes[-1], 200 * (nodes.size - 1) + 1)
+    for x_first, pitch in ((-1.2, 0.026), (-0.8, 0.026), (-0.3, 0.011), (0.1, 0.031), (0.4, 0.0)):
+        out = np.zeros(15)
+        cam_row(cp, int(cp[TOFF]), int(cp[TN]), ae, be, cap, cp, cm, per, grid.params, grid.z, j,
+                wy, x_first, pitch, 15, row.max(), out)
+        for i, w in enumerate(out):
+            xc = x_first + i * pitch
+            xs = np.r_[dense[np.abs(dense - xc) <= cap], xc - cap, xc + cap]
+            s = np.clip(np.abs(xs - xc) / ae, 0, 1)
+            expected = np.max(np.interp(xs, nodes, row) - be * (1 - np.sqrt(1 - s * s)))
+            assert w == pytest.approx(expected, abs=1e-6)

@@ -68,7 +68,7 @@ def cam_tables(ae, be, ce, n=TABLE_POINTS) -> np.ndarray:
 @nb.njit(cache=True, inline="always")
 def table_drop(ct, off, n, ae, s):
     """e(|s|) by linear interpolation in the drop table; 1e30 beyond the cam."""
-    x = abs(s) * (n - 1) / ae
+    x = abs(s) * ((n - 1) / ae)
     if x >= n - 1:
         return 1e30
     i = int(x)
@@ -126,11 +126,12 @@ def slope_support(ct, off, n, ae, m):
 
 
 @nb.njit(cache=True, inline="always")
-def _cam_side(ct, off, n, ae, be, cap, cp, brk, step, gp, z, x0, y0, fx, fy, top, best, reach):
-    """Walk from the cam's centre outwards along (fx, fy); returns (best, reach).
+def _cam_side(ct, off, n, ae, be, cap, step, gp, z, x0, y0, fx, fy, top, best, reach):
+    """Walk from the cam's centre outwards along (fx, fy), sampling the road every
+    ``step``; returns (best, reach).
 
-    Each grid node lifts the cam to ``h - e(s)``; a straight piece between
-    two nodes can lift it more only inside, where the contour's slope equals
+    Each sample lifts the cam to ``h - e(s)``; a straight piece between two
+    samples can lift it more only inside, where the contour's slope equals
     the piece's: that point is found (:func:`touch_point`) only when the
     piece's highest end minus the contour's rise at its near end could beat
     the current height. The walk stops where the contour has risen more
@@ -139,22 +140,20 @@ def _cam_side(ct, off, n, ae, be, cap, cp, brk, step, gp, z, x0, y0, fx, fy, top
     if reach <= 0.0:
         return best, reach
     sb = cap
-    aligned, j, wy, a, b, k, k_end, kdir, h0, h_b = section_walk(gp, z, x0, y0, fx, fy, 0.0, sb, step)
+    _, _, _, a, b, k, k_end, _, h0, h_b = section_walk(gp, z, x0, y0, fx, fy, 0.0, sb, step)
     if h0 > best:  # the centre itself (first side only)
         best = h0
         reach = min(table_window(ct, off, n, ae, be, top - best), cap)
-    jump = aligned and brk > 0 and kdir > 0
     s0 = 0.0
     e0 = 0.0
     while True:
-        last = (k - k_end) * kdir > 0
+        last = k > k_end
         if last:
             s1 = sb
             h1 = h_b
         else:
             s1 = a + k * b
-            h1 = z[k, j] * (1.0 - wy) + z[k, j + 1] * wy if aligned else grid_height(
-                gp, z, x0 + s1 * fx, y0 + s1 * fy)
+            h1 = grid_height(gp, z, x0 + s1 * fx, y0 + s1 * fy)
         if s1 > s0:
             e1 = table_drop(ct, off, n, ae, s1)
             if h1 - e1 > best:
@@ -172,178 +171,184 @@ def _cam_side(ct, off, n, ae, be, cap, cp, brk, step, gp, z, x0, y0, fx, fy, top
             e0 = e1
         if last or s1 >= reach:
             return best, reach
-        if jump:
-            nxt = int(cp[brk + k])
-            k = nxt if nxt > k else k + 1
-        else:
-            k += kdir
+        k += 1
 
 
-@nb.njit(cache=True, inline="always")
-def _cam_along_x(ct, off, n, ae, be, cap, cp, brk, gp, z, j, wy, x0, step_dir, top, best, reach, h_c,
-                 cm, per, xt):
-    """:func:`_cam_side` for a row along grid x (row j, weight wy): walks the x nodes
-    from x0 in direction ``step_dir`` (+1/-1); returns (best, reach, xt), xt the x
-    of the road point the cam rests on (kept from the input while not improved).
+@nb.njit(cache=True, fastmath={"nsz", "arcp", "contract", "afn", "reassoc"})
+def cam_row(ct, off, n, ae, be, cap, cp, cm, per, gp, z, j, wy, x_first, pitch, count, top, out):
+    """Heights of ``count`` cams on one grid row (along grid x), into ``out[:count]``.
 
-    With ``cm`` > 0, ``cp[cm:]`` holds the road's maxima over blocks of ``per``
-    x cells for each pair of grid rows (:func:`block_maxima`): a block whose
-    maximum, minus the contour's rise at its near end, cannot beat the
-    current height is stepped over without reading its nodes.
+    The cams stand at ``x_first + i pitch`` (``pitch >= 0``) on the line
+    between grid rows j and j+1 (weight wy). Cam i rests at
+
+        w_i = max over |x - x_i| <= cap of [h(x) - e(x - x_i)]
+
+    on the bilinear road (straight between x nodes, level beyond the grid).
+    Three facts keep the work small, none changes the result:
+
+    * a cam rests no further back than the cam behind it: for a convex
+      contour ``e(t - x_1) - e(t - x_2)`` grows with t when x_1 < x_2, so a
+      road point behind where cam i-1 rests, lower than that point for cam
+      i-1, is lower for cam i too; the walk of cam i starts there, with that
+      point's height for cam i as its first lower bound;
+    * only road within the distance where the contour has risen
+      ``top - best`` can lift the cam (``top`` bounds the road of the row);
+    * with ``cm > 0``, ``cp[cm:]`` holds the road's maxima over blocks of
+      ``per`` x cells for each pair of grid rows (:func:`block_maxima`): a
+      block whose maximum minus the contour's rise at its nearest point
+      cannot beat the current height is stepped over unread.
+
+    Each straight piece is searched exactly: the concave function
+    ``h(x) - e(x - x_i)`` on it peaks where the contour's slope equals the
+    piece's (:func:`touch_point`), clipped to the piece.
     """
-    u = (x0 - gp[0]) * gp[4]
     nx = z.shape[0]
-    if step_dir > 0:
-        k = int(math.floor(u)) + 1
-        if k < 0:
-            k = 0
-    else:
-        k = int(math.ceil(u)) - 1
-        if k > nx - 1:
-            k = nx - 1
-    jump = brk > 0 and step_dir > 0
-    s0 = 0.0
-    h0 = h_c
-    e0 = 0.0
     nrows = z.shape[1] - 1
-    # the block holding the segment that ends at node k, and the node where it ends
-    block = 0
-    if cm > 0:  # (k - 1) // per or k // per, without an integer division
-        kk = k - 1 if step_dir > 0 else k
-        block = int(kk * (1.0 / per))
-        if (block + 1) * per <= kk:
-            block += 1
-        elif block * per > kk:
-            block -= 1
-    k_far = min((block + 1) * per, nx - 1) if step_dir > 0 else block * per
-    fresh = True
-    while 0 <= k < nx:
-        if cm > 0:
-            if (k - k_far) * step_dir > 0:  # walked into the next block
-                block += step_dir
-                k_far = min((block + 1) * per, nx - 1) if step_dir > 0 else block * per
-                fresh = True
-            if fresh:
-                fresh = False
-                if cp[cm + block * nrows + j] - e0 <= best:  # nothing in it can lift the cam
-                    s_far = abs(gp[0] + k_far * gp[2] - x0)
-                    if s_far >= reach:
-                        return best, reach, xt
-                    s0 = s_far
-                    h0 = z[k_far, j] * (1.0 - wy) + z[k_far, j + 1] * wy
-                    e0 = table_drop(ct, off, n, ae, s0)
-                    k = k_far + step_dir
-                    continue
-        s1 = abs(gp[0] + k * gp[2] - x0)
-        if s1 >= reach:
-            # the piece up to the window's edge: only its inside can still matter
-            if s1 > s0 and max(h0, z[k, j] * (1.0 - wy) + z[k, j + 1] * wy) - e0 > best:
-                h1 = z[k, j] * (1.0 - wy) + z[k, j + 1] * wy
-                m = (h1 - h0) / (s1 - s0)
-                sp = min(max(touch_point(ct, off, n, ae, m), s0), min(s1, reach))
-                w = h0 + m * (sp - s0) - table_drop(ct, off, n, ae, sp)
-                if w > best:
-                    best = w
-                    xt = x0 + step_dir * sp
-                    reach = min(table_window(ct, off, n, ae, be, top - best), cap)
-            return best, reach, xt
-        h1 = z[k, j] * (1.0 - wy) + z[k, j + 1] * wy
-        if h1 == h0 and s1 > s0:  # level road: lower than its near end (e grows outwards)
-            s0 = s1
-        elif s1 > s0:
-            e1 = table_drop(ct, off, n, ae, s1)
-            if h1 - e1 > best:
-                best = h1 - e1
-                xt = x0 + step_dir * s1
+    g0, gd, ginv = gp[0], gp[2], gp[4]
+    inv_per = 1.0 / per
+    h_prev = t_prev = 0.0
+    for i in range(count):
+        xc = x_first + i * pitch
+        best = _x_height(gp, z, xc, j, wy)  # the road under the centre
+        xt = xc
+        ht = best  # height of the road point the cam rests on
+        left = xc - cap
+        if i > 0:
+            left = max(left, t_prev)
+            lower = h_prev - table_drop(ct, off, n, ae, t_prev - xc)
+            if lower > best and abs(t_prev - xc) <= cap:
+                best = lower
+                xt = t_prev
+                ht = h_prev
+        reach = min(table_window(ct, off, n, ae, be, top - best), cap)
+        left = max(left, xc - reach)
+        # the piece that holds `left` starts at node k
+        k = int(math.floor((left - g0) * ginv))
+        k = min(max(k, 0), nx - 2)
+        xa = g0 + k * gd
+        ha = z[k, j] * (1.0 - wy) + z[k, j + 1] * wy
+        ea = -1.0  # e at xa, computed when needed
+        if ha > best:
+            ea = table_drop(ct, off, n, ae, xa - xc)
+            if abs(xa - xc) <= cap and ha - ea > best:
+                best = ha - ea
+                xt = xa
+                ht = ha
                 reach = min(table_window(ct, off, n, ae, be, top - best), cap)
-            if max(h0, h1) - e0 > best:  # the piece's inside might lift the cam higher
-                m = (h1 - h0) / (s1 - s0)
-                sp = min(max(touch_point(ct, off, n, ae, m), s0), s1)
-                w = h0 + m * (sp - s0) - table_drop(ct, off, n, ae, sp)
-                if w > best:
-                    best = w
-                    xt = x0 + step_dir * sp
+        block = -1
+        if cm > 0:
+            block = int(k * inv_per)  # k // per without an integer division
+            if (block + 1) * per <= k:
+                block += 1
+            elif block * per > k:
+                block -= 1
+        k_test = k  # piece at which the next block test is due
+        while k < nx - 1 and xa < xc + reach:
+            if cm > 0 and k == k_test:
+                if k >= (block + 1) * per:  # walked into the next block
+                    block += 1
+                k_test = min((block + 1) * per, nx - 1)  # the node that ends the block
+                xe = g0 + k_test * gd
+                top_b = cp[cm + block * nrows + j]
+                if top_b <= best or top_b - table_drop(
+                        ct, off, n, ae, xe - xc if xe < xc else (xa - xc if xa > xc else 0.0)) <= best:
+                    # nothing on pieces k .. k_test - 1 can lift the cam
+                    k = k_test
+                    xa = xe
+                    ha = z[k, j] * (1.0 - wy) + z[k, j + 1] * wy
+                    ea = -1.0  # not computed
+                    continue
+            xb = g0 + (k + 1) * gd
+            hb = z[k + 1, j] * (1.0 - wy) + z[k + 1, j + 1] * wy
+            eb = -1.0
+            if max(ha, hb) > best:  # else nothing on this piece can lift the cam (e >= 0)
+                eb = table_drop(ct, off, n, ae, xb - xc)
+                if abs(xb - xc) <= cap and hb - eb > best:
+                    best = hb - eb
+                    xt = xb
+                    ht = hb
                     reach = min(table_window(ct, off, n, ae, be, top - best), cap)
-            s0 = s1
-            h0 = h1
-            e0 = e1
-        if jump:
-            nxt = int(cp[brk + k])
-            k = nxt if nxt > k else k + 1
-        else:
-            k += step_dir
-    return best, reach, xt  # beyond the grid the road stays level: it cannot lift the cam more
+                if hb != ha:  # a level piece peaks at an end or under the centre: done
+                    if xa <= xc <= xb:
+                        emin = 0.0
+                    else:
+                        if ea < 0.0:
+                            ea = table_drop(ct, off, n, ae, xa - xc)
+                        emin = min(ea, eb)
+                    if max(ha, hb) - emin > best:  # the piece's inside might lift the cam higher
+                        m = (hb - ha) * ginv
+                        s = min(max(touch_point(ct, off, n, ae, m), xa - xc, -cap), xb - xc, cap)
+                        h = ha + m * (xc + s - xa)
+                        w = h - table_drop(ct, off, n, ae, s)
+                        if w > best:
+                            best = w
+                            xt = xc + s
+                            ht = h
+                            reach = min(table_window(ct, off, n, ae, be, top - best), cap)
+            k += 1
+            xa = xb
+            ha = hb
+            ea = eb
+        out[i] = best
+        h_prev = ht
+        t_prev = xt
 
 
-@nb.njit(cache=True, inline="always")
-def cam_height(ct, off, n, ae, be, window_cap, cp, brk, step, gp, z, x0, y0, fx, fy, zmax, cm=0,
-               per=1, lower=-1e300, x_lower=0.0):
+@nb.njit(cache=True)
+def cam_height(ct, off, n, ae, be, window_cap, cp, cm, per, step, gp, z, x0, y0, fx, fy, zmax):
     """Height w of the lowest point of one cam resting on the road (basic function).
 
     The cam sits at (x0, y0) and looks along the horizontal direction
     (fx, fy). Only road within the distance where the contour has risen
     ``zmax - w`` can lift it (``zmax`` bounds the road around), so the walks
     outwards, ahead and behind, shrink as w grows; ``window_cap`` limits them
-    further (MF-Swift ELLIPS_MAX_STEP). Each straight piece of the road lifts
-    the cam to its best point exactly. ``cm``, ``per``: block maxima of the
-    road (see :func:`_cam_along_x`), 0 when there are none. ``lower``: a
-    height the cam certainly reaches, resting on the road point at x =
-    ``x_lower`` (from the neighbouring cam; it only shortens the walk).
-
-    Returns ``(w, xt)``: the height and, along grid x, the x of the road point
-    the cam rests on.
+    further (MF-Swift ELLIPS_MAX_STEP). Along grid x (the rigs) the cam is
+    searched exactly on the grid row (:func:`cam_row`; ``cm``, ``per``: the
+    road's block maxima, 0 when there are none); otherwise the road is
+    sampled every ``step`` and each straight piece between samples searched
+    exactly.
     """
-    aligned = abs(fy) < 0.01  # along grid x: walk the nodes of one grid row directly
-    j, wy = 0, 0.0
+    if abs(fy) < 0.01:  # along grid x: one grid row (the small drift of y is ignored)
+        j, wy = grid_row(gp, z, y0)
+        out = np.empty(1)
+        cam_row(ct, off, n, ae, be, window_cap, cp, cm, per, gp, z, j, wy, x0, 0.0, 1, zmax, out)
+        return out[0]
     best = -1e300
     reach = window_cap
-    if aligned:
-        jf = (y0 - gp[1]) * gp[5]
-        ny = z.shape[1]
-        if jf >= ny - 1:
-            j, wy = ny - 2, 1.0
-        elif jf > 0.0:
-            j = min(int(jf), ny - 2)
-            wy = jf - j
-        best = _x_height(gp, z, x0, j, wy)
-        h_c = best
-        xt = x0
-        if lower > best:
-            best = lower
-            xt = x_lower
-        reach = min(table_window(ct, off, n, ae, be, zmax - best), window_cap)
-    else:
-        h_c = best
-        xt = x0
     for side in range(2):
         d = 1.0 if side == 0 else -1.0
         if reach <= 0.0:
             break
-        if aligned:
-            best, reach, xt = _cam_along_x(ct, off, n, ae, be, window_cap, cp, brk, gp, z, j, wy,
-                                           x0, 1 if d * fx > 0.0 else -1, zmax, best, reach, h_c,
-                                           cm, per, xt)
-        else:
-            best, reach = _cam_side(ct, off, n, ae, be, window_cap, cp, brk, step, gp, z, x0, y0,
-                                    d * fx, d * fy, zmax, best, reach)
-    return best, xt
+        best, reach = _cam_side(ct, off, n, ae, be, window_cap, step, gp, z, x0, y0, d * fx, d * fy,
+                                zmax, best, reach)
+    return best
 
 
 @nb.njit(cache=True, inline="always")
-def row_max(cp, brk, step, gp, z, x0, y0, fx, fy, sa, sb):
-    """Highest road point on the line (x0, y0) + s (fx, fy), s in [sa, sb]."""
-    aligned, j, wy, a, b, k, k_end, kdir, h_a, h_b = section_walk(gp, z, x0, y0, fx, fy, sa, sb, step)
-    top = max(h_a, h_b)
-    if aligned:
-        lo, hi = (k, k_end) if kdir > 0 else (k_end, k)
-        for i in range(lo, hi + 1):
-            h = z[i, j] * (1.0 - wy) + z[i, j + 1] * wy
-            if h > top:
-                top = h
-        return top
-    for i in range(k, k_end + 1):
-        s = a + i * b
-        h = grid_height(gp, z, x0 + s * fx, y0 + s * fy)
+def grid_row(gp, z, y):
+    """``(j, wy)``: the road at y lies between grid rows j and j+1, weight wy (clamped)."""
+    jf = (y - gp[1]) * gp[5]
+    ny = z.shape[1]
+    if jf >= ny - 1:
+        return ny - 2, 1.0
+    if jf > 0.0:
+        j = min(int(jf), ny - 2)
+        return j, jf - j
+    return 0, 0.0
+
+
+@nb.njit(cache=True, inline="always")
+def row_block_max(cp, cm, per, gp, z, j, xa, xb):
+    """An upper bound of the road on grid row j between x = xa and xb: the largest
+    block maximum (:func:`block_maxima`) over the blocks that cover it."""
+    nx, ny = z.shape
+    k_lo = min(max(int(math.floor((min(xa, xb) - gp[0]) * gp[4])), 0), nx - 1)
+    k_hi = min(max(int(math.ceil((max(xa, xb) - gp[0]) * gp[4])), 0), nx - 1)
+    n_blocks = (nx - 2) // per + 1
+    nrows = ny - 1
+    top = -1e300
+    for b in range(max((k_lo - 1) // per, 0), min(k_hi // per, n_blocks - 1) + 1):
+        h = cp[cm + b * nrows + j]
         if h > top:
             top = h
     return top

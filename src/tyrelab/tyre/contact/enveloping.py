@@ -60,17 +60,16 @@ import numpy as np
 from ...core.vec3 import unit, wheel_axes
 from ...errors import InputError
 from ...road.grid import grid_height
-from .cams import (TABLE_POINTS, block_maxima, cam_height, cam_tables, half_length, half_width,
-                   row_max, slope_support, table_drop)
+from .cams import (TABLE_POINTS, block_maxima, cam_height, cam_row, cam_tables, grid_row,
+                   half_length, half_width, row_block_max, slope_support)
 from .point import local_zmax
-from .shape import profile_breaks
 from .volume import DEFAULT_STEP, no_contact, plane_contact
 
-(R0, W0, LMODE, A1, A2, WMODE, B1, B2, B3, AE, BE, CE, PLS, NW, NL, CAP, STEP, BRK, YINV,
- TN, TOFF, WOFF, WROWS, BMAX, CM, PER) = range(26)
-HEADER = 26
+(R0, W0, LMODE, A1, A2, WMODE, B1, B2, B3, AE, BE, CE, PLS, NW, NL, CAP, STEP, YINV,
+ TN, TOFF, WOFF, WROWS, BMAX, CM, PER) = range(25)
+HEADER = 25
 #: length of the road blocks whose maxima let cams skip road they cannot touch [m]
-BLOCK = 0.03
+BLOCK = 0.05
 #: values used when the property file has neither the ADAMS nor the MF-Swift key
 DEFAULTS = {"PA1": 0.15, "PA2": 7.06, "PAE": 0.72, "PBE": 1.0, "PCE": 2.0, "PLS": 0.9,
             "N_WIDTH": 10, "N_LENGTH": 15}
@@ -118,7 +117,7 @@ def _width_law(tir, width_table, b_max):
 
 def enveloping_params(tyre, grid, width_table=None, n_width=None, n_length=None,
                       step=DEFAULT_STEP, **options) -> np.ndarray:
-    """Pack the contact-patch laws, cam tables and road breakpoints for the kernel.
+    """Pack the contact-patch laws, cam tables and the road's block maxima for the kernel.
 
     Parameters
     ----------
@@ -155,7 +154,6 @@ def enveloping_params(tyre, grid, width_table=None, n_width=None, n_length=None,
         rise = tir.number("CONTACT_PATCH", "ELLIPS_MAX_STEP")
         if rise < be:  # where the contour has risen ELLIPS_MAX_STEP
             cap = ae * (1.0 - (1.0 - rise / be) ** ce) ** (1.0 / ce)
-    breaks = profile_breaks(grid.z)
     tables = cam_tables(ae, be, ce)
     head = np.zeros(HEADER)
     head[[R0, W0, LMODE, A1, A2, WMODE, B1, B2, B3, AE, BE, CE, PLS, NW, NL, CAP, STEP]] = (
@@ -170,11 +168,9 @@ def enveloping_params(tyre, grid, width_table=None, n_width=None, n_length=None,
         head[WROWS] = wtable.shape[0]
         parts.append(np.ascontiguousarray(wtable, float).ravel())
         offset += wtable.size
-    if breaks is not None:
-        head[BRK] = offset
+    if np.all(grid.z == grid.z[:, :1]):  # a 2D road: every row of cams sees the same road
         head[YINV] = 1.0
-        parts.append(breaks)
-    elif grid.z.shape[0] > 2:  # a 3D road: block maxima per pair of grid rows
+    if grid.z.shape[0] > 2:  # block maxima per pair of grid rows
         per = max(1, int(round(BLOCK / grid.dx)))
         head[CM] = offset
         head[PER] = per
@@ -214,67 +210,62 @@ def enveloping_contact(cp, gp, z, zinfo, cx, cy, cz, ax, ay, az, geo):
     if zinfo[1] == zinfo[0]:  # one level plane everywhere
         plane_contact(r0, cx, cy, cz, ax, ay, az, cx, cy, zinfo[0], 0.0, 0.0, 1.0, 0.0, geo)
         return
-    n_tab, off, cap = int(cp[TN]), int(cp[TOFF]), cp[CAP]
-    brk, step = int(cp[BRK]), cp[STEP]
+    n_tab, off, cap, step = int(cp[TN]), int(cp[TOFF]), cp[CAP], cp[STEP]
     cm, per = int(cp[CM]), int(cp[PER])
     lever = (cz - grid_height(gp, z, cx, cy)) / cosg
     px = cx + dx * lever  # contact patch centre: the wheel plane's trace on the road
     py = cy + dy * lever
     lx, ly = -fy, fx  # horizontal, to the left of the heading
-    aligned = abs(fy) < 0.01  # rows along grid x: a row's own maximum bounds its cams' reach
+    # along grid x (the rigs), a row of cams lies on one grid row (the drift of y along
+    # the heading, u fy, is ignored) and is searched row-wise: see cams.cam_row
+    aligned = abs(fy) < 0.01
     nl, nw = int(cp[NL]), int(cp[NW])
     same_rows = cp[YINV] != 0.0 and aligned  # a 2D profile: every row sees the same road
     rows = 1 if same_rows else nw
     mult = float(nw) if same_rows else 1.0
-    a = b = du = dv = u_first = v_first = 0.0
-    top = zmax
-    w = xt = x_prev = 0.0
+    w_row = np.empty(nl)
+    # one cam under the centre: its height sizes the patch
+    if aligned:
+        j, wy = grid_row(gp, z, py)
+        top = row_block_max(cp, cm, per, gp, z, j, px - cap, px + cap) if cm > 0 else zmax
+        cam_row(cp, off, n_tab, ae, be, cap, cp, cm, per, gp, z, j, wy, px, 0.0, 1, top, w_row)
+        w = w_row[0]
+    else:
+        w = cam_height(cp, off, n_tab, ae, be, cap, cp, cm, per, step, gp, z, px, py, fx, fy, zmax)
+    rho0 = max(r0 - (cz - w) / cosg, 0.0)
+    a = half_length(int(cp[LMODE]), cp[A1], cp[A2], r0, rho0)
+    b = half_width(int(cp[WMODE]), cp[B1], cp[B2], cp[B3], cp[W0], r0, rho0, cp,
+                   int(cp[WOFF]), int(cp[WROWS]), cp[BMAX])
+    ls = 2.0 * cp[PLS] * a  # eq. 2.6
+    du = ls / (nl - 1) if nl > 1 else 0.0
+    dv = 2.0 * b / (nw - 1) if nw > 1 else 0.0
+    u_first = -0.5 * ls if nl > 1 else 0.0
+    v_first = -b if nw > 1 else 0.0
     sw = suw = svw = suu = svv = su2w = su4 = 0.0
-    # q = -1: one cam under the centre, whose height sizes the patch; then the grid of cams
-    # (one call site for the inlined cam walk keeps the compiled code small)
-    jr = 0
-    i = -1
-    for q in range(-1, rows * nl):
-        if q > 0:  # next cam (row jr, cam i) without integer division
-            i += 1
-            if i == nl:
-                i = 0
-                jr += 1
-        elif q == 0:
-            i = 0
-        v = 0.0 if (q < 0 or same_rows) else v_first + jr * dv
-        u = 0.0 if q < 0 else u_first + i * du
-        if aligned and (q < 0 or i == 0):
-            lo, hi = (-cap, cap) if q < 0 else (u_first - cap, u_first + (nl - 1) * du + cap)
-            top = row_max(cp, brk, step, gp, z, px + v * lx, py + v * ly, fx, fy, lo, hi)
-        # aligned rows keep one grid row (y drift of u fy ignored, as in the road walk)
-        xc = px + u * fx + v * lx
-        lower = -1e300
-        if aligned and q > 0 and i > 0:  # the previous cam's road point bounds this one from below
-            lower = w + table_drop(cp, off, n_tab, ae, xt - x_prev) - table_drop(cp, off, n_tab, ae,
-                                                                                  xt - xc)
-        x_prev = xc
-        w, xt = cam_height(cp, off, n_tab, ae, be, cap, cp, brk, step, gp, z, xc,
-                           py + v * ly + (0.0 if aligned else u * fy), fx, fy, top, cm, per,
-                           lower, xt)
-        if q < 0:
-            rho0 = max(r0 - (cz - w) / cosg, 0.0)
-            a = half_length(int(cp[LMODE]), cp[A1], cp[A2], r0, rho0)
-            b = half_width(int(cp[WMODE]), cp[B1], cp[B2], cp[B3], cp[W0], r0, rho0, cp,
-                           int(cp[WOFF]), int(cp[WROWS]), cp[BMAX])
-            ls = 2.0 * cp[PLS] * a  # eq. 2.6
-            du = ls / (nl - 1) if nl > 1 else 0.0
-            dv = 2.0 * b / (nw - 1) if nw > 1 else 0.0
-            u_first = -0.5 * ls if nl > 1 else 0.0
-            v_first = -b if nw > 1 else 0.0
-            continue
-        sw += mult * w
-        suw += mult * u * w
-        svw += mult * v * w
-        suu += mult * u * u
-        svv += mult * v * v
-        su2w += mult * u * u * w
-        su4 += mult * u * u * u * u
+    for jr in range(rows):
+        v = 0.0 if same_rows else v_first + jr * dv
+        if aligned:
+            j, wy = grid_row(gp, z, py + v * ly)
+            x_a = px + u_first * fx + v * lx  # first and last cam of the row
+            x_b = x_a + (nl - 1) * du * fx
+            x_lo, x_hi = min(x_a, x_b), max(x_a, x_b)
+            top = row_block_max(cp, cm, per, gp, z, j, x_lo - cap, x_hi + cap) if cm > 0 else zmax
+            cam_row(cp, off, n_tab, ae, be, cap, cp, cm, per, gp, z, j, wy, x_lo, du * abs(fx), nl,
+                    top, w_row)
+        for i in range(nl):
+            u = u_first + i * du
+            if aligned:
+                w = w_row[i] if fx > 0.0 else w_row[nl - 1 - i]
+            else:
+                w = cam_height(cp, off, n_tab, ae, be, cap, cp, cm, per, step, gp, z,
+                               px + u * fx + v * lx, py + u * fy + v * ly, fx, fy, zmax)
+            sw += mult * w
+            suw += mult * u * w
+            svw += mult * v * w
+            suu += mult * u * u
+            svv += mult * v * v
+            su2w += mult * u * u * w
+            su4 += mult * u * u * u * u
     if same_rows:  # the rows' spread, for completeness of the sums (no tilt across)
         svv = 0.0
         for jr in range(nw):
