@@ -15,7 +15,9 @@ lowest point at a distance s along the road; a cam at x rests at the height
 patch dimensions follow eqs. 2.3 and 2.4 (or the MF-Swift forms, or a
 measured deflection-to-half-width table, as the thesis asks for in 4.4).
 
-Python builds the cam tables once; the compiled functions evaluate one cam.
+Python builds the cam tables and the road's block maxima once; the compiled
+functions evaluate a row of cams along grid x (the rigs) or one cam in any
+direction.
 """
 
 from __future__ import annotations
