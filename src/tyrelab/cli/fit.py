@@ -27,9 +27,30 @@ def run_ring(args) -> int:
                          f"({', '.join(BUILT_IN)}), got '{args.tyre}'", field="--tyre")
     if args.max_evaluations < 1:
         raise InputError("--max-evaluations must be at least 1", field="--max-evaluations")
-    params, fitted, held = fit_ring(args.tyre, max_nfev=args.max_evaluations, verbose=2)
+    from tqdm import tqdm
+
+    from ..fit.ring import FREE
+
+    # least_squares evaluates the residuals once per step and once per free
+    # parameter for each finite-difference Jacobian: an upper bound
+    with tqdm(total=args.max_evaluations * (len(FREE) + 1), unit="model", desc="identifying ring",
+              leave=False) as bar:
+        params, fitted, held = fit_ring(args.tyre, max_nfev=args.max_evaluations, log=_Progress(bar))
     write_ring_file(params, args.output)
     print("fitted data:\n" + markdown_table(fitted))
     print("\nheld-out predictions:\n" + markdown_table(held))
     print(f"\n{args.output}: ring parameters")
     return 0
+
+
+class _Progress(list):
+    """The fit's evaluation log, advancing a progress bar with each evaluation."""
+
+    def __init__(self, bar):
+        super().__init__()
+        self.bar = bar
+
+    def append(self, item):
+        super().append(item)
+        self.bar.update(1)
+        self.bar.set_postfix(cost=f"{item[0]:.4g}")
