@@ -270,3 +270,23 @@ def test_row_of_cams_is_the_exact_maximum(max_step, blocks):
             s = np.clip(np.abs(xs - xc) / ae, 0, 1)
             expected = np.max(np.interp(xs, nodes, row) - be * (1 - np.sqrt(1 - s * s)))
             assert w == pytest.approx(expected, abs=1e-6)
+
+
+def test_driving_the_other_way_on_the_turned_road_is_the_same_contact():
+    """Turning the road half a revolution about the vertical axis and the wheel with
+    it (heading -x) must give the same deflection and the turned contact point and
+    normal (the cams of a row are searched in grid order, then put back in order)."""
+    grid = paved_row_road(seed=3)
+    gp = grid.params
+    turned = RoadGrid(gp[0], gp[1], gp[2], gp[3], np.ascontiguousarray(grid.z[::-1, ::-1]))
+    tyre = load_tyre()
+    for x, y, depth in ((0.13, 0.004, 0.04), (-0.41, -0.007, 0.06), (0.72, 0.0, 0.02)):
+        h = float(np.max(grid.z[140:160]))
+        cz = h + R0 - depth
+        a, b = np.zeros(8), np.zeros(8)
+        enveloping_contact(enveloping_params(tyre, grid), gp, grid.z, road_info(grid),
+                           x, y, cz, 0.0, 1.0, 0.0, a)
+        enveloping_contact(enveloping_params(tyre, turned), turned.params, turned.z,
+                           road_info(turned), -x, -y, cz, 0.0, -1.0, 0.0, b)
+        np.testing.assert_allclose(b[[0, 3, 6, 7]], a[[0, 3, 6, 7]], atol=1e-9)
+        np.testing.assert_allclose(b[[1, 2, 4, 5]], -a[[1, 2, 4, 5]], atol=1e-9)
