@@ -35,22 +35,14 @@ def run_ring(args) -> int:
     # parameter for each finite-difference Jacobian: an upper bound
     with tqdm(total=args.max_evaluations * (len(FREE) + 1), unit="model", desc="identifying ring",
               leave=False) as bar:
-        params, fitted, held = fit_ring(args.tyre, max_nfev=args.max_evaluations, log=_Progress(bar))
+        def step(cost):
+            bar.update(1)
+            bar.set_postfix(cost=f"{cost:.4g}")
+
+        params, fitted, held = fit_ring(args.tyre, max_nfev=args.max_evaluations, progress=step)
     write_ring_file(params, args.output)
     print("fitted data:\n" + markdown_table(fitted))
     print("\nheld-out predictions:\n" + markdown_table(held))
     print(f"\n{args.output}: ring parameters")
     return 0
 
-
-class _Progress(list):
-    """The fit's evaluation log, advancing a progress bar with each evaluation."""
-
-    def __init__(self, bar):
-        super().__init__()
-        self.bar = bar
-
-    def append(self, item):
-        super().append(item)
-        self.bar.update(1)
-        self.bar.set_postfix(cost=f"{item[0]:.4g}")

@@ -177,7 +177,7 @@ def evaluate(name, rp, pressures, modes, contact=True):
     return df
 
 
-def _residuals(x, name, rp0, log=None):
+def _residuals(x, name, rp0, progress=None):
     rp = _with(rp0, x)
     df = evaluate(name, rp, FIT_PRESSURES, FIT_MODES)
     w = df["quantity"].map(WEIGHTS).to_numpy()
@@ -188,8 +188,8 @@ def _residuals(x, name, rp0, log=None):
         sel = ((df["quantity"] == "load") & (df["pressure_kPa"] == p / 1e3)).to_numpy()
         ref[sel] = np.maximum(ref[sel], LOAD_FLOOR * ref[sel].max())
     r = w * (df["model"].to_numpy() - df["measured"].to_numpy()) / ref
-    if log is not None:
-        log.append((float(r @ r), np.array(x)))
+    if progress is not None:
+        progress(float(r @ r))
     return r
 
 
@@ -211,18 +211,19 @@ def modal_damping(tyre, rp, targets: dict, iterations=4):
 
 
 def fit_ring(name="xzl-16.00R20", start: RingParameters | None = None, max_nfev=25,
-             verbose=0, ftol=2e-3, log=None):
+             verbose=0, ftol=2e-3, progress=None):
     """Identify the ring of built-in tyre ``name``; returns ``(params, fitted, held_out)``.
 
     ``fitted`` and ``held_out`` are tables of measured vs model values with
-    errors in percent (see the module doc for what is which).
+    errors in percent (see the module doc for what is which). ``progress``,
+    if given, is called with the cost after every model evaluation.
     """
     from scipy.optimize import least_squares
     rp0 = start or dataclasses.replace(RingParameters(), **START)
     x0 = np.array([getattr(rp0, k) / s for k, s in FREE.items()])
     lower, upper = np.array(BOUNDS[0]), np.array(BOUNDS[1])
     x0 = np.clip(x0, lower + 1e-3, upper - 1e-3)
-    sol = least_squares(_residuals, x0, args=(name, rp0, log), bounds=(lower, upper),
+    sol = least_squares(_residuals, x0, args=(name, rp0, progress), bounds=(lower, upper),
                         diff_step=0.02, max_nfev=max_nfev, verbose=verbose, x_scale=1.0,
                         ftol=ftol, xtol=1e-3)
     rp = _with(rp0, sol.x)

@@ -207,23 +207,20 @@ def cam_row(ct, off, n, ae, be, cap, cp, cm, per, gp, z, j, wy, x_first, pitch, 
     nx = z.shape[0]
     nrows = z.shape[1] - 1
     g0, gd, ginv = gp[0], gp[2], gp[4]
-    inv_per = 1.0 / per
     h_prev = t_prev = 0.0
     for i in range(count):
         xc = x_first + i * pitch
         best = _x_height(gp, z, xc, j, wy)  # the road under the centre
         xt = xc
         ht = best  # height of the road point the cam rests on
-        left = xc - cap
         if i > 0:
-            left = max(left, t_prev)
             lower = h_prev - table_drop(ct, off, n, ae, t_prev - xc)
             if lower > best and abs(t_prev - xc) <= cap:
                 best = lower
                 xt = t_prev
                 ht = h_prev
         reach = min(table_window(ct, off, n, ae, be, top - best), cap)
-        left = max(left, xc - reach)
+        left = xc - reach if i == 0 else max(xc - reach, t_prev)
         # the piece that holds `left` starts at node k
         k = int(math.floor((left - g0) * ginv))
         k = min(max(k, 0), nx - 2)
@@ -237,13 +234,7 @@ def cam_row(ct, off, n, ae, be, cap, cp, cm, per, gp, z, j, wy, x_first, pitch, 
                 xt = xa
                 ht = ha
                 reach = min(table_window(ct, off, n, ae, be, top - best), cap)
-        block = -1
-        if cm > 0:
-            block = int(k * inv_per)  # k // per without an integer division
-            if (block + 1) * per <= k:
-                block += 1
-            elif block * per > k:
-                block -= 1
+        block = k // per
         k_test = k  # piece at which the next block test is due
         while k < nx - 1 and xa < xc + reach:
             if cm > 0 and k == k_test:

@@ -223,15 +223,8 @@ def enveloping_contact(cp, gp, z, zinfo, cx, cy, cz, ax, ay, az, geo):
     same_rows = cp[YINV] != 0.0 and aligned  # a 2D profile: every row sees the same road
     rows = 1 if same_rows else nw
     mult = float(nw) if same_rows else 1.0
-    w_row = np.empty(nl)
     # one cam under the centre: its height sizes the patch
-    if aligned:
-        j, wy = grid_row(gp, z, py)
-        top = row_block_max(cp, cm, per, gp, z, j, px - cap, px + cap) if cm > 0 else zmax
-        cam_row(cp, off, n_tab, ae, be, cap, cp, cm, per, gp, z, j, wy, px, 0.0, 1, top, w_row)
-        w = w_row[0]
-    else:
-        w = cam_height(cp, off, n_tab, ae, be, cap, cp, cm, per, step, gp, z, px, py, fx, fy, zmax)
+    w = cam_height(cp, off, n_tab, ae, be, cap, cp, cm, per, step, gp, z, px, py, fx, fy, zmax)
     rho0 = max(r0 - (cz - w) / cosg, 0.0)
     a = half_length(int(cp[LMODE]), cp[A1], cp[A2], r0, rho0)
     b = half_width(int(cp[WMODE]), cp[B1], cp[B2], cp[B3], cp[W0], r0, rho0, cp,
@@ -242,6 +235,7 @@ def enveloping_contact(cp, gp, z, zinfo, cx, cy, cz, ax, ay, az, geo):
     u_first = -0.5 * ls if nl > 1 else 0.0
     v_first = -b if nw > 1 else 0.0
     sw = suw = svw = suu = svv = su2w = su4 = 0.0
+    w_row = np.empty(nl)  # heights of one row's cams, in grid-x order
     for jr in range(rows):
         v = 0.0 if same_rows else v_first + jr * dv
         if aligned:
