@@ -21,7 +21,7 @@ from tyrelab.rig.trailer import Trailer
 from tyrelab.road.base import Road
 from tyrelab.road.grid import RoadGrid
 from tyrelab.road.obstacles import Cleat
-from tyrelab.tyre.kernel import TyreModel
+from tyrelab.tyre.model import TyreModel
 from tyrelab.tyre.library import load_tyre
 
 SPEED = 12 / 3.6

@@ -18,9 +18,9 @@ import time
 os.environ.setdefault("NUMBA_NUM_THREADS", "1")
 
 from tyrelab.rig.trailer import Trailer  # noqa: E402
-from tyrelab.tyre.kernel import TyreModel  # noqa: E402
+from tyrelab.tyre.model import TyreModel  # noqa: E402
+from tyrelab.road.obstacles import Flat  # noqa: E402
 from tyrelab.tyre.library import load_tyre  # noqa: E402
-from tyrelab.tyre.ring import layout as L  # noqa: E402
 
 SPEED = 12 / 3.6
 ROAD = "cleat:50x50"
@@ -37,9 +37,7 @@ def run(n_segments, n_blocks, contact="ring", duration=DURATION, pressure=300e3)
     t0 = time.perf_counter()
     table = trailer.run(ROAD, SPEED, duration)
     wall = time.perf_counter() - t0
-    from tyrelab.road.obstacles import Flat
-    cp = model.contact_params(Flat().grid())
-    return wall, cp[L.CP_DTMAX], table
+    return wall, model.contact_params(Flat().grid()).max_step, table
 
 
 def main(argv=None):

@@ -21,7 +21,7 @@ os.environ.setdefault("NUMBA_NUM_THREADS", "1")
 import numba as nb  # noqa: E402
 import numpy as np  # noqa: E402
 
-from tyrelab.road.grid import grid_height_gradient, grid_heights  # noqa: E402
+from tyrelab.road.grid import road_height_gradient, road_heights  # noqa: E402
 from tyrelab.road.iso8608 import RandomRoad  # noqa: E402
 from tyrelab.road.tracks import TRACKS  # noqa: E402
 
@@ -40,10 +40,10 @@ def build(make):
 
 
 @nb.njit(cache=True)
-def _gradient_loop(gp, z, xs, ys):
+def _gradient_loop(road, xs, ys):
     acc = 0.0
     for k in range(xs.shape[0]):
-        h, gx, gy = grid_height_gradient(gp, z, xs[k], ys[k])
+        h, gx, gy = road_height_gradient(road, xs[k], ys[k])
         acc += h + gx + gy
     return acc
 
@@ -74,7 +74,7 @@ def main() -> int:
         print(f"{name:32s} {grid.z.shape[0]:6d} x {grid.z.shape[1]:4d} {grid.nbytes / 1e6:9.1f} {peak:12.1f}")
 
     g = grids["belgian-paving"]
-    gp, z = g.params, g.z
+    road, z = g.surface(), g.z
     x1 = g.x0 + g.dx * (z.shape[0] - 1)
     y1 = g.y0 + g.dy * (z.shape[1] - 1)
     rng = np.random.default_rng(0)
@@ -86,9 +86,12 @@ def main() -> int:
     patch_y = np.tile(np.tile(np.linspace(-0.15, 0.15, 10), 10), N_QUERIES // 100)
     print(f"\ncompiled queries on one core (numba {nb.__version__}), belgian-paving grid, "
           f"{N_QUERIES / 1e6:.0f} M points:")
-    print(f"  grid_heights, random points        {rate(grid_heights, gp, z, rand_x, rand_y, out) / 1e6:7.1f} M/s")
-    print(f"  grid_heights, moving contact patch {rate(grid_heights, gp, z, patch_x, patch_y, out) / 1e6:7.1f} M/s")
-    print(f"  grid_height_gradient, patch        {rate(_gradient_loop, gp, z, patch_x, patch_y) / 1e6:7.1f} M/s")
+    random_rate = rate(road_heights, road, rand_x, rand_y, out)
+    patch_rate = rate(road_heights, road, patch_x, patch_y, out)
+    gradient_rate = rate(_gradient_loop, road, patch_x, patch_y)
+    print(f"  road_heights, random points        {random_rate / 1e6:7.1f} M/s")
+    print(f"  road_heights, moving contact patch {patch_rate / 1e6:7.1f} M/s")
+    print(f"  road_height_gradient, patch        {gradient_rate / 1e6:7.1f} M/s")
     return 0
 
 

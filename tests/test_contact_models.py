@@ -6,16 +6,15 @@ them apart on an oblique cleat.
 
 import math
 
-import numba as nb
 import numpy as np
 import pytest
 
 from tyrelab.rig.static_press import static_press
 from tyrelab.road.grid import RoadGrid
 from tyrelab.road.obstacles import Cleat
-from tyrelab.tyre.contact.point import GEO_SIZE
-from tyrelab.tyre.kernel import OUT_SIZE, TyreModel, wheel_force
 from tyrelab.tyre.library import load_tyre
+from tyrelab.tyre.model import TyreModel
+from tyrelab.tyre.wheel import WheelLoads, loads_table
 
 MODELS = ("point", "volume", "enveloping")
 R0 = 0.6715
@@ -34,25 +33,14 @@ def test_flat_plate_same_normal_force_for_all_models(stiffness):
         assert np.all(loads[m] > 0)
 
 
-def _compiled(model_id):
-    """A compiled call of wheel_force for one contact model (its id must be a literal)."""
-    @nb.njit
-    def call(vp, kn, co, cp, hp, gp, z, zi, cx, cy, cz, ax, ay, az, geo, out):
-        wheel_force(model_id, 0, vp, kn, co, cp, hp, gp, z, zi, np.zeros(1), cx, cy, cz,
-                    ax, ay, az, 0.0, 0.0, 0.0, 0.0, 1e-3, geo, out)
-    return call
-
-
-_CALLS = {}
-
-
 def loads_at(model, grid, centre, axis=(0.0, 1.0, 0.0)):
     """(force, contact point, normal, deflection, moment) of the road on a resting wheel."""
-    call = _CALLS.setdefault(model.model_id, _compiled(model.model_id))
-    geo = np.zeros(GEO_SIZE)
-    out = np.zeros(OUT_SIZE)
-    call(*model.kernel_args(grid), *centre, *axis, geo, out)
-    return out[0:3].copy(), out[3:6].copy(), out[6:9].copy(), out[9], out[14:17].copy()
+    pose = np.zeros(10)
+    pose[0:3] = centre
+    pose[3:6] = axis
+    f = WheelLoads(*loads_table(model.wheel(grid), pose, dt=1e-3)[0])
+    return (np.array([f.fx, f.fy, f.fz]), np.array([f.px, f.py, f.pz]),
+            np.array([f.nx, f.ny, f.nz]), f.deflection, np.array([f.mx, f.my, f.mz]))
 
 
 def inclined_plane(mx, my):

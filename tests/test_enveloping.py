@@ -14,12 +14,11 @@ import pytest
 from tyrelab.errors import InputError
 from tyrelab.road.grid import RoadGrid
 from tyrelab.road.obstacles import Flat, Step
-from tyrelab.tyre.contact.cams import cam_height
-from tyrelab.tyre.contact.enveloping import (AE, BE, CAP, CM, PER, TN, TOFF, contact_patch,
-                                             enveloping_contact, enveloping_params)
-from tyrelab.tyre.contact.point import point_contact
-from tyrelab.tyre.kernel import road_info
+from tyrelab.tyre.contact.enveloping import (contact_patch, effective_road, enveloping_geometry,
+                                             enveloping_params)
+from tyrelab.tyre.contact.point import point_geometry
 from tyrelab.tyre.library import load_tyre
+from tyrelab.tyre.wheel import ContactGeometry
 from tyrelab.tyre.tir import parse_tir
 
 R0, W0 = 0.6715, 0.438
@@ -57,30 +56,34 @@ def cleat(width=0.05, height=H, dx=0.005):
 
 
 def geometry(road, x, cz, tyre=None, **options):
+    """The contact geometry at wheel centre (x, 0, cz), heading +x: a ContactGeometry
+    of arrays when x is an array."""
     tyre = tyre or load_tyre("xzl-16.00R20", 300e3)
-    grid = road.grid()
-    cp = enveloping_params(tyre, grid, **options)
-    geo = np.zeros(8)
-    enveloping_contact(cp, grid.params, grid.z, road_info(grid), x, 0.0, cz, 0.0, 1.0, 0.0, geo)
-    return geo
+    table = enveloping_geometry(tyre, road.grid(), x, 0.0, cz, **options)
+    fields = [table[name].to_numpy() for name in ContactGeometry._fields]
+    return ContactGeometry(*(f if np.ndim(x) else f[0] for f in fields))
+
+
+def cam_heights(tyre, grid, x):
+    """Heights of a single cam (1 x 1 cams) at x on the line y = 0, heading +x: the
+    effective height of one cam is that cam's height."""
+    return effective_road(tyre, grid, x, n_width=1, n_length=1)["height"].to_numpy()
 
 
 def test_flat_road_is_the_effective_plane():
     for road in (Flat(), Step(0.05, start=20.0)):
         geo = geometry(road, 1.3, R0 - 0.047)
-        assert geo[0] == pytest.approx(0.047, abs=1e-12)
-        np.testing.assert_allclose(geo[1:7], [1.3, 0.0, 0.0, 0.0, 0.0, 1.0], atol=1e-12)
+        assert geo.deflection == pytest.approx(0.047, abs=1e-12)
+        np.testing.assert_allclose([geo.px, geo.py, geo.pz, geo.nx, geo.ny, geo.nz],
+                                   [1.3, 0.0, 0.0, 0.0, 0.0, 1.0], atol=1e-12)
 
 
 def test_one_cam_rests_on_the_corner_of_a_step():
     grid = Step(H, start=0.0).grid()
-    cp = enveloping_params(load_tyre(), grid)
-    args = (cp, int(cp[TOFF]), int(cp[TN]), cp[AE], cp[BE], cp[CAP], cp, int(cp[CM]), int(cp[PER]),
-            0.005, grid.params, grid.z)
-    for x in (-0.4, -0.2, -0.1, -0.03, -0.001):
-        w = cam_height(*args, x, 0.0, 1.0, 0.0, H)
+    xs = np.array([-0.4, -0.2, -0.1, -0.03, -0.001])
+    for x, w in zip(xs, cam_heights(load_tyre(), grid, xs)):
         assert w == pytest.approx(max(0.0, H - drop(x)), abs=1e-6)
-    assert cam_height(*args, 0.2, 0.0, 1.0, 0.0, H) == pytest.approx(H, abs=1e-12)
+    assert cam_heights(load_tyre(), grid, 0.2)[0] == pytest.approx(H, abs=1e-12)
 
 
 def expected_on_cleat(xc, cz, left=0.0, right=H):
@@ -104,9 +107,10 @@ def test_cleat_effective_plane_by_hand(xc):
     cz = R0 - 0.05
     geo = geometry(cleat(), xc, cz)
     rho, su = expected_on_cleat(xc, cz)
-    assert geo[0] == pytest.approx(rho, abs=2e-6)
+    assert geo.deflection == pytest.approx(rho, abs=2e-6)
     # forward slope su tilts the normal back: n = (-su, 0, 1) / |.|
-    np.testing.assert_allclose(geo[4:7], np.array([-su, 0, 1]) / math.sqrt(1 + su * su), atol=1e-5)
+    np.testing.assert_allclose([geo.nx, geo.ny, geo.nz], np.array([-su, 0, 1]) / math.sqrt(1 + su * su),
+                               atol=1e-5)
 
 
 def test_swallowing_peak_below_the_rigid_disc():
@@ -116,13 +120,9 @@ def test_swallowing_peak_below_the_rigid_disc():
     grid = cleat().grid()
     cz = R0 - 0.05
     xs = np.linspace(-0.8, 0.85, 331)
-    env = np.array([geometry(cleat(), x, cz)[0] for x in xs[::10]])
+    env = geometry(cleat(), xs[::10], cz).deflection
     assert np.all(env >= 0.05 - 1e-12)
-    point = []
-    geo = np.zeros(8)
-    for x in xs:
-        point_contact(R0, grid.dx, grid.params, grid.z, road_info(grid), x, 0.0, cz, 0.0, 1.0, 0.0, geo)
-        point.append(geo[0])
+    point = point_geometry(tyre, grid, xs, 0.0, cz)["deflection"].to_numpy()
     assert max(point) == pytest.approx(0.05 + H, abs=1e-12)
     by_hand = np.array([expected_on_cleat(x, cz)[0] for x in xs[::10]])
     np.testing.assert_allclose(env, by_hand, atol=2e-6)
@@ -143,7 +143,7 @@ def test_lengthening_over_a_long_step():
     disc_reach = math.sqrt(R0 ** 2 - (R0 - H) ** 2)
     dx = 0.005
     xs = np.arange(-1.0, 0.6, dx)
-    rho = np.array([geometry(Step(H, start=0.0), x, cz)[0] for x in xs])
+    rho = geometry(Step(H, start=0.0), xs, cz).deflection
     assert np.all(np.abs(rho[xs < start - dx] - 0.05) < 1e-12)
     assert rho[np.searchsorted(xs, -disc_reach - 0.05)] > 0.05 + 1e-4  # before the disc touches
     on_top = xs[rho >= 0.10 - 1e-9]
@@ -153,8 +153,8 @@ def test_lengthening_over_a_long_step():
 
 
 def test_contact_patch_formulas():
-    cp = enveloping_params(load_tyre(), Flat().grid())
-    a, b = contact_patch(cp, 0.06)
+    params = enveloping_params(load_tyre(), Flat().grid())
+    a, b = contact_patch(params, 0.06)
     assert a == pytest.approx(half_length(0.06), rel=1e-12)
     # the thesis's PB fit gives ~1.9 m at 60 mm: clipped to half the tyre width
     x = 0.06 / R0
@@ -193,16 +193,18 @@ def test_width_table_and_swift_keys():
     swift = tyre_from("PA1 = 0.2\nPA2 = 5.0\nELLIPS_LENGTH = 0.9\nELLIPS_HEIGHT = 1.1\n"
                       "ELLIPS_ORDER = 1.7\nELLIPS_SHIFT = 0.8\nELLIPS_NWIDTH = 4\nELLIPS_NLENGTH = 6")
     grid = Flat().grid()
-    np.testing.assert_array_equal(enveloping_params(adams, grid), enveloping_params(swift, grid))
-    cp = enveloping_params(adams, grid)
-    assert contact_patch(cp, 0.02)[1] == pytest.approx(0.09)   # table, by hand: 0.05 + 0.5 * 0.08
-    assert contact_patch(cp, 0.06)[1] == pytest.approx(0.12)
-    assert contact_patch(cp, 0.2)[1] == pytest.approx(0.11)    # clamped at the last row
+    for name, a, s in zip(enveloping_params(adams, grid)._fields, enveloping_params(adams, grid),
+                          enveloping_params(swift, grid)):
+        np.testing.assert_array_equal(a, s, err_msg=name)
+    params = enveloping_params(adams, grid)
+    assert contact_patch(params, 0.02)[1] == pytest.approx(0.09)   # table, by hand: 0.05 + 0.5 * 0.08
+    assert contact_patch(params, 0.06)[1] == pytest.approx(0.12)
+    assert contact_patch(params, 0.2)[1] == pytest.approx(0.11)    # clamped at the last row
     # MF-Swift length law: a = R0 (Q_RA2 x + Q_RA1 sqrt x)
     mf = tyre_from("Q_RA1 = 0.6\nQ_RA2 = 1.2\nQ_RB1 = 0.5\nQ_RB2 = 0.1", table=False)
-    cp = enveloping_params(mf, grid)
+    params = enveloping_params(mf, grid)
     x = 0.03 / 0.5
-    a, b = contact_patch(cp, 0.03)
+    a, b = contact_patch(params, 0.03)
     assert a == pytest.approx(0.5 * (1.2 * x + 0.6 * math.sqrt(x)))
     assert b == pytest.approx(0.3 * (0.1 * x + 0.5 * x ** (1 / 3)))
     with pytest.raises(InputError):
@@ -216,14 +218,11 @@ def test_max_step_limits_what_a_cam_sees():
     patch = "PAE = 0.72\nPBE = 1.0\nPCE = 2.0\nELLIPS_MAX_STEP = 0.01"
     tyre = tyre_from(patch, table=False)
     grid = Step(H, start=0.0).grid()
-    cp = enveloping_params(tyre, grid)
     ae, be = 0.72 * 0.5, 0.5
     reach = ae * math.sqrt(1 - (1 - 0.01 / be) ** 2)   # where e(s) = 10 mm
-    assert cp[CAP] == pytest.approx(reach)
-    args = (cp, int(cp[TOFF]), int(cp[TN]), cp[AE], cp[BE], cp[CAP], cp, int(cp[CM]), int(cp[PER]),
-            0.005, grid.params, grid.z)
-    assert cam_height(*args, -(reach + 0.01), 0.0, 1.0, 0.0, H) == 0.0
-    assert cam_height(*args, -(reach - 0.01), 0.0, 1.0, 0.0, H) > 0.0
+    assert enveloping_params(tyre, grid).cam_reach == pytest.approx(reach)
+    assert cam_heights(tyre, grid, -(reach + 0.01))[0] == 0.0
+    assert cam_heights(tyre, grid, -(reach - 0.01))[0] > 0.0
 
 
 def paved_row_road(seed=7, dx=0.01):
@@ -252,18 +251,18 @@ def test_row_of_cams_is_the_exact_maximum(max_step, blocks):
     patch = "PAE = 0.72\nPBE = 1.0\nPCE = 2.0" + (f"\nELLIPS_MAX_STEP = {max_step}" if max_step else "")
     tyre = tyre_from(patch, table=False)
     grid = paved_row_road()
-    cp = enveloping_params(tyre, grid)
-    ae, be, cap = cp[AE], cp[BE], cp[CAP]
-    cm, per = (int(cp[CM]), int(cp[PER])) if blocks else (0, 1)
-    assert cp[CM] > 0 and (max_step is None) == (cap == ae)
+    params = enveloping_params(tyre, grid)
+    ae, be, cap = params.cam_half_length, params.cam_half_height, params.cam_reach
+    assert params.row_block_max.size > 0 and (max_step is None) == (cap == ae)
+    if not blocks:
+        params = params._replace(row_block_max=np.zeros((0, grid.z.shape[1] - 1)))
     j, wy = 2, 0.3
-    nodes = grid.params[0] + grid.params[2] * np.arange(grid.z.shape[0])
+    nodes = grid.x0 + grid.dx * np.arange(grid.z.shape[0])
     row = grid.z[:, j] * (1 - wy) + grid.z[:, j + 1] * wy
     dense = np.linspace(nodes[0], nodes[-1], 200 * (nodes.size - 1) + 1)
     for x_first, pitch in ((-1.2, 0.026), (-0.8, 0.026), (-0.3, 0.011), (0.1, 0.031), (0.4, 0.0)):
         out = np.zeros(15)
-        cam_row(cp, int(cp[TOFF]), int(cp[TN]), ae, be, cap, cp, cm, per, grid.params, grid.z, j,
-                wy, x_first, pitch, 15, row.max(), out)
+        cam_row(params, grid.surface(), j, wy, x_first, pitch, 15, row.max(), out)
         for i, w in enumerate(out):
             xc = x_first + i * pitch
             xs = np.r_[dense[np.abs(dense - xc) <= cap], xc - cap, xc + cap]
@@ -277,16 +276,14 @@ def test_driving_the_other_way_on_the_turned_road_is_the_same_contact():
     it (heading -x) must give the same deflection and the turned contact point and
     normal (the cams of a row are searched in grid order, then put back in order)."""
     grid = paved_row_road(seed=3)
-    gp = grid.params
-    turned = RoadGrid(gp[0], gp[1], gp[2], gp[3], np.ascontiguousarray(grid.z[::-1, ::-1]))
+    turned = RoadGrid(grid.x0, grid.y0, grid.dx, grid.dy, np.ascontiguousarray(grid.z[::-1, ::-1]))
     tyre = load_tyre()
     for x, y, depth in ((0.13, 0.004, 0.04), (-0.41, -0.007, 0.06), (0.72, 0.0, 0.02)):
         h = float(np.max(grid.z[140:160]))
         cz = h + R0 - depth
-        a, b = np.zeros(8), np.zeros(8)
-        enveloping_contact(enveloping_params(tyre, grid), gp, grid.z, road_info(grid),
-                           x, y, cz, 0.0, 1.0, 0.0, a)
-        enveloping_contact(enveloping_params(tyre, turned), turned.params, turned.z,
-                           road_info(turned), -x, -y, cz, 0.0, -1.0, 0.0, b)
-        np.testing.assert_allclose(b[[0, 3, 6, 7]], a[[0, 3, 6, 7]], atol=1e-9)
-        np.testing.assert_allclose(b[[1, 2, 4, 5]], -a[[1, 2, 4, 5]], atol=1e-9)
+        a = enveloping_geometry(tyre, grid, x, y, cz, axis=(0.0, 1.0, 0.0)).iloc[0]
+        b = enveloping_geometry(tyre, turned, -x, -y, cz, axis=(0.0, -1.0, 0.0)).iloc[0]
+        same, turned_over = ["deflection", "pz", "nz", "curvature"], ["px", "py", "nx", "ny"]
+        np.testing.assert_allclose(b[same].to_numpy(float), a[same].to_numpy(float), atol=1e-9)
+        np.testing.assert_allclose(b[turned_over].to_numpy(float), -a[turned_over].to_numpy(float),
+                                   atol=1e-9)

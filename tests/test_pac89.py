@@ -16,7 +16,7 @@ import numpy as np
 import pytest
 
 from tyrelab.errors import InputError
-from tyrelab.tyre.handling.pac89 import pac89_forces, pac89_params
+from tyrelab.tyre.handling.pac89 import Pac89Params, pac89_forces, pac89_params
 from tyrelab.tyre.library import load_tyre
 
 
@@ -47,7 +47,7 @@ def mf(x, b, c, d, e):
 
 def test_the_shipped_file_carries_the_json_coefficients(hp, coeffs):
     a, b, c = coeffs
-    np.testing.assert_array_equal(hp, np.r_[a, b, c])
+    np.testing.assert_array_equal(np.r_[hp.lateral, hp.longitudinal, hp.aligning], np.r_[a, b, c])
 
 
 @pytest.mark.parametrize("fz_kn,alpha_deg", [(4.0, 1.0), (8.0, -3.0), (12.0, 6.0), (6.5, 0.3)])
@@ -110,13 +110,14 @@ def test_cornering_stiffness_at_zero_slip(hp, coeffs):
 
 def test_camber_enters_in_degrees():
     """Shifts in camber (a8, a11) by hand: Sh = a8 gamma, Sv = a11 Fz gamma."""
-    hp = np.zeros(43)
-    hp[0] = 1.3        # C
-    hp[2] = 1000.0     # D = 1000 Fz
-    hp[3] = 1500.0     # BCD peak
-    hp[4] = 5.0
-    hp[8] = 0.1        # Sh = 0.1 deg per deg camber
-    hp[11] = 20.0      # Sv = 20 N per kN per deg
+    a = np.zeros(14)
+    a[0] = 1.3        # C
+    a[2] = 1000.0     # D = 1000 Fz
+    a[3] = 1500.0     # BCD peak
+    a[4] = 5.0
+    a[8] = 0.1        # Sh = 0.1 deg per deg camber
+    a[11] = 20.0      # Sv = 20 N per kN per deg
+    hp = Pac89Params(lateral=a, longitudinal=np.zeros(11), aligning=np.zeros(18))
     fz, gamma = 5.0, 2.0
     D = 1000.0 * fz
     B = 1500.0 * math.sin(2 * math.atan(fz / 5.0)) / (1.3 * D)

@@ -7,16 +7,15 @@ import pytest
 
 from tyrelab.road.grid import RoadGrid
 from tyrelab.road.obstacles import Flat, Step
-from tyrelab.tyre.contact.point import point_contact
-from tyrelab.tyre.kernel import road_info
+from tyrelab.tyre.contact.point import PointParams, point_contact
+from tyrelab.tyre.wheel import pose
 
 R0 = 0.6715
 
 
 def contact(grid, cx, cy, cz, axis=(0.0, 1.0, 0.0)):
-    geo = np.zeros(8)
-    point_contact(R0, grid.dx, grid.params, grid.z, road_info(grid), cx, cy, cz, *axis, geo)
-    return geo[0], geo[1:4], geo[4:7]
+    geo = point_contact(PointParams(R0, grid.dx), grid.surface(), pose(cx, cy, cz, axis))
+    return geo.deflection, np.array([geo.px, geo.py, geo.pz]), np.array([geo.nx, geo.ny, geo.nz])
 
 
 def test_flat_road_contact_below_centre():

@@ -1,15 +1,13 @@
 """The ring on the rigs: static equilibrium against the load-deflection table,
 enveloping over a cleat, static press and footprint, tread pattern, CLI."""
 
-import numba as nb
 import numpy as np
 import pytest
 
 from tyrelab.road.obstacles import Flat
-from tyrelab.tyre.contact.point import GEO_SIZE
-from tyrelab.tyre.kernel import OUT_SIZE, TyreModel, road_info, wheel_force
 from tyrelab.tyre.library import load_cases, load_tyre
-from tyrelab.tyre.ring.kernel import ring_wheel_force
+from tyrelab.tyre.model import TyreModel
+from tyrelab.tyre.wheel import WheelLoads, loads_table, pose
 
 G = 9.80665
 
@@ -23,20 +21,16 @@ def _stand(model, load, seconds=1.5, dt=1e-3):
     """A rim of mass load/g standing on the ring on a flat road (free vertically,
     no spin); returns the centre heights."""
     tyre = model.tyre
-    grid = Flat().grid()
-    zi = road_info(grid)
-    cp = model.contact_params(grid)
-    ts = model.initial_state(load)
+    wheel = model.wheel(Flat().grid(), load)
     mass = load / G
     z = tyre.unloaded_radius - tyre.static_deflection(load)
     vz = 0.0
-    out = np.zeros(OUT_SIZE)
     heights = []
     for _ in range(int(seconds / dt)):
-        ring_wheel_force(model.model_id, cp, ts, grid.params, grid.z, zi, 0.0, 0.0, z, 0.0, 1.0,
-                         0.0, 0.0, 0.0, vz, 0.0, dt, out)
-        assert np.all(np.isfinite(out)) and out[13] >= 0.0
-        vz += dt * (out[2] / mass - G)
+        row = loads_table(wheel, pose(0.0, 0.0, z, velocity=(0.0, 0.0, vz)), dt)[0]
+        out = WheelLoads(*row)
+        assert np.all(np.isfinite(row)) and out.fzw >= 0.0
+        vz += dt * (out.fz / mass - G)
         z += dt * vz
         heights.append(z)
     return np.array(heights)
@@ -98,21 +92,10 @@ def test_ring_envelops_a_cleat_rigid_disc_does_not(xzl300):
     assert smooth[mid].mean() < 0.98 * smooth[peak_zone].max()
     # rigid disc (point contact) at the same axle height
     disc = TyreModel(xzl300, contact="point")
-    vp, kn, co, cp, hp, gp, z, zi = disc.kernel_args(cleat.grid())
     xs = np.linspace(0.6, 1.45, 851)
-    f = np.zeros(xs.size)
-    _disc_forces(vp, kn, co, cp, hp, gp, z, zi, xs, height, f)
+    poses = [pose(x, 0.0, height) for x in xs]
+    f = loads_table(disc.wheel(cleat.grid()), poses, 1e-3)[:, WheelLoads._fields.index("fz")]
     assert f[np.abs(xs - centre) < 0.01].mean() >= 0.999 * f.max()
-
-
-@nb.njit
-def _disc_forces(vp, kn, co, cp, hp, gp, z, zi, xs, height, res):
-    geo = np.zeros(GEO_SIZE)
-    out = np.zeros(OUT_SIZE)
-    for k in range(xs.shape[0]):
-        wheel_force(0, 0, vp, kn, co, cp, hp, gp, z, zi, np.zeros(1), xs[k], 0.0, height,
-                    0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1e-3, geo, out)
-        res[k] = out[2]
 
 
 def test_static_press_plate_and_cleat(xzl300):
@@ -145,12 +128,10 @@ def test_footprint_and_png(xzl300, tmp_path):
 
 
 def test_tread_pattern_blocks(xzl300):
-    from tyrelab.tyre.ring import layout as L
     from tyrelab.tyre.ring.model import ring_params
     even = ring_params(xzl300, None)
     tp = ring_params(xzl300, None, tread_pattern=True)
-    n, nb = int(even[L.CP_N]), int(even[L.CP_NB])
-    area = lambda cp: cp[int(cp[L.CP_OFF_BK]):int(cp[L.CP_OFF_BK]) + n * nb]  # noqa: E731
+    area = lambda cp: cp.block_area  # noqa: E731
     assert area(tp).sum() == pytest.approx(area(even).sum())
     # the blocks carry the rubber of their cells: grooves empty some cells, and
     # the areas vary with the pattern

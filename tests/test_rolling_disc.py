@@ -7,7 +7,7 @@ import pytest
 
 from tyrelab.rig.quarter_vehicle import QuarterVehicle
 from tyrelab.road.obstacles import Step
-from tyrelab.tyre.kernel import TyreModel
+from tyrelab.tyre.model import TyreModel
 from tyrelab.tyre.params import Tyre
 
 R = 0.6715

@@ -5,7 +5,7 @@ import pytest
 
 from tyrelab.errors import InputError
 from tyrelab.rig.static_press import static_press
-from tyrelab.tyre.kernel import TyreModel
+from tyrelab.tyre.model import TyreModel
 from tyrelab.tyre.library import load_tyre
 
 DEFLECTION_MM = np.arange(0, 81, 10)

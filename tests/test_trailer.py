@@ -5,7 +5,7 @@ import pytest
 
 from tyrelab.road.obstacles import Flat
 from tyrelab.rig.trailer import Trailer
-from tyrelab.tyre.kernel import TyreModel
+from tyrelab.tyre.model import TyreModel
 
 G = 9.80665
 # thesis Table 3-4: wheel load [kg] per load case

@@ -12,8 +12,7 @@ from tyrelab.road.grid import RoadGrid
 from tyrelab.road.obstacles import Flat, Step
 from tyrelab.tyre.contact.shape import (carcass_discs, disc_intersection, profile_breaks,
                                         resample_shape, segment_area, segment_depth)
-from tyrelab.tyre.contact.volume import volume_contact, volume_params
-from tyrelab.tyre.kernel import road_info
+from tyrelab.tyre.contact.volume import volume_geometry, volume_params
 from tyrelab.tyre.library import load_tyre
 
 R = 0.6715
@@ -51,11 +50,10 @@ def test_disc_over_a_step_has_the_analytic_area(xs):
     """With the step edge under the centre the area is half of each segment plus the
     grid cell's ramp (a triangle dx x step), exactly."""
     grid = step_grid(0.05, xs)
-    cp = volume_params(load_tyre(), grid)
-    brk = int(cp[3])
+    params = volume_params(load_tyre(), grid)
     zc = 0.62  # centre 0.62 m above the low road: 51.5 mm below it, 1.5 mm into the top
-    area, ms, mq = disc_intersection(cp, brk, 0.005, grid.params, grid.z, R, 0.0, 0.0, zc,
-                                     1.0, 0.0, 1.0, -R, R)
+    area, ms, mq = disc_intersection(grid.surface(), params.profile_breaks, 0.005, R, 0.0, 0.0,
+                                     zc, 1.0, 0.0, 1.0, -R, R)
     if xs == 0.0:
         exact = 0.5 * segment(R - zc) + 0.5 * segment(R - zc + 0.05) + 0.5 * 0.005 * 0.05
         assert area == pytest.approx(exact, rel=1e-12)
@@ -69,39 +67,33 @@ def test_equal_discs_take_the_equivalent_flat_depth_over_a_step():
     deflection is the depth of the flat cut with that area (segment inverted)."""
     tyre = replace(load_tyre(), shape=None)
     grid = step_grid(0.05, 0.0)
-    cp = volume_params(tyre, grid)
-    geo = np.zeros(8)
     zc = 0.62
-    volume_contact(cp, grid.params, grid.z, road_info(grid), 0.0, 0.0, zc, 0.0, 1.0, 0.0, geo)
+    geo = volume_geometry(tyre, grid, 0.0, 0.0, zc).iloc[0]
     area = 0.5 * segment(R - zc) + 0.5 * segment(R - zc + 0.05) + 0.5 * 0.005 * 0.05
     # depth of the flat cut with this area, by bisection on the hand formula
     lo, hi = 0.0, 0.2
     for _ in range(200):
         mid = 0.5 * (lo + hi)
         lo, hi = (mid, hi) if segment(mid) < area else (lo, mid)
-    assert geo[0] == pytest.approx(lo, abs=1e-9)
+    assert geo.deflection == pytest.approx(lo, abs=1e-9)
     # the step pushes the wheel back: the normal leans against the direction of travel
-    assert geo[4] < 0.0 and geo[6] > 0.0
-    assert 0.0 - 1e-12 < geo[0] and np.all(np.isfinite(geo))
+    assert geo.nx < 0.0 and geo.nz > 0.0
+    assert 0.0 - 1e-12 < geo.deflection and np.all(np.isfinite(geo.to_numpy()))
 
 
 def test_flat_road_deflection_and_normal_for_the_shaped_tyre():
     tyre = load_tyre()
     for grid in (Flat().grid(), step_grid(0.05, 5.0)):  # the second is flat where the wheel is
-        cp = volume_params(tyre, grid)
-        geo = np.zeros(8)
-        volume_contact(cp, grid.params, grid.z, road_info(grid), 0.4, 0.1, R - 0.063,
-                       0.0, 1.0, 0.0, geo)
-        assert geo[0] == pytest.approx(0.063, abs=1e-12)
-        np.testing.assert_allclose(geo[1:7], [0.4, 0.1, 0.0, 0.0, 0.0, 1.0], atol=1e-12)
+        geo = volume_geometry(tyre, grid, 0.4, 0.1, R - 0.063).iloc[0]
+        assert geo.deflection == pytest.approx(0.063, abs=1e-12)
+        np.testing.assert_allclose(geo[["px", "py", "pz", "nx", "ny", "nz"]].to_numpy(float),
+                                   [0.4, 0.1, 0.0, 0.0, 0.0, 1.0], atol=1e-12)
 
 
 def test_wheel_above_the_road_has_no_contact():
     grid = step_grid(0.05, 0.0)
-    cp = volume_params(load_tyre(), grid)
-    geo = np.zeros(8)
-    volume_contact(cp, grid.params, grid.z, road_info(grid), 0.0, 0.0, R + 0.06, 0.0, 1.0, 0.0, geo)
-    assert geo[0] <= 0.0
+    geo = volume_geometry(load_tyre(), grid, 0.0, 0.0, R + 0.06).iloc[0]
+    assert geo.deflection <= 0.0
 
 
 def test_carcass_discs_follow_table_4_1():
@@ -144,13 +136,8 @@ def test_profile_breaks_mark_the_kinks():
 def test_a_step_lifts_the_volume_model_gradually_without_nan():
     tyre = load_tyre()
     grid = Step(0.05, start=0.0).grid()
-    cp = volume_params(tyre, grid)
-    geo = np.zeros(8)
-    rho = []
-    for x in np.linspace(-0.8, 0.8, 81):
-        volume_contact(cp, grid.params, grid.z, road_info(grid), x, 0.0, R - 0.05, 0.0, 1.0, 0.0, geo)
-        assert np.all(np.isfinite(geo[:7]))
-        rho.append(geo[0])
-    rho = np.array(rho)
+    table = volume_geometry(tyre, grid, np.linspace(-0.8, 0.8, 81), 0.0, R - 0.05)
+    assert np.all(np.isfinite(table[["deflection", "px", "py", "pz", "nx", "ny", "nz"]].to_numpy()))
+    rho = table["deflection"].to_numpy()
     assert rho[0] == pytest.approx(0.05, abs=1e-12) and rho[-1] == pytest.approx(0.10, abs=1e-12)
     assert np.all(np.diff(rho) >= -1e-12)

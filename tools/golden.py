@@ -52,7 +52,6 @@ def run_case(kw):
 
 
 def static_cases():
-    from tyrelab.rig.static_press import static_press
     d = np.linspace(0.0, 0.06, 7)
     for model in ("point", "volume", "enveloping", "ring"):
         for test, direction in (("plate", "lateral"), ("cleat:51x51", "lateral"),

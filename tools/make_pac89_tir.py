@@ -52,7 +52,7 @@ def main(src, dst):
         "$ written by tools/make_pac89_tir.py. Coefficients in the ADAMS/Bakker convention",
         "$ (Fz in kN, slip angle and camber in degrees, longitudinal slip in percent).",
         f"$ The source states a friction coefficient of {js.get('Coefficient of Friction', 'n/a')}",
-        f"$ for the road the coefficients were measured on, a lateral stiffness of",
+        "$ for the road the coefficients were measured on, a lateral stiffness of",
         f"$ {dp.get('Lateral Stiffness', 'n/a')} N/m and a rolling resistance coefficient of",
         f"$ {dp.get('Rolling Resistance', 'n/a')} (not used by tyrelab's PAC89).",
         "$--------------------------------------------------------------------------",

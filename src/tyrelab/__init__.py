@@ -11,14 +11,14 @@ See ARCHITECTURE.md for the layers and the sign conventions
 (:mod:`tyrelab.signal`).
 """
 
-from .core.jit_cache import refresh as _refresh_jit_cache
+from .core.jit_cache import configure as _configure_jit_cache
 
-_refresh_jit_cache()
+_configure_jit_cache()  # before any kernel module is imported: see tyrelab.core.jit_cache
 
+from ._version import __version__  # noqa: E402
 from .api import make_tyre_model, simulate  # noqa: E402
 from .errors import InputError  # noqa: E402
 from .signal import read_signal, write_signal  # noqa: E402
 from .tyre.library import load_tyre  # noqa: E402
 
-__version__ = "0.1.0"
 __all__ = ["simulate", "make_tyre_model", "load_tyre", "read_signal", "write_signal", "InputError"]

@@ -8,11 +8,13 @@
 from __future__ import annotations
 
 from .errors import InputError
-from .tyre.kernel import TyreModel
+from .tyre.model import TyreModel
 from .tyre.library import DEFAULT_TYRE, load_tyre
 from .tyre.params import Tyre
 
-RIGS = ("trailer", "quarter-vehicle")
+#: rigs that :func:`simulate` drives: the towed trailer, the quarter vehicle, the
+#: fixed-height rolling test, the trailer's drop test (thesis 3.4.1), a single wheel dropped
+RIGS = ("trailer", "quarter-vehicle", "rolling", "drop", "wheel-drop")
 
 
 def default_handling(tyre: Tyre) -> str:
@@ -76,23 +78,39 @@ def simulate(tyre: str | Tyre = DEFAULT_TYRE, model: str = "point", road="cleat:
         Vertical stiffness: load-deflection spline or linear.
     handling : {"none", "pac89", "mf"}, optional
         Tangential force model; by default the one the property file describes.
-    rig : {"trailer", "quarter-vehicle"}
+    rig : {"trailer", "quarter-vehicle", "rolling", "drop", "wheel-drop"}
+        ``rolling``: the axle at the static height of ``load``, rolled at
+        ``speed`` (:mod:`tyrelab.rig.rolling`); ``drop``: the trailer at rest
+        lifted until its wheels leave the ground and dropped (thesis 3.4.1;
+        ``road`` and ``speed`` are ignored: flat ground, standing still);
+        ``wheel-drop``: the quarter vehicle dropped the same way.
     duration, dt, output_rate : float
-        Simulated time [s] (default: until the road ends), time step [s],
-        output sample rate [Hz].
+        Simulated time [s] (default: until the road ends; 3 s for a drop),
+        time step [s], output sample rate [Hz].
     """
+    if rig not in RIGS:
+        raise InputError(f"unknown rig '{rig}', expected one of {', '.join(RIGS)}", field="rig")
     tm = make_tyre_model(tyre, model, pressure, stiffness, handling)
-    if rig == "trailer":
+    if rig in ("trailer", "drop"):
         from .rig.trailer import Trailer
-        return Trailer(tm, load).run(road, speed, duration, dt, output_rate, progress)
-    if rig == "quarter-vehicle":
-        from .rig.quarter_vehicle import G, QuarterVehicle
-        if isinstance(load, str):
-            from .rig.trailer import load_case_wheel_load
-            wheel = load_case_wheel_load(load)
-        else:
-            wheel = float(load)
-        mu = tm.tyre.wheel_mass or 0.1 * wheel / G
-        return QuarterVehicle(tm, sprung_mass=wheel / G - mu, unsprung_mass=mu).run(
-            road, speed, duration, dt, output_rate, progress)
-    raise InputError(f"unknown rig '{rig}', expected one of {', '.join(RIGS)}", field="rig")
+        trailer = Trailer(tm, load)
+        if rig == "drop":
+            return trailer.drop(duration=duration or 3.0, dt=dt, output_rate=output_rate,
+                                progress=progress)
+        return trailer.run(road, speed, duration, dt, output_rate, progress)
+    if rig == "rolling":
+        from .rig.rolling import roll
+        return roll(tm, road, speed, load=load, duration=duration, dt=dt,
+                    output_rate=output_rate, progress=progress)
+    from .rig.quarter_vehicle import G, QuarterVehicle
+    if isinstance(load, str):
+        from .rig.trailer import load_case_wheel_load
+        wheel = load_case_wheel_load(load)
+    else:
+        wheel = float(load)
+    mu = tm.tyre.wheel_mass or 0.1 * wheel / G
+    quarter = QuarterVehicle(tm, sprung_mass=wheel / G - mu, unsprung_mass=mu)
+    if rig == "wheel-drop":
+        return quarter.drop(duration=duration or 2.0, dt=dt, output_rate=output_rate,
+                            progress=progress)
+    return quarter.run(road, speed, duration, dt, output_rate, progress)

@@ -22,8 +22,15 @@ y to the left, z up. Time is in seconds.
 
 from __future__ import annotations
 
+import json
+import os
+import tempfile
+from pathlib import Path
+
 import numpy as np
 import pandas as pd
+
+from .errors import InputError
 
 #: column name -> (unit, description). Order is the order in files.
 CHANNELS: dict[str, tuple[str, str]] = {
@@ -105,8 +112,6 @@ def make_signal(data: dict[str, np.ndarray], metadata: dict | None = None) -> pd
 
 def _atomic_target(path):
     """A temporary sibling of ``path``; renamed over it only when complete."""
-    import os
-    import tempfile
     directory = os.path.dirname(os.path.abspath(path)) or "."
     fd, tmp = tempfile.mkstemp(prefix=".tyrelab-", suffix=".part", dir=directory)
     os.close(fd)
@@ -121,11 +126,6 @@ def write_signal(df: pd.DataFrame, path) -> None:
     complete (written to a temporary name, then renamed), so an interrupted
     run never leaves a file that looks finished.
     """
-    import json
-    import os
-    from pathlib import Path
-
-    from .errors import InputError
 
     path = Path(path)
     suffix = path.suffix.lower()
@@ -156,10 +156,6 @@ def write_signal(df: pd.DataFrame, path) -> None:
 
 def read_signal(path) -> pd.DataFrame:
     """Read a signal table written by :func:`write_signal`."""
-    import json
-    from pathlib import Path
-
-    from .errors import InputError
 
     path = Path(path)
     if not path.is_file():

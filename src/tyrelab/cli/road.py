@@ -101,7 +101,8 @@ def run_spectrum(args) -> int:
     out = _image_path(args.output) if args.output else None
     band = tuple(args.band) if args.band else BAND
     if band[0] >= band[1]:
-        raise InputError(f"band {band[0]:g} {band[1]:g}: the low end must be below the high end", field="--band")
+        raise InputError(f"band {band[0]:g} {band[1]:g}: the low end must be below the high end",
+                         field="--band")
     if args.lines < 1:
         raise InputError(f"--lines must be at least 1, got {args.lines}", field="--lines")
     road = _road(args.road)

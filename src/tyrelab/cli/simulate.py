@@ -28,7 +28,10 @@ def register(sub):
                    help="towing speed in km/h (default 12)")
     p.add_argument("--load", type=load_value, default="LC1",
                    help="load case LC1, LC2, LC3 (thesis Table 3-4) or a wheel load in N (default LC1)")
-    p.add_argument("--rig", choices=("trailer", "quarter-vehicle"), default="trailer")
+    p.add_argument("--rig", choices=("trailer", "quarter-vehicle", "rolling", "drop", "wheel-drop"),
+                   default="trailer",
+                   help="trailer (default), quarter-vehicle, rolling (axle at fixed height), "
+                        "drop (the trailer's drop test, thesis 3.4.1), wheel-drop")
     p.add_argument("--duration", type=positive_float("duration"), default=None, metavar="S",
                    help="simulated time in s (default: until the road ends)")
     p.add_argument("--dt", type=positive_float("time step"), default=1e-3, metavar="S",

@@ -17,7 +17,7 @@ def register(sub):
     p.add_argument("--model", default="point", help="contact model (default point)")
     p.add_argument("--stiffness", choices=("table", "linear"), default=None)
     p.add_argument("--test", default="plate",
-                   help="plate, cleat:WxH (mm) or footprint (ring models) (default plate)")
+                   help="plate, cleat:WxH (mm) or footprint (default plate)")
     p.add_argument("--direction", choices=("lateral", "longitudinal"), default="lateral",
                    help="cleat axis across (lateral) or along (longitudinal) the wheel plane")
     p.add_argument("--max-deflection", type=positive_float("deflection", 1e-3), default=0.08,
@@ -32,16 +32,13 @@ def register(sub):
 def run(args) -> int:
     from ..api import make_tyre_model
     from ..errors import InputError
-    from ..rig.static_press import static_press
+    from ..rig.static_press import footprint, static_press
 
     model = make_tyre_model(args.tyre, args.model, args.pressure, args.stiffness, handling="none")
     if args.test == "footprint":
-        if not model.is_ring:
-            raise InputError("a footprint needs a tread model: use --model ring or ring-tp", field="--test")
         from ..report.footprint import plot_footprint
-        from ..tyre.ring.static import ring_footprint
         load = args.load or float(model.tyre.tir.number("VERTICAL", "FNOMIN", default=40e3))
-        result = ring_footprint(model, load)
+        result = footprint(model, load)
         path = args.output or "footprint.png"
         plot_footprint(result, path)
         print(f"{path}: footprint at {load / 1e3:.1f} kN")

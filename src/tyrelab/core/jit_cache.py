@@ -1,41 +1,206 @@
-"""Keep numba's on-disk cache of the whole package consistent with its sources.
+"""Where numba keeps tyrelab's compiled kernels, so that a cached kernel is never stale.
 
-numba's ``cache=True`` checks only the file that defines a function, but the
-rig loops inline the contact, vertical and handling kernels from other
-modules; after an edit (or an update) of any of those, a rig's cached
-machine code would be stale. A digest of all the package's sources is kept
-beside the caches; when it changes, every cache file of the package is
-removed before anything is compiled. Called once, from ``tyrelab/__init__``.
+Why not numba's own ``cache=True`` placement: numba checks a cached function only
+against the file that defines it (in 0.68 a hash of that one file), but the rig
+loops inline or call kernels from many other modules, and numba freezes the
+globals a kernel reads (such as index constants imported from a plain-Python
+module) into the machine code. An edit of any of those files would leave the
+rigs' cached code stale: old physics, silently.
+
+So every ``@njit(cache=True)`` function of tyrelab is cached in one folder named
+by :func:`kernel_digest`, a hash of the *kernel modules* (those whose source
+imports numba, plus the package modules they import at module level, since
+their globals end up in the compiled code), the numba and the Python version.
+A kernel edit gives a new folder and a fresh compile; an edit of plain Python
+(cli, report, validate, ...) changes nothing and costs nothing. The folder is
+``$NUMBA_CACHE_DIR/tyrelab-<digest16>`` when numba's cache dir is set, else
+``$XDG_CACHE_HOME/tyrelab/numba/<digest16>`` (``~/.cache/...``); if neither can
+be written, tyrelab compiles in memory. Nothing is ever deleted, since another
+process may be loading those files: old digest folders stay until removed by
+hand, which is safe whenever no tyrelab process runs.
+
+How numba is pointed there. numba chooses a cache *locator* once per function,
+when it is decorated: ``Dispatcher.enable_caching`` builds a ``FunctionCache``
+whose ``_CacheImpl.__init__`` asks each class of ``_locator_classes`` in turn;
+the first, ``UserProvidedCacheLocator``, reads ``numba.config.CACHE_DIR`` at
+that moment. Assigning ``config.CACHE_DIR`` here would also move every other
+package's cache into our folder, and ``config.reload_config()`` (run by the
+compiler) resets it from the environment as soon as any ``NUMBA_*`` variable
+changes, so a kernel module imported later would fall back to its
+``__pycache__`` and to stale code. Instead :func:`configure` wraps
+``Dispatcher.enable_caching``: a function whose source lies in this package gets
+a cache whose only locator is our folder (or no cache: compile in memory); any
+other function goes through numba unchanged. (An explicit
+``NUMBA_CACHE_LOCATOR_CLASSES`` still overrides our locator, as it does numba's.)
+
+Several processes may compile and load at once: numba writes every index
+(``.nbi``) and data (``.nbc``) file to a uuid-named temporary file and
+``os.replace``-s it into place (``IndexDataCacheFile._open_for_write``), so a
+reader sees a whole old file or a whole new one; an index entry whose data file
+is gone reads as a miss (``IndexDataCacheFile.load`` catches ``OSError``) and
+the reader compiles for itself. numba's numbering of data files is not safe
+against two processes adding different signatures at once, hence
+:class:`_IndexDataFile`.
 """
 
 from __future__ import annotations
 
 import hashlib
+import os
+import re
+import sys
+import tempfile
 from pathlib import Path
 
+import numba
+from numba.core import caching
+from numba.core.dispatcher import Dispatcher
+
 _PACKAGE = Path(__file__).resolve().parents[1]
-_STAMP = _PACKAGE / "__pycache__" / "tyrelab_sources.sha1"
+_folder: Path | None = None  # chosen by configure()
 
 
-def sources_digest() -> str:
-    """SHA-1 over the package's Python sources (paths and contents)."""
-    h = hashlib.sha1()
-    for path in sorted(_PACKAGE.rglob("*.py")):
-        h.update(str(path.relative_to(_PACKAGE)).encode())
-        h.update(path.read_bytes())
+def _module_file(package: Path, parts: list[str]) -> Path | None:
+    if not parts:
+        return None
+    base = package.joinpath(*parts)
+    for path in (base.with_name(base.name + ".py"), base / "__init__.py"):
+        if path.is_file():
+            return path
+    return None
+
+
+# module-level imports, read with a regex: ast.parse of the kernels costs ~60 ms at every import
+_IMPORT = re.compile(r"^from[ \t]+(\.*)([\w.]*)[ \t]+import[ \t]+(\([^)]*\)|.*)"
+                     r"|^import[ \t]+tyrelab\.([\w.]+)", re.MULTILINE)
+
+
+def _imports(path: Path, package: Path) -> set[Path]:
+    """The package's modules that *path* imports at module level."""
+    here = path.relative_to(package).parent.parts
+    found = set()
+    for dots, module, names, absolute in _IMPORT.findall(path.read_text(encoding="utf-8")):
+        if absolute:
+            found.add(_module_file(package, absolute.split(".")))
+            continue
+        parts = module.split(".") if module else []
+        if dots:
+            if len(dots) - 1 > len(here):
+                continue
+            parts = [*here[:len(here) - len(dots) + 1], *parts]
+        elif parts[:1] == ["tyrelab"]:
+            parts = parts[1:]
+        else:
+            continue
+        names = re.findall(r"\w+", re.sub(r"#.*|\bas\s+\w+", "", names))
+        found.update(_module_file(package, c) for c in [parts] + [parts + [n] for n in names])
+    return found - {None}
+
+
+def kernel_modules(package: Path = _PACKAGE) -> list[Path]:
+    """The modules whose sources can end up in compiled code (see the module docstring)."""
+    found = {p for p in package.rglob("*.py")
+             if re.search(r"import numba|from numba", p.read_text(encoding="utf-8"))}
+    todo = list(found)
+    while todo:
+        for dep in _imports(todo.pop(), package) - found:
+            found.add(dep)
+            todo.append(dep)
+    return sorted(found)
+
+
+def kernel_digest(package: Path = _PACKAGE) -> str:
+    """SHA-256 of the kernel modules (relative paths and contents), numba's and Python's versions."""
+    h = hashlib.sha256(f"numba {numba.__version__}\0python {sys.version}\0".encode())
+    for path in kernel_modules(package):
+        h.update(path.relative_to(package).as_posix().encode() + b"\0")
+        h.update(path.read_bytes() + b"\0")
     return h.hexdigest()
 
 
-def refresh() -> None:
-    """Remove every ``*.nbi``/``*.nbc`` of the package if any source changed."""
+def cache_dir() -> Path | None:
+    """The writable folder for this digest (created), or None if there is none."""
+    digest = kernel_digest()[:16]
     try:
-        digest = sources_digest()
-        if _STAMP.is_file() and _STAMP.read_text().strip() == digest:
-            return
-        for pattern in ("*.nbi", "*.nbc"):
-            for path in _PACKAGE.rglob(pattern):
-                path.unlink(missing_ok=True)
-        _STAMP.parent.mkdir(exist_ok=True)
-        _STAMP.write_text(digest + "\n")
-    except OSError:
-        pass  # read-only install: numba then caches elsewhere or compiles in memory
+        if numba.config.CACHE_DIR:
+            folder = Path(numba.config.CACHE_DIR) / f"tyrelab-{digest}"
+        else:
+            base = os.environ.get("XDG_CACHE_HOME") or Path.home() / ".cache"
+            folder = Path(base) / "tyrelab" / "numba" / digest
+        folder.mkdir(parents=True, exist_ok=True)
+        tempfile.TemporaryFile(dir=folder).close()
+    except (OSError, RuntimeError):  # RuntimeError: Path.home() without a home
+        return None
+    return folder.resolve()
+
+
+class _KernelLocator(caching._SourceFileBackedLocatorMixin, caching._CacheLocator):
+    """numba's user-dir locator, with our digest folder in place of ``config.CACHE_DIR``."""
+
+    def __init__(self, py_func, py_file):
+        self._py_file = py_file
+        self._lineno = py_func.__code__.co_firstlineno
+        self._cache_path = str(_folder / self.get_suitable_cache_subpath(py_file))
+
+    def get_cache_path(self):
+        return self._cache_path
+
+
+class _KernelCacheImpl(caching.CompileResultCacheImpl):
+    _locator_classes = [_KernelLocator]
+
+
+class _IndexDataFile(caching.IndexDataCacheFile):
+    """numba's index + data files, but one data file per key, named by its hash.
+
+    numba numbers a function's data files 1, 2, ... after the index it has read; two
+    processes adding different signatures of one function at once may both take
+    number 1, and the index left standing may then name the other signature's code.
+    Named by key, a data file can only hold that key's code, whichever process wrote
+    it; the worst left is an index entry lost to the other process (a recompile).
+    """
+
+    def save(self, key, data):
+        digest = hashlib.sha256(repr(key).encode()).hexdigest()[:16]
+        name = f"{self._index_name.removesuffix('.nbi')}.{digest}.nbc"
+        self._save_data(name, data)  # before the index names it
+        overloads = self._load_index()
+        if overloads.get(key) != name:
+            overloads[key] = name
+            self._save_index(overloads)
+
+
+class _KernelCache(caching.FunctionCache):
+    _impl_class = _KernelCacheImpl
+
+    def __init__(self, py_func):
+        super().__init__(py_func)
+        old = self._cache_file
+        self._cache_file = _IndexDataFile(old._cache_path, self._impl.filename_base, old._source_stamp)
+
+
+def _is_ours(py_func) -> bool:
+    path = os.path.realpath(py_func.__code__.co_filename)
+    return path.startswith(str(_PACKAGE) + os.sep)
+
+
+def configure() -> Path | None:
+    """Send the package's compiled code to :func:`cache_dir`; call before any kernel is imported.
+
+    Returns the folder, or None when tyrelab compiles in memory.
+    """
+    global _folder
+    _folder = cache_dir()
+    if not getattr(Dispatcher.enable_caching, "_tyrelab", False):
+        numba_enable_caching = Dispatcher.enable_caching
+
+        def enable_caching(self):
+            if not _is_ours(self.py_func):
+                numba_enable_caching(self)
+            elif _folder is not None:
+                self._cache = _KernelCache(self.py_func)
+            # else: keep numba's NullCache and compile in memory
+
+        enable_caching._tyrelab = True
+        Dispatcher.enable_caching = enable_caching
+    return _folder

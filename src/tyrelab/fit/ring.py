@@ -35,7 +35,6 @@ import pandas as pd
 
 from ..road.obstacles import Flat
 from ..tyre.library import load_tyre, modal_table
-from ..tyre.ring import layout as L
 from ..tyre.ring.modal import ring_modal
 from ..tyre.ring.model import RELAX_RATE, nominal_state, ring_params
 from ..tyre.ring.parameters import RingParameters
@@ -94,16 +93,14 @@ def press_plate(tyre, rp, deflections):
     half contact length [m] at the last one (blocks in contact, plus half a
     segment pitch at each end)."""
     grid = Flat().grid()
-    cp = ring_params(tyre, grid, parameters=rp, relax=RELAX_RATE)
-    ts = nominal_state(cp)
-    n, nb = int(cp[L.CP_N]), int(cp[L.CP_NB])
+    params = ring_params(tyre, grid, parameters=rp, relax=RELAX_RATE)
+    state = nominal_state(params)
     d = np.asarray(deflections, float)
-    blocks = np.zeros((d.size, n * nb))
-    res = settle(cp, ts, grid, tyre.unloaded_radius - d, blocks=blocks)
-    return res[:, 2], contact_half_length_of_state(cp, ts, tyre.unloaded_radius - d[-1])
+    res = settle(params, state, grid.surface(), tyre.unloaded_radius - d)
+    return res[:, 2], contact_half_length_of_state(params, state, tyre.unloaded_radius - d[-1])
 
 
-def contact_half_length_of_state(cp, ts, height):
+def contact_half_length_of_state(params, state, height):
     """Half contact length [m] of a pressed state along the tread centre.
 
     For the block columns nearest the centre line, the contact edges are
@@ -111,11 +108,11 @@ def contact_half_length_of_state(cp, ts, height):
     linearly between the last block in contact and the first one out
     (smooth in the parameters, unlike counting blocks).
     """
-    n, nb = int(cp[L.CP_N]), int(cp[L.CP_NB])
-    x, y, zt = block_positions(cp, ts)
+    n, nb = params.n_segments, params.n_blocks
+    x, y, zt = block_positions(params, state)
     x = x.reshape(n, nb)
     gap = (zt + height).reshape(n, nb)  # tip height over the plate (rim centre at height)
-    y1 = np.abs(cp[int(cp[L.CP_OFF_BY]):int(cp[L.CP_OFF_BY]) + nb])
+    y1 = np.abs(params.block_y[:nb])
     cols = np.flatnonzero(np.isclose(y1, y1.min()))
     halves = []
     for j in cols:

@@ -86,7 +86,8 @@ def plot_spectrum(phi, s, fit=None, band=BAND, title: str | None = None, iso_cla
     if fit is not None:
         a, n = fit
         ax.loglog(f, a * f ** -n, lw=1.8, color="tab:red",
-                  label=f"S = A φ^-n: A = {a:.3g} m²/(cycles/m), n = {n:.2f} (ISO 8608 class {iso_class(a, n)})")
+                  label=f"S = A φ^-n: A = {a:.3g} m²/(cycles/m), n = {n:.2f} "
+                        f"(ISO 8608 class {iso_class(a, n)})")
     for edge in band:
         ax.axvline(edge, color="0.6", lw=0.5)
     ax.set_xlabel("spatial frequency φ [cycles/m]")

@@ -1,16 +1,34 @@
 """Compiled time loop of the quarter-vehicle rig (see :mod:`.quarter_vehicle`)."""
 
+from typing import NamedTuple
+
 import numba as nb
 import numpy as np
 
-from ..tyre.contact.point import GEO_SIZE
-from ..tyre.kernel import OUT_SIZE, wheel_force
+from ..tyre.wheel import WheelPose, wheel_step
 from .frames import N_WHEEL, WHEEL_CHANNELS, wheel_row
 
-# parameter layout
-QP_SPEED, QP_MS, QP_MU, QP_KS, QP_CS, QP_D0, QP_ISPIN, QP_G, QP_X0 = range(9)
-QP_SIZE = 9
-# state layout
+
+class QuarterParams(NamedTuple):
+    """The quarter vehicle as its compiled loop takes it (SI).
+
+    ``spring_free_length``: the suspension length at which the spring force
+    is zero (the static length plus the sprung weight over the stiffness);
+    ``x_start``: where the hub starts along x.
+    """
+
+    speed: float
+    sprung_mass: float
+    unsprung_mass: float
+    stiffness: float
+    damping: float
+    spring_free_length: float
+    spin_inertia: float
+    gravity: float
+    x_start: float
+
+
+# state layout (this module's own array)
 Q_ZS, Q_VS, Q_ZU, Q_VU, Q_W, Q_T = range(6)
 Q_SIZE = 6
 
@@ -19,8 +37,7 @@ N_CH = len(CHANNELS)
 
 
 @nb.njit(cache=True)
-def quarter_steps(model, handling, vp, kn, co, cp, hp, gp, z, zi, ts, qp, state, n_steps, dt,
-                  out_every, out, row0):
+def quarter_steps(wheel, qp, state, n_steps, dt, out_every, out, row0):
     """Advance the quarter vehicle; semi-implicit Euler. Returns the next free row.
 
     Sprung mass m_s on a spring k_s and damper c_s over the wheel (mass
@@ -30,27 +47,25 @@ def quarter_steps(model, handling, vp, kn, co, cp, hp, gp, z, zi, ts, qp, state,
         m_u z_u'' = F_tyre,z - F_susp - m_u g
         F_susp    = k_s (d0 - (z_s - z_u)) + c_s (z_u' - z_s')
     """
-    geo = np.empty(GEO_SIZE)
-    f = np.empty(OUT_SIZE)
     cax = np.empty(6)
-    V = qp[QP_SPEED]
-    ms = qp[QP_MS]
-    mu = qp[QP_MU]
-    g = qp[QP_G]
+    V = qp.speed
+    ms = qp.sprung_mass
+    mu = qp.unsprung_mass
+    g = qp.gravity
     row = row0
     for step in range(n_steps):
         t = state[Q_T]
-        cx = qp[QP_X0] + V * t
+        cx = qp.x_start + V * t
         zs, vs, zu, vu = state[Q_ZS], state[Q_VS], state[Q_ZU], state[Q_VU]
-        wheel_force(model, handling, vp, kn, co, cp, hp, gp, z, zi, ts, cx, 0.0, zu, 0.0, 1.0, 0.0,
-                    V, 0.0, vu, state[Q_W], dt, geo, f)
-        fsp = qp[QP_KS] * (qp[QP_D0] - (zs - zu)) + qp[QP_CS] * (vu - vs)
+        pose = WheelPose(cx, 0.0, zu, 0.0, 1.0, 0.0, V, 0.0, vu, state[Q_W])
+        f = wheel_step(wheel, pose, dt)
+        fsp = qp.stiffness * (qp.spring_free_length - (zs - zu)) + qp.damping * (vu - vs)
         a_s = fsp / ms - g
-        a_u = (f[2] - fsp) / mu - g
-        spin = f[15]   # the tyre's moment about the axle (+y)
+        a_u = (f.fz - fsp) / mu - g
+        spin = f.my   # the tyre's moment about the axle (+y)
         if (step % out_every) == 0 and row < out.shape[0]:
             o = out[row]
-            wheel_row(o, t, cx - qp[QP_X0], cx, 0.0, zu, V, 0.0, vu, state[Q_W], 0.0, 1.0, 0.0, f, cax)
+            wheel_row(o, t, cx - qp.x_start, pose, f, cax)
             o[N_WHEEL] = cax[0]
             o[N_WHEEL + 1] = cax[1]
             o[N_WHEEL + 2] = cax[2] - mu * a_u   # load-cell reading, tared with the wheel hanging free
@@ -63,7 +78,7 @@ def quarter_steps(model, handling, vp, kn, co, cp, hp, gp, z, zi, ts, qp, state,
         state[Q_ZS] = zs + dt * state[Q_VS]
         state[Q_ZU] = zu + dt * state[Q_VU]
         # linearly implicit Euler: the slip stiffness makes the spin stiff
-        state[Q_W] += dt * spin / (qp[QP_ISPIN] - dt * min(f[19], 0.0))
+        state[Q_W] += dt * spin / (qp.spin_inertia - dt * min(f.dspin_domega, 0.0))
         state[Q_T] = t + dt
     return row
 

@@ -16,24 +16,38 @@ semi-implicit (symplectic) Euler method at a fixed step.
 """
 
 import math
+from typing import NamedTuple
 
 import numba as nb
 import numpy as np
 
-from ..tyre.kernel import OUT_SIZE, wheel_force
-from ..tyre.contact.point import GEO_SIZE
+from ..tyre.wheel import WheelPose, wheel_step
 from .frames import N_WHEEL, WHEEL_CHANNELS, wheel_row
 
-# trailer parameter layout (tp)
-TP_SPEED, TP_L, TP_TRACK, TP_HITCH_Z, TP_MASS, TP_CGX, TP_CGY, TP_CGZ = range(8)
-TP_I = 8            # 9 entries, body inertia about the hitch, row-major
-TP_ISPIN = 17
-TP_MWHEEL = 18
-TP_G = 19
-TP_ROAD_Y = 20      # road y of the test wheel's track = world y + TP_ROAD_Y
-TP_SIZE = 21
 
-# state layout
+class TrailerParams(NamedTuple):
+    """The trailer as its compiled loop takes it (SI).
+
+    ``cg`` centre of mass and ``inertia`` (3 x 3) about the hitch, in the
+    body frame; ``road_y``: the test wheel's road is the world shifted by
+    this in y (its track runs along the road's y = 0), the left wheel's
+    flat road by minus this.
+    """
+
+    speed: float
+    hitch_to_axle: float
+    track: float
+    hitch_height: float
+    mass: float
+    cg: np.ndarray
+    inertia: np.ndarray
+    spin_inertia: float
+    wheel_mass: float
+    gravity: float
+    road_y: float
+
+
+# state layout (this module's own array)
 S_THETA, S_PHI, S_DTHETA, S_DPHI, S_WR, S_WL, S_T, S_VXR, S_VYR, S_VZR = range(10)
 S_SIZE = 10
 
@@ -59,27 +73,25 @@ def _rotation(theta, phi, R):
 
 
 @nb.njit(cache=True)
-def trailer_steps(model, handling,
-                  vpR, knR, coR, cpR, hpR, gpR, zR, ziR, tsR,
-                  vpL, knL, coL, cpL, hpL, gpL, zL, ziL, tsL,
-                  tp, state, n_steps, dt, out_every, out, row0, x_start):
+def trailer_steps(right, left, tp, state, n_steps, dt, out_every, out, row0, x_start):
     """Advance the trailer ``n_steps`` steps from ``state``; write every
     ``out_every``-th step into ``out`` starting at row ``row0``. Returns the
-    next free row."""
+    next free row.
+
+    ``right`` (the test wheel) and ``left`` are :class:`~tyrelab.tyre.wheel.Wheel`
+    records of any models; ``tp`` a :class:`TrailerParams`.
+    """
     R = np.empty((3, 3))
-    Ib = tp[TP_I:TP_I + 9].reshape(3, 3)
-    geo = np.empty(GEO_SIZE)
-    fR = np.empty(OUT_SIZE)
-    fL = np.empty(OUT_SIZE)
+    Ib = tp.inertia
     cax = np.empty(6)
-    L = tp[TP_L]
-    half = 0.5 * tp[TP_TRACK]
-    V = tp[TP_SPEED]
-    g = tp[TP_G]
-    m = tp[TP_MASS]
-    ispin = tp[TP_ISPIN]
-    mw = tp[TP_MWHEEL]
-    road_y = tp[TP_ROAD_Y]
+    L = tp.hitch_to_axle
+    half = 0.5 * tp.track
+    V = tp.speed
+    g = tp.gravity
+    m = tp.mass
+    ispin = tp.spin_inertia
+    mw = tp.wheel_mass
+    road_y = tp.road_y
     row = row0
     for step in range(n_steps):
         th = state[S_THETA]
@@ -89,7 +101,7 @@ def trailer_steps(model, handling,
         t = state[S_T]
         _rotation(th, ph, R)
         hx = x_start + V * t
-        hz = tp[TP_HITCH_Z]
+        hz = tp.hitch_height
         # world angular velocity: dth * e_y + dph * (Ry e_x)
         wx = dph * math.cos(th)
         wy = dth
@@ -115,29 +127,27 @@ def trailer_steps(model, handling,
             vy = wz * rx - wx * rz
             vz = wx * ry - wy * rx
             if side == 0:
-                wheel_force(model, handling, vpR, knR, coR, cpR, hpR, gpR, zR, ziR, tsR,
-                            cx, cy + road_y, cz, ax, ay, az, vx, vy, vz, state[S_WR], dt, geo, fR)
-                fR[4] -= road_y  # contact point back to world y
-                f = fR
+                f = wheel_step(right, WheelPose(cx, cy + road_y, cz, ax, ay, az, vx, vy, vz,
+                                                state[S_WR]), dt)
             else:
-                wheel_force(model, handling, vpL, knL, coL, cpL, hpL, gpL, zL, ziL, tsL,
-                            cx, cy - road_y, cz, ax, ay, az, vx, vy, vz, state[S_WL], dt, geo, fL)
-                fL[4] += road_y
-                f = fL
+                f = wheel_step(left, WheelPose(cx, cy - road_y, cz, ax, ay, az, vx, vy, vz,
+                                               state[S_WL]), dt)
             # moment about the hitch: the force at the wheel centre plus the
             # tyre's moment about the centre
-            tau0 += ry * f[2] - rz * f[1] + f[14]
-            tau1 += rz * f[0] - rx * f[2] + f[15]
-            tau2 += rx * f[1] - ry * f[0] + f[16]
+            tau0 += ry * f.fz - rz * f.fy + f.mx
+            tau1 += rz * f.fx - rx * f.fz + f.my
+            tau2 += rx * f.fy - ry * f.fx + f.mz
             # spin: the tyre's moment about the axle, and its slope in omega
-            sm = f[14] * ax + f[15] * ay + f[16] * az
-            dsm = f[19]
+            sm = f.mx * ax + f.my * ay + f.mz * az
+            dsm = f.dspin_domega
             if side == 0:
                 spinR = sm
                 dspinR = dsm
                 if (step % out_every) == 0 and row < out.shape[0]:
                     o = out[row]
-                    wheel_row(o, t, 0.0, cx, cy, cz, vx, vy, vz, state[S_WR], ax, ay, az, fR, cax)
+                    # the world pose (the wheel's road is shifted by road_y)
+                    wheel_row(o, t, 0.0, WheelPose(cx, cy, cz, ax, ay, az, vx, vy, vz, state[S_WR]),
+                              f, cax, -road_y)
                     # load-cell reading: tyre force less the wheel's inertia force,
                     # load cells tared with the wheel hanging free
                     if step > 0:
@@ -160,12 +170,13 @@ def trailer_steps(model, handling,
                 spinL = sm
                 dspinL = dsm
                 if (step % out_every) == 0 and row < out.shape[0]:
-                    out[row, N_WHEEL + 3] = fL[13]
+                    out[row, N_WHEEL + 3] = f.fzw
         if (step % out_every) == 0 and row < out.shape[0]:
             row += 1
         # gravity about the hitch: r_cg x (0, 0, -m g)
-        gx = R[0, 0] * tp[TP_CGX] + R[0, 1] * tp[TP_CGY] + R[0, 2] * tp[TP_CGZ]
-        gy = R[1, 0] * tp[TP_CGX] + R[1, 1] * tp[TP_CGY] + R[1, 2] * tp[TP_CGZ]
+        cg = tp.cg
+        gx = R[0, 0] * cg[0] + R[0, 1] * cg[1] + R[0, 2] * cg[2]
+        gy = R[1, 0] * cg[0] + R[1, 1] * cg[1] + R[1, 2] * cg[2]
         tau0 += gy * (-m * g)
         tau1 -= gx * (-m * g)
         # to the body frame: tau_b = R^T tau

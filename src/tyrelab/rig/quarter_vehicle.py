@@ -15,9 +15,8 @@ import numpy as np
 from ..errors import InputError
 from ..road.base import Road
 from ..road.spec import road_from_spec
-from ..tyre.kernel import TyreModel
+from ..tyre.model import TyreModel
 from . import _quarter_kernel as K
-from ._entries import entry
 from .simulation import levelled_grid, run_chunks, to_signal
 
 G = 9.80665
@@ -72,33 +71,47 @@ class QuarterVehicle:
         if duration is None:
             duration = max(road.extent()[1] - x0_road, 1.0) / speed
         tyre = self.model.tyre
-        ms, mu = self.sprung_mass, self.unsprung_mass
-        qp = np.zeros(K.QP_SIZE)
-        qp[K.QP_SPEED] = speed
-        qp[K.QP_MS] = ms
-        qp[K.QP_MU] = mu
-        qp[K.QP_KS] = self.suspension_stiffness
-        qp[K.QP_CS] = self.suspension_damping
-        qp[K.QP_D0] = self.spring_length + ms * G / self.suspension_stiffness
-        qp[K.QP_ISPIN] = max(tyre.wheel_spin_inertia, 1e-3)
-        qp[K.QP_G] = G
-        qp[K.QP_X0] = x0_road
-        state = np.zeros(K.Q_SIZE)
         zu = tyre.unloaded_radius - tyre.static_deflection(self.wheel_load)
+        return self._run(road, speed, zu, speed / zu, self.wheel_load, duration, dt, output_rate,
+                         progress, "quarter-vehicle")
+
+    def drop(self, road: Road | str = "flat", lift: float = 0.0, duration: float = 2.0,
+             dt: float = 1e-3, output_rate: float = 1000.0, progress: bool | None = None):
+        """A single wheel dropped: the quarter vehicle, standing still, is lifted until
+        the tyre just leaves the ground (plus ``lift`` [m]) and released."""
+        road = road_from_spec(road)
+        if not (np.isfinite(lift) and lift >= 0):
+            raise InputError(f"lift must be a number of metres >= 0, got {lift}", field="lift")
+        if not (np.isfinite(duration) and duration > 0):
+            raise InputError(f"duration must be a positive number of seconds, got {duration}",
+                             field="duration")
+        return self._run(road, 0.0, self.model.tyre.unloaded_radius + lift, 0.0, 0.0, duration,
+                         dt, output_rate, progress, "wheel-drop")
+
+    def _run(self, road, speed, zu, omega0, wheel_load, duration, dt, output_rate, progress, rig):
+        """Drive (or hold, at ``speed`` 0) from hub height ``zu``, suspension at its static length."""
+        tyre = self.model.tyre
+        x0_road = road.run_start
+        ms, mu = self.sprung_mass, self.unsprung_mass
+        qp = K.QuarterParams(
+            speed=float(speed), sprung_mass=float(ms), unsprung_mass=float(mu),
+            stiffness=float(self.suspension_stiffness), damping=float(self.suspension_damping),
+            spring_free_length=float(self.spring_length + ms * G / self.suspension_stiffness),
+            spin_inertia=float(max(tyre.wheel_spin_inertia, 1e-3)), gravity=G,
+            x_start=float(x0_road))
+        state = np.zeros(K.Q_SIZE)
         state[K.Q_ZU] = zu
         state[K.Q_ZS] = zu + self.spring_length
-        state[K.Q_W] = speed / (tyre.unloaded_radius - tyre.static_deflection(self.wheel_load))
-        args = self.model.kernel_args(levelled_grid(road, x0_road))
+        state[K.Q_W] = omega0
+        wheel = self.model.wheel(levelled_grid(road, x0_road), wheel_load)
         n_steps = int(round(duration / dt))
         out_every = max(1, int(round(1.0 / (output_rate * dt))))
-        kernel = entry("quarter", self.model)
-        ts = self.model.initial_state(self.wheel_load)
 
         def advance(n, out, row):
-            return kernel(*args, ts, qp, state, n, dt, out_every, out, row)
+            return K.quarter_steps(wheel, qp, state, n, dt, out_every, out, row)
 
         data = run_chunks(advance, n_steps, out_every, K.N_CH, dt, progress)
-        meta = {"rig": "quarter-vehicle", "tyre": tyre.name, "model": self.model.contact,
+        meta = {"rig": rig, "tyre": tyre.name, "model": self.model.contact,
                 "handling": self.model.handling,
                 "stiffness": tyre.stiffness, "road": road.name, "speed_m_s": speed,
                 "static_wheel_load_N": self.wheel_load, "pressure_Pa": tyre.pressure, "dt_s": dt,

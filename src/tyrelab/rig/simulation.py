@@ -7,6 +7,7 @@ import time
 
 import numpy as np
 
+from ..road.grid import RoadGrid
 from ..signal import signal_from_array
 
 #: runs expected to take longer than this [s] show a progress bar by default
@@ -55,7 +56,6 @@ def levelled_grid(road, x0: float, y0: float = 0.0):
     absolute heights, so the road under test is levelled to its height at
     the start of the run.
     """
-    from ..road.grid import RoadGrid
     grid = road.grid()
     offset = float(grid.height(x0, y0))
     if offset == 0.0:

@@ -1,9 +1,15 @@
 """Static press: the non-rolling tyre pushed onto a plate or a cleat (thesis 3.3).
 
-The rim is held level at a fixed position and pressed down; the load is the
-vertical force the plate or cleat takes. Deflection is counted from first
-touch of the obstacle's top, as the lab measured it. ``press`` accepts
-``"plate"`` (the flat steel plate of 3.3.1) or ``"cleat:WxH"`` with a
+One press for every model: the rim is held level (spin axis along y, no
+spin) and lowered onto the plate or cleat in ramps at ``PRESS_RATE``; at each
+press depth it is held for ``HOLD`` and the loads of the last ``WINDOW`` are
+averaged -- as the lab press measured (rim fixed, hydraulic actuator, load
+averaged). Analytic models reach their static value at once; models with
+dynamics (the ring) relax to static equilibrium during the hold, built with
+their registered static options (the ring's relaxation damping).
+
+Deflection is counted from first touch of the obstacle's top. ``test`` is
+``"plate"`` (the flat steel plate of 3.3.1) or ``"cleat:WxH"`` (mm) with a
 direction: ``"lateral"`` (cleat axis across the wheel plane, as a tyre rolls
 over it) or ``"longitudinal"`` (cleat axis in the wheel plane).
 """
@@ -18,28 +24,55 @@ import pandas as pd
 
 from ..errors import InputError
 from ..road.obstacles import Cleat, Flat, Ridge
-from ..tyre.contact.point import GEO_SIZE
-from ..tyre.kernel import OUT_SIZE, TyreModel, wheel_force
+from ..tyre.contact.shape import carcass_discs
+from ..tyre.model import TyreModel
+from ..tyre.wheel import WheelPose, wheel_step
 
 DIRECTIONS = ("lateral", "longitudinal")
+#: press rate [m/s], hold time [s], averaging window [s] and step [s]
+PRESS_RATE = 0.25
+HOLD = 0.12
+WINDOW = 0.02
+DT = 1e-3
+#: the rim starts this far above first touch [m]
+CLEARANCE = 0.002
+#: channels of :func:`press_path`'s result rows
+PRESS_COLUMNS = ("FX", "FY", "FZ", "DEFLECT", "MX", "MY", "MZ")
 
 
 @nb.njit(cache=True)
-def press_sweep(model, handling, vp, kn, co, cp, hp, gp, z, zi, ts, centre_z, out):
-    """Static wheel loads for each centre height: ``out[k] = (Fx, Fy, Fz, rho)``.
+def press_path(wheel, z_start, heights, rate, hold, window, dt, res):
+    """Lower the rim centre from ``z_start`` through ``heights`` [m].
 
-    For analytic contact models only (no internal state): the ring model
-    finds its static shape by its own relaxation (:mod:`tyrelab.tyre.ring`).
+    ``res[k]`` receives :data:`PRESS_COLUMNS` at height k: the loads averaged
+    over the last ``window`` of the hold, and the tyre deflection at its end.
+    Returns the final centre height.
     """
-    geo = np.empty(GEO_SIZE)
-    f = np.empty(OUT_SIZE)
-    for k in range(centre_z.shape[0]):
-        wheel_force(model, handling, vp, kn, co, cp, hp, gp, z, zi, ts, 0.0, 0.0, centre_z[k],
-                    0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, geo, f)
-        out[k, 0] = f[0]
-        out[k, 1] = f[1]
-        out[k, 2] = f[2]
-        out[k, 3] = f[9]
+    zc = z_start
+    n_hold = int(np.ceil(hold / dt))
+    n_win = int(np.ceil(window / dt))
+    for k in range(heights.shape[0]):
+        target = heights[k]
+        n_ramp = int(np.ceil(abs(target - zc) / (rate * dt)))
+        if n_ramp > 0:
+            vz = (target - zc) / (n_ramp * dt)
+            for s in range(n_ramp):
+                wheel_step(wheel, WheelPose(0.0, 0.0, zc, 0.0, 1.0, 0.0, 0.0, 0.0, vz, 0.0), dt)
+                zc += vz * dt
+        zc = target
+        for q in range(res.shape[1]):
+            res[k, q] = 0.0
+        for s in range(n_hold):
+            f = wheel_step(wheel, WheelPose(0.0, 0.0, zc, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0), dt)
+            if s >= n_hold - n_win:
+                res[k, 0] += f.fx / n_win
+                res[k, 1] += f.fy / n_win
+                res[k, 2] += f.fz / n_win
+                res[k, 3] = f.deflection
+                res[k, 4] += f.mx / n_win
+                res[k, 5] += f.my / n_win
+                res[k, 6] += f.mz / n_win
+    return zc
 
 
 def press_road(test: str = "plate", direction: str = "lateral"):
@@ -59,26 +92,115 @@ def press_road(test: str = "plate", direction: str = "lateral"):
     return Ridge(w, h), h
 
 
+def pressed_wheel(model: TyreModel, grid, top: float, deflections):
+    """Press ``model`` on ``grid`` through ``deflections`` [m] (from first touch of ``top``).
+
+    Returns ``(wheel, result)``: the wheel record in its final pressed state
+    and the ``(k, 7)`` array of :data:`PRESS_COLUMNS`, rows in the order given.
+    """
+    d = np.atleast_1d(np.asarray(deflections, float))
+    if np.any(~np.isfinite(d)) or np.any(d < 0):
+        raise InputError("press deflections must be finite and >= 0", field="deflection")
+    wheel = model.wheel(grid, 0.0, static=True)
+    r0 = model.tyre.unloaded_radius
+    order = np.argsort(d, kind="stable")
+    res = np.zeros((d.size, len(PRESS_COLUMNS)))
+    press_path(wheel, top + r0 + CLEARANCE, top + r0 - d[order], PRESS_RATE, HOLD, WINDOW, DT,
+               res)
+    out = np.empty_like(res)
+    out[order] = res
+    return wheel, out
+
+
 def static_press(model: TyreModel, deflection, test: str = "plate",
                  direction: str = "lateral") -> pd.DataFrame:
-    """Load [N] on the plate or cleat at each press ``deflection`` [m].
+    """Load [N] on the plate or cleat at each press ``deflection`` [m], any model.
 
     Returns a table with ``deflection``, ``load`` (vertical force on the
     tyre), ``FX``, ``FY`` (road on tyre) and the model's own tyre deflection
     ``DEFLECT``.
     """
-    d = np.atleast_1d(np.asarray(deflection, float))
-    if np.any(~np.isfinite(d)) or np.any(d < 0):
-        raise InputError("press deflections must be finite and >= 0", field="deflection")
     road, top = press_road(test, direction)
-    grid = road.grid()
-    if model.is_ring:
-        from ..tyre.ring.static import ring_static_press
-        return ring_static_press(model, grid, top, d)
-    args = model.kernel_args(grid)
-    zc = top + model.tyre.unloaded_radius - d
-    out = np.zeros((d.size, 4))
-    from ._entries import entry
-    entry("press", model)(*args, model.initial_state(0.0), zc, out)
+    d = np.atleast_1d(np.asarray(deflection, float))
+    _, out = pressed_wheel(model, road.grid(), top, d)
     return pd.DataFrame({"deflection": d, "load": out[:, 2], "FX": out[:, 0], "FY": out[:, 1],
                          "DEFLECT": np.maximum(out[:, 3], 0.0)})
+
+
+#: sampling pitch along x of the geometric footprint of analytic models [m]
+FOOTPRINT_PITCH = 0.005
+
+
+def footprint(model: TyreModel, load: float | None = None,
+              deflection: float | None = None) -> dict:
+    """Footprint of any model standing on the flat plate (thesis 3.3.3).
+
+    The tyre is pressed onto the plate to the deflection of ``load`` [N] on
+    its load-deflection law (or to ``deflection`` [m]). A model that
+    registers a ``footprint`` (the ring: each tread block's normal force
+    after the belt relaxed) gives its pressure map; an analytic model (point,
+    volume, enveloping) has no pressure distribution, so its footprint is the
+    geometric one its contact laws rest on: the undeformed carcass (the
+    ``[SHAPE]`` discs of :func:`~tyrelab.tyre.contact.shape.carcass_discs`)
+    cut by the plate, drawn at the mean pressure load / area.
+
+    Returns a dict: ``x, y`` cell centres [m], ``force`` [N], ``pressure``
+    [Pa], ``outline`` (closed polygon ``(k, 2)`` of ``(x, y)``), ``length``,
+    ``width`` [m], ``cell`` (cell length, width [m]), ``load`` [N] (plate
+    force), ``deflection`` [m], ``pressure_inflation`` [Pa].
+    """
+    tyre = model.tyre
+    if deflection is None:
+        if load is None or not (np.isfinite(load) and load > 0):
+            raise InputError(f"footprint load must be a positive number of newtons, got {load}",
+                             field="load")
+        deflection = tyre.static_deflection(float(load))
+    d = float(deflection)
+    if not (np.isfinite(d) and 0 < d < tyre.unloaded_radius):
+        raise InputError(f"footprint deflection must be between 0 and the radius, got {d} m",
+                         field="deflection")
+    wheel, res = pressed_wheel(model, Flat().grid(), 0.0, [d])
+    hook = model.contact_model.footprint
+    if hook is not None:
+        return hook(wheel, float(res[0, 2]), d, tyre)
+    return geometric_footprint(tyre, d, float(res[0, 2]))
+
+
+def geometric_footprint(tyre, deflection: float, load: float) -> dict:
+    """The undeformed carcass cut by a plate ``deflection`` [m] below first touch.
+
+    Each disc k of the carcass (radius ``r_k``, width ``w_k``) cuts the plate
+    along a chord of half length ``sqrt(r_k^2 - h^2)``, ``h = R0 - deflection``
+    the rim centre's height; the cells of that strip carry the mean pressure
+    ``load / area``.
+    """
+    offsets, radii, widths = carcass_discs(tyre)
+    h = tyre.unloaded_radius - deflection
+    half = np.sqrt(np.clip(radii ** 2 - h ** 2, 0.0, None))
+    xs, ys, areas, lead = [], [], [], []
+    for e, w, a in zip(offsets, widths, half):
+        if a <= 0.0:
+            continue
+        n = max(1, int(np.ceil(2 * a / FOOTPRINT_PITCH)))
+        edges = np.linspace(-a, a, n + 1)
+        xs.append(0.5 * (edges[1:] + edges[:-1]))
+        ys.append(np.full(n, e))
+        areas.append(np.full(n, w * 2 * a / n))
+        lead.append((a, e, w))
+    if not xs:
+        empty = np.zeros(0)
+        return {"x": empty, "y": empty, "force": empty, "pressure": empty,
+                "outline": np.zeros((0, 2)), "length": 0.0, "width": 0.0, "load": load,
+                "cell": (FOOTPRINT_PITCH, float(widths[0])), "deflection": deflection,
+                "pressure_inflation": float(tyre.pressure)}
+    x, y, area = np.concatenate(xs), np.concatenate(ys), np.concatenate(areas)
+    mean_pressure = load / area.sum()
+    front = [(a, e - w / 2) for a, e, w in lead] + [(lead[-1][0], lead[-1][1] + lead[-1][2] / 2)]
+    back = [(-a, e + w / 2) for a, e, w in lead[::-1]] + [(-lead[0][0], lead[0][1] - lead[0][2] / 2)]
+    outline = np.array(front + back + [front[0]])
+    return {"x": x, "y": y, "force": mean_pressure * area,
+            "pressure": np.full(x.size, mean_pressure),
+            "outline": outline, "length": float(2 * max(a for a, _, _ in lead)),
+            "width": float(max(e + w / 2 for _, e, w in lead) - min(e - w / 2 for _, e, w in lead)),
+            "load": load, "cell": (FOOTPRINT_PITCH, float(widths[0])), "deflection": deflection,
+            "pressure_inflation": float(tyre.pressure)}

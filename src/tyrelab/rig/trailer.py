@@ -23,13 +23,12 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import InputError
-from ..tyre.kernel import TyreModel
 from ..tyre.library import load_cases
+from ..tyre.model import TyreModel
 from ..road.base import Road
 from ..road.obstacles import Flat
 from ..road.spec import road_from_spec
 from . import _trailer_kernel as K
-from ._entries import entry
 from .simulation import levelled_grid, run_chunks, to_signal
 
 G = 9.80665
@@ -155,15 +154,16 @@ def _finish(gm, target, frame_mass, ballast, xb, hitch_z, theta, frame_cg_x=None
     fx = gm.frame_cg_behind_hitch if frame_cg_x is None else frame_cg_x
     kx, ky, kz = gm.frame_gyration
     r_frame = np.array([-fx, 0.0, gm.frame_cg_height])
-    I = _about_point(frame_mass, r_frame, np.diag([frame_mass * kx ** 2, frame_mass * ky ** 2,
-                                                    frame_mass * kz ** 2]))
+    inertia = _about_point(frame_mass, r_frame, np.diag([frame_mass * kx ** 2,
+                                                          frame_mass * ky ** 2,
+                                                          frame_mass * kz ** 2]))
     mass = frame_mass + ballast
     cg = frame_mass * r_frame
     if ballast > 0:
         r_b = np.array([-xb, 0.0, gm.ballast_height])
-        I = I + _about_point(ballast, r_b, _block_inertia(ballast, *gm.ballast_size))
+        inertia = inertia + _about_point(ballast, r_b, _block_inertia(ballast, *gm.ballast_size))
         cg = cg + ballast * r_b
-    return TrailerSetup(target, frame_mass, ballast, xb, hitch_z, theta, I, mass, cg / mass)
+    return TrailerSetup(target, frame_mass, ballast, xb, hitch_z, theta, inertia, mass, cg / mass)
 
 
 class Trailer:
@@ -186,21 +186,16 @@ class Trailer:
         self.setup = trailer_setup(model.tyre, self.geometry, load_case, reference)
         self.load_case = load_case
 
-    def params(self, speed: float) -> np.ndarray:
+    def params(self, speed: float) -> K.TrailerParams:
+        """The :class:`~._trailer_kernel.TrailerParams` record at towing ``speed`` [m/s]."""
         s, gm, ty = self.setup, self.geometry, self.model.tyre
-        tp = np.zeros(K.TP_SIZE)
-        tp[K.TP_SPEED] = speed
-        tp[K.TP_L] = gm.hitch_to_axle
-        tp[K.TP_TRACK] = gm.track
-        tp[K.TP_HITCH_Z] = s.hitch_height
-        tp[K.TP_MASS] = s.mass
-        tp[K.TP_CGX:K.TP_CGZ + 1] = s.cg
-        tp[K.TP_I:K.TP_I + 9] = s.inertia.ravel()
-        tp[K.TP_ISPIN] = max(ty.wheel_spin_inertia, 1e-3)
-        tp[K.TP_MWHEEL] = ty.wheel_mass
-        tp[K.TP_G] = G
-        tp[K.TP_ROAD_Y] = 0.5 * gm.track
-        return tp
+        return K.TrailerParams(
+            speed=float(speed), hitch_to_axle=float(gm.hitch_to_axle), track=float(gm.track),
+            hitch_height=float(s.hitch_height), mass=float(s.mass),
+            cg=np.ascontiguousarray(s.cg, np.float64),
+            inertia=np.ascontiguousarray(s.inertia, np.float64),
+            spin_inertia=float(max(ty.wheel_spin_inertia, 1e-3)), wheel_mass=float(ty.wheel_mass),
+            gravity=G, road_y=0.5 * float(gm.track))
 
     def run(self, road: Road | str, speed: float, duration: float | None = None,
             dt: float = 1e-3, output_rate: float = 1000.0, progress: bool | None = None):
@@ -222,31 +217,58 @@ class Trailer:
         if not (np.isfinite(duration) and duration > 0):
             raise InputError(f"duration must be a positive number of seconds, got {duration}",
                              field="duration")
+        s = self.setup
+        r_eff = self.model.tyre.unloaded_radius - self.model.tyre.static_deflection(s.wheel_load)
+        return self._run(road, speed, s.pitch0, speed / r_eff, s.wheel_load, duration, dt,
+                         output_rate, progress, "trailer")
+
+    def drop(self, road: Road | str = "flat", lift: float = 0.0, duration: float = 3.0,
+             dt: float = 1e-3, output_rate: float = 1000.0, progress: bool | None = None):
+        """The drop test of thesis 3.4.1; returns the signal table.
+
+        The trailer, standing still on its hitch, is lifted until both
+        wheels just lose contact with the ground (wheel centres at the
+        unloaded radius, plus ``lift`` [m]) and dropped; the rim's vertical
+        motion (``Z_WC``) then decays to the static equilibrium -- the
+        record from which the thesis finds the tyre's damping (eqs. 3.1-3.7).
+        """
+        road = road_from_spec(road)
+        if not (np.isfinite(lift) and lift >= 0):
+            raise InputError(f"lift must be a number of metres >= 0, got {lift}", field="lift")
+        if not (np.isfinite(duration) and duration > 0):
+            raise InputError(f"duration must be a positive number of seconds, got {duration}",
+                             field="duration")
+        s = self.setup
+        sine = (self.model.tyre.unloaded_radius + lift - s.hitch_height) / self.geometry.hitch_to_axle
+        if abs(sine) >= 0.5:
+            raise InputError(f"a lift of {lift} m tilts the trailer too far", field="lift")
+        return self._run(road, 0.0, math.asin(sine), 0.0, 0.0, duration, dt, output_rate,
+                         progress, "trailer-drop")
+
+    def _run(self, road, speed, pitch0, omega0, wheel_load, duration, dt, output_rate, progress,
+             rig):
+        """Tow (or hold, at ``speed`` 0) the trailer from pitch ``pitch0`` at rest in roll."""
+        x0_road = road.run_start
         grid = levelled_grid(road, x0_road)
-        flat = Flat().grid()
-        args_r = self.model.kernel_args(grid)
-        args_l = self.model.kernel_args(flat)
         tp = self.params(speed)
         L = self.geometry.hitch_to_axle
-        s = self.setup
         state = np.zeros(K.S_SIZE)
-        state[K.S_THETA] = s.pitch0
-        r_eff = self.model.tyre.unloaded_radius - self.model.tyre.static_deflection(s.wheel_load)
-        state[K.S_WR] = state[K.S_WL] = speed / r_eff
-        x_start = x0_road + L * math.cos(s.pitch0)  # test wheel centre starts at run_start
+        state[K.S_THETA] = pitch0
+        state[K.S_WR] = state[K.S_WL] = omega0
+        x_start = x0_road + L * math.cos(pitch0)  # test wheel centre starts at run_start
         n_steps = int(round(duration / dt))
         out_every = max(1, int(round(1.0 / (output_rate * dt))))
 
-        kernel = entry("trailer", self.model)
-        ts_r = self.model.initial_state(s.wheel_load)
-        ts_l = self.model.initial_state(s.wheel_load)
+        right = self.model.wheel(grid, wheel_load)
+        left = self.model.wheel(Flat().grid(), wheel_load)
 
         def advance(n, out, row):
-            return kernel(*args_r, ts_r, *args_l, ts_l, tp, state, n, dt, out_every, out, row, x_start)
+            return K.trailer_steps(right, left, tp, state, n, dt, out_every, out, row, x_start)
 
         data = run_chunks(advance, n_steps, out_every, K.N_CH, dt, progress)
         data[:, K.CHANNELS.index("DISTANCE")] = data[:, K.CHANNELS.index("X_WC")] - x0_road
-        meta = {"rig": "trailer", "tyre": self.model.tyre.name, "model": self.model.contact,
+        s = self.setup
+        meta = {"rig": rig, "tyre": self.model.tyre.name, "model": self.model.contact,
                 "handling": self.model.handling,
                 "stiffness": self.model.tyre.stiffness, "road": road.name, "speed_m_s": speed,
                 "load_case": str(self.load_case), "static_wheel_load_N": s.wheel_load,

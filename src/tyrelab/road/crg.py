@@ -42,7 +42,7 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import InputError
-from .base import GriddedRoad
+from .base import GriddedRoad, Road
 from .grid import RoadGrid
 
 #: the four OpenCRG data formats: K/L = binary/text, R/D = single/double
@@ -207,19 +207,23 @@ class CrgRoad(GriddedRoad):
     # extent and grid come from GriddedRoad
 
 
-def write_crg(road, path, spacing: tuple[float, float] | None = None, fmt: str = "KDBI",
+def write_crg(road: Road, path, spacing: tuple[float, float] | None = None, fmt: str = "KDBI",
               comment: str | None = None) -> Path:
     """Write any road to an OpenCRG file (straight reference line along x).
 
-    The road is sampled on its grid (``road.grid(spacing)``), u = x and
-    v = y, with an empty ``$ROAD_CRG_MODS`` section so readers keep the data
-    where it is. ``fmt`` is one of :data:`CRG_FORMATS`; the default KDBI
-    (binary double) keeps heights exact. The file appears only when complete.
+    ``road`` is a :class:`Road`; for a road name, pass
+    ``tyrelab.road.spec.road_from_spec(name)`` (name parsing lives in
+    :mod:`.spec` only, which imports this module). The road is sampled on its
+    grid (``road.grid(spacing)``), u = x and v = y, with an empty
+    ``$ROAD_CRG_MODS`` section so readers keep the data where it is. ``fmt`` is
+    one of :data:`CRG_FORMATS`; the default KDBI (binary double) keeps heights
+    exact. The file appears only when complete.
     """
-    from .spec import road_from_spec
     import pycrg
 
-    road = road_from_spec(road)
+    if not isinstance(road, Road):
+        raise InputError(f"write_crg needs a Road, not {type(road).__name__} {road!r}; "
+                         "make one from a name with tyrelab.road.spec.road_from_spec", field="road")
     fmt = str(fmt).upper()
     if fmt not in CRG_FORMATS:
         raise InputError(f"unknown OpenCRG format '{fmt}'; expected one of {', '.join(CRG_FORMATS)}",

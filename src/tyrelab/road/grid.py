@@ -1,19 +1,50 @@
 """The compiled form of every road: heights on a regular grid, bilinear.
 
-Every road produces a :class:`RoadGrid`; the contact models query it through
-the compiled functions here and never call Python road objects inside a time
-step. Grid node ``(i, j)`` sits at ``x0 + i*dx, y0 + j*dy``; between nodes
-the height is bilinear. Outside the grid the road continues with the height
+Every road produces a :class:`RoadGrid`; its :meth:`RoadGrid.surface` is the
+record the compiled contact models take (:class:`RoadSurface`: the grid, its
+height bounds and block maxima), and they query it only through the compiled
+functions here, never through Python road objects inside a time step. Grid
+node ``(i, j)`` sits at ``x0 + i*dx, y0 + j*dy``; between nodes the height is
+bilinear. Outside the grid the road continues with the height
 of the nearest edge node (a flat run-in and run-out), so a tyre never falls
 off the end of a road.
 """
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
+from typing import NamedTuple
 
 import numba as nb
 import numpy as np
+
+#: length along x of the road blocks whose maximum height bounds a contact search [m]
+BLOCK_LENGTH = 0.04
+
+
+class RoadSurface(NamedTuple):
+    """The compiled form of a road: a regular grid with its height bounds.
+
+    Node ``(i, j)`` sits at ``(x0 + i dx, y0 + j dy)``; heights are bilinear
+    between nodes and continue flat beyond the edges. ``block_max[k]`` is the
+    highest road point over all y for x in ``[block_x0 + k block_dx,
+    block_x0 + (k + 1) block_dx]``; contact models use it to skip road no
+    tyre part can reach (:func:`local_zmax`).
+    """
+
+    x0: float
+    y0: float
+    dx: float
+    dy: float
+    inv_dx: float
+    inv_dy: float
+    z: np.ndarray
+    zmin: float
+    zmax: float
+    block_x0: float
+    block_dx: float
+    block_max: np.ndarray
 
 
 @dataclass(frozen=True)
@@ -46,11 +77,13 @@ class RoadGrid:
             raise ValueError("grid spacing must be positive")
         object.__setattr__(self, "z", z)
 
-    @property
-    def params(self) -> np.ndarray:
-        """``[x0, y0, dx, dy, 1/dx, 1/dy]`` as the compiled kernels take it."""
-        return np.array([self.x0, self.y0, self.dx, self.dy, 1.0 / self.dx, 1.0 / self.dy],
-                        dtype=np.float64)
+    def surface(self) -> RoadSurface:
+        """The record the compiled kernels take (built once per grid)."""
+        cached = self.__dict__.get("_surface")
+        if cached is None:
+            cached = _surface(self)
+            object.__setattr__(self, "_surface", cached)
+        return cached
 
     @property
     def nbytes(self) -> int:
@@ -60,8 +93,23 @@ class RoadGrid:
         """Bilinear height at points ``(x, y)`` (arrays broadcast)."""
         x, y = np.broadcast_arrays(np.asarray(x, float), np.asarray(y, float))
         out = np.empty(x.shape)
-        grid_heights(self.params, self.z, x.ravel(), y.ravel(), out.reshape(-1))
+        road_heights(self.surface(), x.ravel(), y.ravel(), out.reshape(-1))
         return out
+
+
+def _surface(grid: RoadGrid) -> RoadSurface:
+    # one array type for every road (writeable, C order), so a rig loop compiles once per model
+    z = grid.z if grid.z.flags.writeable else grid.z.copy()
+    per = max(1, int(round(BLOCK_LENGTH / grid.dx)))
+    nblocks = -(-z.shape[0] // per)
+    col = z.max(axis=1)
+    # a block's maximum includes its right edge node (bilinear cells span nodes)
+    ends = np.minimum(np.arange(1, nblocks + 1) * per + 1, z.shape[0])
+    maxima = np.maximum.reduceat(col, np.arange(nblocks) * per)
+    maxima = np.maximum(maxima, col[ends - 1])
+    return RoadSurface(float(grid.x0), float(grid.y0), float(grid.dx), float(grid.dy),
+                       1.0 / grid.dx, 1.0 / grid.dy, z, float(z.min()), float(z.max()),
+                       float(grid.x0), per * grid.dx, np.ascontiguousarray(maxima, np.float64))
 
 
 @nb.njit(cache=True, inline="always")
@@ -77,11 +125,12 @@ def _locate(u, n):
     return i, u - i
 
 
-@nb.njit(cache=True)
-def grid_height(gp, z, x, y):
-    """Bilinear road height at (x, y). ``gp`` is :attr:`RoadGrid.params`."""
-    i, fx = _locate((x - gp[0]) * gp[4], z.shape[0])
-    j, fy = _locate((y - gp[1]) * gp[5], z.shape[1])
+@nb.njit(cache=True, inline="always")
+def road_height(road, x, y):
+    """Bilinear height [m] of :class:`RoadSurface` ``road`` at (x, y)."""
+    z = road.z
+    i, fx = _locate((x - road.x0) * road.inv_dx, z.shape[0])
+    j, fy = _locate((y - road.y0) * road.inv_dy, z.shape[1])
     z00 = z[i, j]
     z10 = z[i + 1, j]
     z01 = z[i, j + 1]
@@ -90,14 +139,15 @@ def grid_height(gp, z, x, y):
 
 
 @nb.njit(cache=True)
-def grid_height_gradient(gp, z, x, y):
+def road_height_gradient(road, x, y):
     """Height and its gradient ``(h, dh/dx, dh/dy)`` of the bilinear surface.
 
     Outside the grid the surface is flat (edge extension), so the gradient
     across an edge is zero.
     """
-    ux = (x - gp[0]) * gp[4]
-    uy = (y - gp[1]) * gp[5]
+    z = road.z
+    ux = (x - road.x0) * road.inv_dx
+    uy = (y - road.y0) * road.inv_dy
     nx = z.shape[0]
     ny = z.shape[1]
     i, fx = _locate(ux, nx)
@@ -107,8 +157,8 @@ def grid_height_gradient(gp, z, x, y):
     z01 = z[i, j + 1]
     z11 = z[i + 1, j + 1]
     h = (z00 * (1.0 - fx) + z10 * fx) * (1.0 - fy) + (z01 * (1.0 - fx) + z11 * fx) * fy
-    gx = ((z10 - z00) * (1.0 - fy) + (z11 - z01) * fy) * gp[4]
-    gy = ((z01 - z00) * (1.0 - fx) + (z11 - z10) * fx) * gp[5]
+    gx = ((z10 - z00) * (1.0 - fy) + (z11 - z01) * fy) * road.inv_dx
+    gy = ((z01 - z00) * (1.0 - fx) + (z11 - z10) * fx) * road.inv_dy
     if ux <= 0.0 or ux >= nx - 1:
         gx = 0.0
     if uy <= 0.0 or uy >= ny - 1:
@@ -117,7 +167,27 @@ def grid_height_gradient(gp, z, x, y):
 
 
 @nb.njit(cache=True)
-def grid_heights(gp, z, xs, ys, out):
-    """Vectorised :func:`grid_height` over arrays of points."""
+def road_heights(road, xs, ys, out):
+    """Vectorised :func:`road_height` over arrays of points."""
     for k in range(xs.shape[0]):
-        out[k] = grid_height(gp, z, xs[k], ys[k])
+        out[k] = road_height(road, xs[k], ys[k])
+
+
+@nb.njit(cache=True, inline="always")
+def local_zmax(road, x0, x1):
+    """Highest road point [m] over road x in [x0, x1], from the block maxima."""
+    blocks = road.block_max
+    nb_ = blocks.shape[0]
+    i0 = int(math.floor((x0 - road.block_x0) / road.block_dx))
+    i1 = int(math.floor((x1 - road.block_x0) / road.block_dx))
+    if i0 < 0:
+        i0 = 0
+    if i1 > nb_ - 1:
+        i1 = nb_ - 1
+    if i1 < i0:  # beyond the grid: the edge blocks continue
+        i0 = i1 = 0 if x1 < road.block_x0 else nb_ - 1
+    m = -1e300
+    for i in range(i0, i1 + 1):
+        if blocks[i] > m:
+            m = blocks[i]
+    return m

@@ -25,7 +25,10 @@ silently growing by concatenation.
 
 from __future__ import annotations
 
+import copy
+import os
 import re
+import tempfile
 import warnings
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -350,7 +353,6 @@ def _format_value(value) -> str:
 
 def format_tir(tir: TirFile, units: dict[str, str] | None = None) -> str:
     """Text of a property file. Values are written in ``units`` (SI by default)."""
-    import copy
     out = copy.deepcopy(tir)
     out.sections.pop("UNITS", None)
     unit_words = {"LENGTH": "meter", "FORCE": "newton", "ANGLE": "radians", "MASS": "kg", "TIME": "second"}
@@ -374,8 +376,6 @@ def format_tir(tir: TirFile, units: dict[str, str] | None = None) -> str:
 
 def write_tir(tir: TirFile, path, units: dict[str, str] | None = None) -> None:
     """Write a property file (atomically: the file appears only when complete)."""
-    import os
-    import tempfile
     path = Path(path)
     text = format_tir(tir, units)
     fd, tmp = tempfile.mkstemp(prefix=".tyrelab-", suffix=".part", dir=str(path.parent.resolve()))

@@ -17,7 +17,7 @@ tension and no negative normal force.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from typing import NamedTuple
 
 import numba as nb
 import numpy as np
@@ -29,23 +29,37 @@ from ..errors import InputError
 DEFAULT_DAMPING_RAMP = 0.002
 
 
-@dataclass(frozen=True)
-class VerticalLaw:
-    """Compiled-ready vertical law.
+class VerticalLaw(NamedTuple):
+    """The vertical law of eq. 2.2 as the compiled kernels take it.
 
-    ``params`` = ``[stiffness, damping, damping_ramp, use_table]``;
-    ``knots`` (n,) deflections [m]; ``coefs`` (n-1, 4) cubic coefficients per
-    interval, highest power first, in the local coordinate ``rho - knots[i]``.
+    Attributes
+    ----------
+    stiffness : float
+        Linear stiffness [N/m] (used when ``use_table`` is false).
+    damping : float
+        Damping coefficient c [N s/m].
+    damping_ramp : float
+        Deflection [m] over which damping ramps in from zero (smoothstep).
+    use_table : bool
+        True: k(rho) is the cubic spline through the load-deflection table.
+    knots : ndarray (n,)
+        Spline knots: deflections [m].
+    coefs : ndarray (n-1, 4)
+        Cubic coefficients per interval, highest power first, in the local
+        coordinate ``rho - knots[i]``.
     """
 
-    params: np.ndarray
+    stiffness: float
+    damping: float
+    damping_ramp: float
+    use_table: bool
     knots: np.ndarray
     coefs: np.ndarray
 
     @classmethod
     def linear(cls, stiffness, damping, damping_ramp=DEFAULT_DAMPING_RAMP):
-        p = np.array([stiffness, damping, damping_ramp, 0.0])
-        return cls(p, np.zeros(2), np.zeros((1, 4)))
+        return cls(float(stiffness), float(damping), float(damping_ramp), False, np.zeros(2),
+                   np.zeros((1, 4)))
 
     @classmethod
     def table(cls, deflection, load, damping, damping_ramp=DEFAULT_DAMPING_RAMP,
@@ -66,29 +80,31 @@ class VerticalLaw:
         bc = "not-a-knot" if d.size >= 4 else "natural"
         spline = CubicSpline(d, f, bc_type=bc)
         coefs = np.ascontiguousarray(spline.c.T)  # (n-1, 4), highest power first
-        p = np.array([stiffness, damping, damping_ramp, 1.0])
-        return cls(p, d, coefs)
+        return cls(float(stiffness), float(damping), float(damping_ramp), True,
+                   np.ascontiguousarray(d, np.float64), coefs)
 
     def static_load(self, rho):
         """Static load k(rho) [N] at deflections ``rho`` [m] (vectorised)."""
         rho = np.asarray(rho, float)
         out = np.empty(rho.size)
         for i, r in enumerate(rho.ravel()):
-            out[i] = static_load(self.params, self.knots, self.coefs, r)
+            out[i] = static_load(self, r)
         return out.reshape(rho.shape)
 
     def deflection_at(self, load):
         """Static deflection [m] that carries ``load`` [N] (inverse of k)."""
-        return static_deflection(self.params, self.knots, self.coefs, float(load))
+        return static_deflection(self, float(load))
 
 
 @nb.njit(cache=True)
-def static_load(vp, knots, coefs, rho):
-    """Elastic part k(rho) [N]; zero for rho <= 0 (no tension)."""
+def static_load(law, rho):
+    """Elastic part k(rho) [N] of :class:`VerticalLaw` ``law``; zero for rho <= 0 (no tension)."""
     if rho <= 0.0:
         return 0.0
-    if vp[3] == 0.0:
-        return vp[0] * rho
+    if not law.use_table:
+        return law.stiffness * rho
+    knots = law.knots
+    coefs = law.coefs
     n = knots.shape[0]
     if rho >= knots[n - 1]:
         # linear continuation with the spline's end slope
@@ -113,34 +129,34 @@ def static_load(vp, knots, coefs, rho):
 
 
 @nb.njit(cache=True)
-def normal_force(vp, knots, coefs, rho, rho_dot):
+def normal_force(law, rho, rho_dot):
     """Normal force [N] of eq. 2.2 with damping ramped in near zero deflection.
 
     Never negative, zero after lift-off (rho <= 0).
     """
     if rho <= 0.0:
         return 0.0
-    ramp = vp[2]
-    c = vp[1]
+    ramp = law.damping_ramp
+    c = law.damping
     if rho < ramp:
         t = rho / ramp
         c = c * t * t * (3.0 - 2.0 * t)
-    f = static_load(vp, knots, coefs, rho) + c * rho_dot
+    f = static_load(law, rho) + c * rho_dot
     return f if f > 0.0 else 0.0
 
 
 @nb.njit(cache=True)
-def static_deflection(vp, knots, coefs, load):
+def static_deflection(law, load):
     """Deflection carrying ``load`` statically, by bisection on k(rho)."""
     if load <= 0.0:
         return 0.0
     lo = 0.0
     hi = 0.01
-    while static_load(vp, knots, coefs, hi) < load and hi < 100.0:
+    while static_load(law, hi) < load and hi < 100.0:
         hi *= 2.0
     for _ in range(200):
         mid = 0.5 * (lo + hi)
-        if static_load(vp, knots, coefs, mid) < load:
+        if static_load(law, mid) < load:
             lo = mid
         else:
             hi = mid

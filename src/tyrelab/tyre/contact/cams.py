@@ -15,9 +15,11 @@ lowest point at a distance s along the road; a cam at x rests at the height
 patch dimensions follow eqs. 2.3 and 2.4 (or the MF-Swift forms, or a
 measured deflection-to-half-width table, as the thesis asks for in 4.4).
 
-Python builds the cam tables and the road's block maxima once; the compiled
-functions evaluate a row of cams along grid x (the rigs) or one cam in any
-direction.
+Python builds the cam tables and the road's block maxima once, into the
+model's record (:class:`tyrelab.tyre.contact.enveloping.EnvelopingParams`);
+the compiled functions here take that record (``params``) and the road
+(:class:`tyrelab.road.grid.RoadSurface`) and evaluate a row of cams along grid
+x (the rigs) or one cam in any direction.
 """
 
 from __future__ import annotations
@@ -27,7 +29,7 @@ import math
 import numba as nb
 import numpy as np
 
-from ...road.grid import grid_height
+from ...road.grid import road_height
 from .shape import _x_height, section_walk
 
 #: points in each cam table
@@ -40,8 +42,8 @@ def cam_drop(s, ae, be, ce):
     return be * (1.0 - (1.0 - t ** ce) ** (1.0 / ce))
 
 
-def cam_tables(ae, be, ce, n=TABLE_POINTS) -> np.ndarray:
-    """``[drop, window, touch]`` tables of a cam, each ``n`` long, concatenated.
+def cam_tables(ae, be, ce, n=TABLE_POINTS):
+    """``(drop, window, touch)``: the tables of a cam, each ``n`` long.
 
     * drop: e(s) at ``s = i ae / (n-1)``;
     * window: the distance at which the contour has risen ``be u^2``, at
@@ -64,30 +66,35 @@ def cam_tables(ae, be, ce, n=TABLE_POINTS) -> np.ndarray:
     u_of_s = 1.0 - 1.0 / (1.0 + slope)  # m / (1 + m), 1 where m is infinite
     touch = np.interp(u, u_of_s, s)
     touch[-1] = ae
-    return np.r_[drop, window, touch]
+    return (np.ascontiguousarray(drop, np.float64), np.ascontiguousarray(window, np.float64),
+            np.ascontiguousarray(touch, np.float64))
 
 
 @nb.njit(cache=True, inline="always")
-def table_drop(ct, off, n, ae, s):
-    """e(|s|) by linear interpolation in the drop table; 1e30 beyond the cam."""
+def table_drop(drop, ae, s):
+    """e(|s|) by linear interpolation in the drop table ``drop`` of a cam of half
+    length ``ae``; 1e30 beyond the cam."""
+    n = drop.shape[0]
     x = abs(s) * ((n - 1) / ae)
     if x >= n - 1:
         return 1e30
     i = int(x)
     f = x - i
-    return ct[off + i] * (1.0 - f) + ct[off + i + 1] * f
+    return drop[i] * (1.0 - f) + drop[i + 1] * f
 
 
 @nb.njit(cache=True, inline="always")
-def table_window(ct, off, n, ae, be, rise):
-    """Distance beyond which the contour has risen more than ``rise`` (rounded up)."""
+def table_window(window, ae, be, rise):
+    """Distance beyond which the contour has risen more than ``rise`` (rounded up), from
+    the window table ``window`` of a cam of half length ``ae`` and half height ``be``."""
     if rise >= be:
         return ae
     if rise <= 0.0:
         return 0.0
+    n = window.shape[0]
     x = math.sqrt(rise / be) * (n - 1)
     i = min(int(math.ceil(x)), n - 1)
-    return ct[off + n + i]
+    return window[i]
 
 
 def block_maxima(z: np.ndarray, per: int) -> np.ndarray:
@@ -95,57 +102,60 @@ def block_maxima(z: np.ndarray, per: int) -> np.ndarray:
 
     Block b spans x nodes ``b per .. (b+1) per`` (both ends: a cell between two
     nodes lies in one block) and rows j, j+1, so it bounds the bilinear road
-    on any line between those rows. Shape ``(n_blocks, ny - 1)``, row-major.
+    on any line between those rows. Shape ``(n_blocks, ny - 1)``.
     """
     nx = z.shape[0]
     pair = np.maximum(z[:, :-1], z[:, 1:])
     n_blocks = -(-(nx - 1) // per)
     ends = np.minimum(np.arange(1, n_blocks + 1) * per, nx - 1)
     out = np.maximum.reduceat(pair, np.arange(n_blocks) * per, axis=0)
-    return np.maximum(out, pair[ends])
+    return np.ascontiguousarray(np.maximum(out, pair[ends]), np.float64)
 
 
 @nb.njit(cache=True, inline="always")
-def touch_point(ct, off, n, ae, m):
-    """Where (s) the cam's contour has slope m: the cam touches a road of slope m there."""
+def touch_point(touch, m):
+    """Where (s) the cam's contour has slope m (from the touch table ``touch``): the cam
+    touches a road of slope m there."""
+    n = touch.shape[0]
     x = abs(m) / (1.0 + abs(m)) * (n - 1)
     i = min(int(x), n - 2)
     f = x - i
-    base = off + 2 * n
-    return math.copysign(ct[base + i] * (1.0 - f) + ct[base + i + 1] * f, m)
+    return math.copysign(touch[i] * (1.0 - f) + touch[i + 1] * f, m)
 
 
 @nb.njit(cache=True, inline="always")
-def slope_support(ct, off, n, ae, m):
+def slope_support(params, m):
     """Height of a cam's lowest point above a straight road of slope m, under it.
 
     A cam resting on a uniform slope touches it at ``s*`` (contour slope m)
     and its lowest point stands ``m s* - e(s*)`` above the road below it;
     subtracting this makes a uniformly inclined road its own effective plane.
     """
-    s = touch_point(ct, off, n, ae, m)
-    return m * s - table_drop(ct, off, n, ae, s)
+    s = touch_point(params.cam_touch, m)
+    return m * s - table_drop(params.cam_drop, params.cam_half_length, s)
 
 
 @nb.njit(cache=True, inline="always")
-def _cam_side(ct, off, n, ae, be, cap, step, gp, z, x0, y0, fx, fy, top, best, reach):
+def _cam_side(params, road, x0, y0, fx, fy, top, best, reach):
     """Walk from the cam's centre outwards along (fx, fy), sampling the road every
-    ``step``; returns (best, reach).
+    ``params.step``; returns (best, reach).
 
     Each sample lifts the cam to ``h - e(s)``; a straight piece between two
     samples can lift it more only inside, where the contour's slope equals
     the piece's: that point is found (:func:`touch_point`) only when the
     piece's highest end minus the contour's rise at its near end could beat
     the current height. The walk stops where the contour has risen more
-    than ``top - best``.
+    than ``top - best`` (or at ``params.cam_reach``).
     """
     if reach <= 0.0:
         return best, reach
+    drop, window, touch = params.cam_drop, params.cam_window, params.cam_touch
+    ae, be, cap = params.cam_half_length, params.cam_half_height, params.cam_reach
     sb = cap
-    _, _, _, a, b, k, k_end, _, h0, h_b = section_walk(gp, z, x0, y0, fx, fy, 0.0, sb, step)
+    _, _, _, a, b, k, k_end, _, h0, h_b = section_walk(road, x0, y0, fx, fy, 0.0, sb, params.step)
     if h0 > best:  # the centre itself (first side only)
         best = h0
-        reach = min(table_window(ct, off, n, ae, be, top - best), cap)
+        reach = min(table_window(window, ae, be, top - best), cap)
     s0 = 0.0
     e0 = 0.0
     while True:
@@ -155,19 +165,19 @@ def _cam_side(ct, off, n, ae, be, cap, step, gp, z, x0, y0, fx, fy, top, best, r
             h1 = h_b
         else:
             s1 = a + k * b
-            h1 = grid_height(gp, z, x0 + s1 * fx, y0 + s1 * fy)
+            h1 = road_height(road, x0 + s1 * fx, y0 + s1 * fy)
         if s1 > s0:
-            e1 = table_drop(ct, off, n, ae, s1)
+            e1 = table_drop(drop, ae, s1)
             if h1 - e1 > best:
                 best = h1 - e1
-                reach = min(table_window(ct, off, n, ae, be, top - best), cap)
+                reach = min(table_window(window, ae, be, top - best), cap)
             if max(h0, h1) - e0 > best:  # the piece's inside might lift the cam higher
                 m = (h1 - h0) / (s1 - s0)
-                s = min(max(touch_point(ct, off, n, ae, m), s0), s1)
-                w = h0 + m * (s - s0) - table_drop(ct, off, n, ae, s)
+                s = min(max(touch_point(touch, m), s0), s1)
+                w = h0 + m * (s - s0) - table_drop(drop, ae, s)
                 if w > best:
                     best = w
-                    reach = min(table_window(ct, off, n, ae, be, top - best), cap)
+                    reach = min(table_window(window, ae, be, top - best), cap)
             s0 = s1
             h0 = h1
             e0 = e1
@@ -177,16 +187,17 @@ def _cam_side(ct, off, n, ae, be, cap, step, gp, z, x0, y0, fx, fy, top, best, r
 
 
 @nb.njit(cache=True, fastmath={"nsz", "arcp", "contract", "afn", "reassoc"})
-def cam_row(ct, off, n, ae, be, cap, cp, cm, per, gp, z, j, wy, x_first, pitch, count, top, out):
+def cam_row(params, road, j, wy, x_first, pitch, count, top, out):
     """Heights of ``count`` cams on one grid row (along grid x), into ``out[:count]``.
 
     The cams stand at ``x_first + i pitch`` (``pitch >= 0``) on the line
-    between grid rows j and j+1 (weight wy). Cam i rests at
+    between grid rows j and j+1 (weight wy) of ``road``. Cam i rests at
 
         w_i = max over |x - x_i| <= cap of [h(x) - e(x - x_i)]
 
-    on the bilinear road (straight between x nodes, level beyond the grid).
-    Three facts keep the work small, none changes the result:
+    on the bilinear road (straight between x nodes, level beyond the grid),
+    with ``cap = params.cam_reach``. Three facts keep the work small, none
+    changes the result:
 
     * a cam rests no further back than the cam behind it: for a convex
       contour ``e(t - x_1) - e(t - x_2)`` grows with t when x_1 < x_2, so a
@@ -195,31 +206,37 @@ def cam_row(ct, off, n, ae, be, cap, cp, cm, per, gp, z, j, wy, x_first, pitch, 
       point's height for cam i as its first lower bound;
     * only road within the distance where the contour has risen
       ``top - best`` can lift the cam (``top`` bounds the road of the row);
-    * with ``cm > 0``, ``cp[cm:]`` holds the road's maxima over blocks of
-      ``per`` x cells for each pair of grid rows (:func:`block_maxima`): a
-      block whose maximum minus the contour's rise at its nearest point
-      cannot beat the current height is stepped over unread.
+    * when ``params.row_block_max`` is not empty it holds the road's maxima
+      over blocks of ``params.block_per`` x cells for each pair of grid rows
+      (:func:`block_maxima`): a block whose maximum minus the contour's rise
+      at its nearest point cannot beat the current height is stepped over
+      unread.
 
     Each straight piece is searched exactly: the concave function
     ``h(x) - e(x - x_i)`` on it peaks where the contour's slope equals the
     piece's (:func:`touch_point`), clipped to the piece.
     """
+    z = road.z
     nx = z.shape[0]
-    nrows = z.shape[1] - 1
-    g0, gd, ginv = gp[0], gp[2], gp[4]
+    drop, window, touch = params.cam_drop, params.cam_window, params.cam_touch
+    ae, be, cap = params.cam_half_length, params.cam_half_height, params.cam_reach
+    blocks = params.row_block_max
+    has_blocks = blocks.shape[0] > 0
+    per = params.block_per
+    g0, gd, ginv = road.x0, road.dx, road.inv_dx
     h_prev = t_prev = 0.0
     for i in range(count):
         xc = x_first + i * pitch
-        best = _x_height(gp, z, xc, j, wy)  # the road under the centre
+        best = _x_height(road, xc, j, wy)  # the road under the centre
         xt = xc
         ht = best  # height of the road point the cam rests on
         if i > 0:
-            lower = h_prev - table_drop(ct, off, n, ae, t_prev - xc)
+            lower = h_prev - table_drop(drop, ae, t_prev - xc)
             if lower > best and abs(t_prev - xc) <= cap:
                 best = lower
                 xt = t_prev
                 ht = h_prev
-        reach = min(table_window(ct, off, n, ae, be, top - best), cap)
+        reach = min(table_window(window, ae, be, top - best), cap)
         left = xc - reach if i == 0 else max(xc - reach, t_prev)
         # the piece that holds `left` starts at node k
         k = int(math.floor((left - g0) * ginv))
@@ -228,23 +245,23 @@ def cam_row(ct, off, n, ae, be, cap, cp, cm, per, gp, z, j, wy, x_first, pitch, 
         ha = z[k, j] * (1.0 - wy) + z[k, j + 1] * wy
         ea = -1.0  # e at xa, computed when needed
         if ha > best:
-            ea = table_drop(ct, off, n, ae, xa - xc)
+            ea = table_drop(drop, ae, xa - xc)
             if abs(xa - xc) <= cap and ha - ea > best:
                 best = ha - ea
                 xt = xa
                 ht = ha
-                reach = min(table_window(ct, off, n, ae, be, top - best), cap)
+                reach = min(table_window(window, ae, be, top - best), cap)
         block = k // per
         k_test = k  # piece at which the next block test is due
         while k < nx - 1 and xa < xc + reach:
-            if cm > 0 and k == k_test:
+            if has_blocks and k == k_test:
                 if k >= (block + 1) * per:  # walked into the next block
                     block += 1
                 k_test = min((block + 1) * per, nx - 1)  # the node that ends the block
                 xe = g0 + k_test * gd
-                top_b = cp[cm + block * nrows + j]
+                top_b = blocks[block, j]
                 if top_b <= best or top_b - table_drop(
-                        ct, off, n, ae, xe - xc if xe < xc else (xa - xc if xa > xc else 0.0)) <= best:
+                        drop, ae, xe - xc if xe < xc else (xa - xc if xa > xc else 0.0)) <= best:
                     # nothing on pieces k .. k_test - 1 can lift the cam
                     k = k_test
                     xa = xe
@@ -255,29 +272,29 @@ def cam_row(ct, off, n, ae, be, cap, cp, cm, per, gp, z, j, wy, x_first, pitch, 
             hb = z[k + 1, j] * (1.0 - wy) + z[k + 1, j + 1] * wy
             eb = -1.0
             if max(ha, hb) > best:  # else nothing on this piece can lift the cam (e >= 0)
-                eb = table_drop(ct, off, n, ae, xb - xc)
+                eb = table_drop(drop, ae, xb - xc)
                 if abs(xb - xc) <= cap and hb - eb > best:
                     best = hb - eb
                     xt = xb
                     ht = hb
-                    reach = min(table_window(ct, off, n, ae, be, top - best), cap)
+                    reach = min(table_window(window, ae, be, top - best), cap)
                 if hb != ha:  # a level piece peaks at an end or under the centre: done
                     if xa <= xc <= xb:
                         emin = 0.0
                     else:
                         if ea < 0.0:
-                            ea = table_drop(ct, off, n, ae, xa - xc)
+                            ea = table_drop(drop, ae, xa - xc)
                         emin = min(ea, eb)
                     if max(ha, hb) - emin > best:  # the piece's inside might lift the cam higher
                         m = (hb - ha) * ginv
-                        s = min(max(touch_point(ct, off, n, ae, m), xa - xc, -cap), xb - xc, cap)
+                        s = min(max(touch_point(touch, m), xa - xc, -cap), xb - xc, cap)
                         h = ha + m * (xc + s - xa)
-                        w = h - table_drop(ct, off, n, ae, s)
+                        w = h - table_drop(drop, ae, s)
                         if w > best:
                             best = w
                             xt = xc + s
                             ht = h
-                            reach = min(table_window(ct, off, n, ae, be, top - best), cap)
+                            reach = min(table_window(window, ae, be, top - best), cap)
             k += 1
             xa = xb
             ha = hb
@@ -287,41 +304,40 @@ def cam_row(ct, off, n, ae, be, cap, cp, cm, per, gp, z, j, wy, x_first, pitch, 
         t_prev = xt
 
 
-@nb.njit(cache=True)
-def cam_height(ct, off, n, ae, be, window_cap, cp, cm, per, step, gp, z, x0, y0, fx, fy, zmax):
+@nb.njit(cache=True, inline="always")
+def cam_height(params, road, x0, y0, fx, fy, zmax):
     """Height w of the lowest point of one cam resting on the road (basic function).
 
     The cam sits at (x0, y0) and looks along the horizontal direction
     (fx, fy). Only road within the distance where the contour has risen
     ``zmax - w`` can lift it (``zmax`` bounds the road around), so the walks
-    outwards, ahead and behind, shrink as w grows; ``window_cap`` limits them
-    further (MF-Swift ELLIPS_MAX_STEP). Along grid x (the rigs) the cam is
-    searched exactly on the grid row (:func:`cam_row`; ``cm``, ``per``: the
-    road's block maxima, 0 when there are none); otherwise the road is
-    sampled every ``step`` and each straight piece between samples searched
-    exactly.
+    outwards, ahead and behind, shrink as w grows; ``params.cam_reach``
+    limits them further (MF-Swift ELLIPS_MAX_STEP). Along grid x (the rigs)
+    the cam is searched exactly on the grid row (:func:`cam_row`, with the
+    road's block maxima when the record has them); otherwise the road is
+    sampled every ``params.step`` and each straight piece between samples
+    searched exactly.
     """
     if abs(fy) < 0.01:  # along grid x: one grid row (the small drift of y is ignored)
-        j, wy = grid_row(gp, z, y0)
+        j, wy = grid_row(road, y0)
         out = np.empty(1)
-        cam_row(ct, off, n, ae, be, window_cap, cp, cm, per, gp, z, j, wy, x0, 0.0, 1, zmax, out)
+        cam_row(params, road, j, wy, x0, 0.0, 1, zmax, out)
         return out[0]
     best = -1e300
-    reach = window_cap
+    reach = params.cam_reach
     for side in range(2):
         d = 1.0 if side == 0 else -1.0
         if reach <= 0.0:
             break
-        best, reach = _cam_side(ct, off, n, ae, be, window_cap, step, gp, z, x0, y0, d * fx, d * fy,
-                                zmax, best, reach)
+        best, reach = _cam_side(params, road, x0, y0, d * fx, d * fy, zmax, best, reach)
     return best
 
 
 @nb.njit(cache=True, inline="always")
-def grid_row(gp, z, y):
+def grid_row(road, y):
     """``(j, wy)``: the road at y lies between grid rows j and j+1, weight wy (clamped)."""
-    jf = (y - gp[1]) * gp[5]
-    ny = z.shape[1]
+    jf = (y - road.y0) * road.inv_dy
+    ny = road.z.shape[1]
     if jf >= ny - 1:
         return ny - 2, 1.0
     if jf > 0.0:
@@ -331,59 +347,73 @@ def grid_row(gp, z, y):
 
 
 @nb.njit(cache=True, inline="always")
-def row_block_max(cp, cm, per, gp, z, j, xa, xb):
+def row_block_max(params, road, j, xa, xb):
     """An upper bound of the road on grid row j between x = xa and xb: the largest
-    block maximum (:func:`block_maxima`) over the blocks that cover it."""
-    nx, ny = z.shape
-    k_lo = min(max(int(math.floor((min(xa, xb) - gp[0]) * gp[4])), 0), nx - 1)
-    k_hi = min(max(int(math.ceil((max(xa, xb) - gp[0]) * gp[4])), 0), nx - 1)
-    n_blocks = (nx - 2) // per + 1
-    nrows = ny - 1
+    block maximum (:func:`block_maxima`) over the blocks that cover it.
+
+    Only for a record whose ``row_block_max`` is not empty.
+    """
+    nx = road.z.shape[0]
+    blocks = params.row_block_max
+    per = params.block_per
+    k_lo = min(max(int(math.floor((min(xa, xb) - road.x0) * road.inv_dx)), 0), nx - 1)
+    k_hi = min(max(int(math.ceil((max(xa, xb) - road.x0) * road.inv_dx)), 0), nx - 1)
+    n_blocks = blocks.shape[0]
     top = -1e300
     for b in range(max((k_lo - 1) // per, 0), min(k_hi // per, n_blocks - 1) + 1):
-        h = cp[cm + b * nrows + j]
+        h = blocks[b, j]
         if h > top:
             top = h
     return top
 
 
-@nb.njit(cache=True)
-def half_length(mode, c1, c2, r0, rho):
-    """Half contact length a [m]: eq. 2.3 (mode 0) or MF-Swift (mode 1)."""
+@nb.njit(cache=True, inline="always")
+def half_length(params, rho):
+    """Half contact length a [m] at deflection ``rho``: eq. 2.3 (``length_law`` 0) or
+    MF-Swift (1)."""
     if rho <= 0.0:
         return 0.0
+    r0 = params.unloaded_radius
+    c1 = params.length_c1
+    c2 = params.length_c2
     x = rho / r0
-    if mode == 0:
+    if params.length_law == 0:
         return c1 * r0 * (x + c2 * math.sqrt(x))  # eq. 2.3: PA1, PA2
     return r0 * (c2 * x + c1 * math.sqrt(x))  # MF-Swift: Q_RA1, Q_RA2
 
 
-@nb.njit(cache=True)
-def half_width(mode, c1, c2, c3, w0, r0, rho, cp, off, rows, b_max):
-    """Half contact width b [m], at most ``b_max``.
+@nb.njit(cache=True, inline="always")
+def half_width(params, rho):
+    """Half contact width b [m] at deflection ``rho``, at most ``params.max_half_width``.
 
-    mode 0: eq. 2.4 (PB1-PB3); 1: MF-Swift (Q_RB1, Q_RB2); 2: a table of
-    (deflection, half width) rows at ``cp[off:]``, linear, clamped at its ends.
+    ``width_law`` 0: eq. 2.4 (PB1-PB3); 1: MF-Swift (Q_RB1, Q_RB2); 2: the
+    table ``params.width_table`` of (deflection, half width) rows, linear,
+    clamped at its ends.
     """
+    mode = params.width_law
     if mode == 2:
-        if rho <= cp[off]:
-            b = cp[off + 1]
-        elif rho >= cp[off + 2 * (rows - 1)]:
-            b = cp[off + 2 * (rows - 1) + 1]
+        table = params.width_table
+        rows = table.shape[0]
+        if rho <= table[0, 0]:
+            b = table[0, 1]
+        elif rho >= table[rows - 1, 0]:
+            b = table[rows - 1, 1]
         else:
             i = 0
-            while cp[off + 2 * (i + 1)] < rho:
+            while table[i + 1, 0] < rho:
                 i += 1
-            d0 = cp[off + 2 * i]
-            d1 = cp[off + 2 * (i + 1)]
+            d0 = table[i, 0]
+            d1 = table[i + 1, 0]
             f = (rho - d0) / (d1 - d0)
-            b = cp[off + 2 * i + 1] * (1.0 - f) + cp[off + 2 * i + 3] * f
+            b = table[i, 1] * (1.0 - f) + table[i + 1, 1] * f
     elif rho <= 0.0:
         b = 0.0
     else:
-        x = rho / r0
+        x = rho / params.unloaded_radius
+        w0 = params.width
+        c1, c2, c3 = params.width_c1, params.width_c2, params.width_c3
         if mode == 0:
             b = c1 * w0 * (x + c2 * math.sqrt(x) + c3 * x * math.sqrt(x))  # eq. 2.4
         else:
             b = w0 * (c2 * x + c1 * x ** (1.0 / 3.0))  # MF-Swift
-    return min(max(b, 0.0), b_max)
+    return min(max(b, 0.0), params.max_half_width)

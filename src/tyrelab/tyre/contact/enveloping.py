@@ -16,8 +16,9 @@ the cam heights gives
 * the effective forward slope (tilt along the heading: an obstacle ahead
   lifts the front cams and the normal force also pushes the wheel back);
 * the effective road camber (tilt across);
-* the effective road curvature (quadratic term along the heading; written to
-  ``geo[7]``, not used by the vertical law).
+* the effective road curvature (quadratic term along the heading;
+  :attr:`ContactGeometry.curvature <tyrelab.tyre.wheel.ContactGeometry>`, not
+  used by the vertical law).
 
 The vertical law (eq. 2.2) acts along the effective plane's normal; the
 deflection is measured to the effective plane as for a rigid disc
@@ -49,25 +50,29 @@ N_LENGTH       ELLIPS_NLENGTH    cams along the length
 (x = deflection / R0.) The half width is clipped to half the tyre width: the
 thesis's PB fit (0.0017, 16006.5, -77819.1) gives about 1.9 m for the XZL
 (section 4.4 found the formula unfit), so with it the cams span the tread.
+
+:func:`effective_road` tabulates the effective road (height, slope, camber,
+curvature) and the patch size at wheel positions; :func:`enveloping_geometry`
+the contact geometry.
 """
 
 from __future__ import annotations
 
+import math
+from typing import NamedTuple
 
 import numba as nb
 import numpy as np
 
 from ...core.vec3 import unit, wheel_axes
 from ...errors import InputError
-from ...road.grid import grid_height
-from .cams import (TABLE_POINTS, block_maxima, cam_height, cam_row, cam_tables, grid_row,
-                   half_length, half_width, row_block_max, slope_support)
-from .point import local_zmax
+from ...road.grid import local_zmax, road_height
+from ..registry import ContactModel, register_contact
+from ..wheel import ContactGeometry, WheelPose
+from .cams import (block_maxima, cam_height, cam_row, cam_tables, grid_row, half_length,
+                   half_width, row_block_max, slope_support)
 from .volume import DEFAULT_STEP, no_contact, plane_contact
 
-(R0, W0, LMODE, A1, A2, WMODE, B1, B2, B3, AE, BE, CE, PLS, NW, NL, CAP, STEP, YINV,
- TN, TOFF, WOFF, WROWS, BMAX, CM, PER) = range(25)
-HEADER = 25
 #: length of the road blocks whose maxima let cams skip road they cannot touch [m]
 BLOCK = 0.05
 #: values used when the property file has neither the ADAMS nor the MF-Swift key
@@ -77,6 +82,83 @@ DEFAULTS = {"PA1": 0.15, "PA2": 7.06, "PAE": 0.72, "PBE": 1.0, "PCE": 2.0, "PLS"
 SWIFT = {"PAE": "ELLIPS_LENGTH", "PBE": "ELLIPS_HEIGHT", "PCE": "ELLIPS_ORDER",
          "PLS": "ELLIPS_SHIFT", "N_WIDTH": "ELLIPS_NWIDTH", "N_LENGTH": "ELLIPS_NLENGTH"}
 _OTHER_OPTIONS = ("discs",)
+
+
+class EnvelopingParams(NamedTuple):
+    """Parameters of the enveloping (tandem cams) contact model.
+
+    Built by :func:`enveloping_params`; lengths in metres.
+
+    * ``unloaded_radius`` R0, ``width`` the tyre width W;
+    * ``length_law``: 0 eq. 2.3 (``length_c1, length_c2`` = PA1, PA2), 1
+      MF-Swift (= Q_RA1, Q_RA2);
+    * ``width_law``: 0 eq. 2.4 (``width_c1..3`` = PB1-PB3), 1 MF-Swift
+      (= Q_RB1, Q_RB2, 0), 2 the table ``width_table``; the half width is
+      clipped to ``max_half_width`` (W / 2);
+    * ``cam_half_length`` a_e = PAE R0, ``cam_half_height`` b_e = PBE R0,
+      ``cam_exponent`` PCE (eq. 2.5); ``base_length_factor`` PLS (eq. 2.6);
+    * ``n_width`` x ``n_length`` cams;
+    * ``cam_reach``: how far from its centre a cam looks (a_e, less with
+      ELLIPS_MAX_STEP); ``step``: sampling step along cam lines not aligned
+      with the grid;
+    * ``profile_road``: the road does not vary across (every grid column
+      alike), so every row of cams sees the same road;
+    * ``cam_drop``, ``cam_window``, ``cam_touch``: the cam's tables
+      (:func:`tyrelab.tyre.contact.cams.cam_tables`);
+    * ``width_table``: (deflection, half width) rows, shape (rows, 2), empty
+      unless ``width_law`` is 2;
+    * ``block_per``: x cells per road block, ``row_block_max``: the road's
+      maxima per block and pair of grid rows, shape (blocks, ny - 1)
+      (:func:`tyrelab.tyre.contact.cams.block_maxima`), empty for a road of
+      two x nodes.
+    """
+
+    unloaded_radius: float
+    width: float
+    length_law: int
+    length_c1: float
+    length_c2: float
+    width_law: int
+    width_c1: float
+    width_c2: float
+    width_c3: float
+    max_half_width: float
+    cam_half_length: float
+    cam_half_height: float
+    cam_exponent: float
+    base_length_factor: float
+    n_width: int
+    n_length: int
+    cam_reach: float
+    step: float
+    profile_road: bool
+    cam_drop: np.ndarray
+    cam_window: np.ndarray
+    cam_touch: np.ndarray
+    width_table: np.ndarray
+    block_per: int
+    row_block_max: np.ndarray
+
+
+class EffectiveRoad(NamedTuple):
+    """The effective road the cams give under a wheel (:func:`effective_road`).
+
+    ``height`` [m] of the effective plane at the patch centre (the wheel
+    plane's trace below the centre), ``slope`` its rise per metre along the
+    heading, ``camber`` its rise per metre across (to the wheel's left),
+    ``curvature`` [1/m] of the quadratic fit along the heading;
+    ``deflection`` [m] to the effective plane (the contact's; <= 0: no
+    contact); ``half_length`` and ``half_width`` [m] of the contact patch the
+    cams were spread over.
+    """
+
+    height: float
+    slope: float
+    camber: float
+    curvature: float
+    deflection: float
+    half_length: float
+    half_width: float
 
 
 def _key(tir, name):
@@ -116,8 +198,8 @@ def _width_law(tir, width_table, b_max):
 
 
 def enveloping_params(tyre, grid, width_table=None, n_width=None, n_length=None,
-                      step=DEFAULT_STEP, **options) -> np.ndarray:
-    """Pack the contact-patch laws, cam tables and the road's block maxima for the kernel.
+                      step=DEFAULT_STEP, **options) -> EnvelopingParams:
+    """The enveloping model's record: contact-patch laws, cam tables, the road's block maxima.
 
     Parameters
     ----------
@@ -154,82 +236,66 @@ def enveloping_params(tyre, grid, width_table=None, n_width=None, n_length=None,
         rise = tir.number("CONTACT_PATCH", "ELLIPS_MAX_STEP")
         if rise < be:  # where the contour has risen ELLIPS_MAX_STEP
             cap = ae * (1.0 - (1.0 - rise / be) ** ce) ** (1.0 / ce)
-    tables = cam_tables(ae, be, ce)
-    head = np.zeros(HEADER)
-    head[[R0, W0, LMODE, A1, A2, WMODE, B1, B2, B3, AE, BE, CE, PLS, NW, NL, CAP, STEP]] = (
-        r0, w0, lmode, a1, a2, wmode, b1, b2, b3, ae, be, ce, pls, nw, nl, cap, step)
-    head[BMAX] = b_max
-    head[TN] = TABLE_POINTS
-    head[TOFF] = HEADER
-    parts = [head, tables]
-    offset = HEADER + tables.size
-    if wtable is not None:
-        head[WOFF] = offset
-        head[WROWS] = wtable.shape[0]
-        parts.append(np.ascontiguousarray(wtable, float).ravel())
-        offset += wtable.size
-    if np.all(grid.z == grid.z[:, :1]):  # a 2D road: every row of cams sees the same road
-        head[YINV] = 1.0
-    if grid.z.shape[0] > 2:  # block maxima per pair of grid rows
-        per = max(1, int(round(BLOCK / grid.dx)))
-        head[CM] = offset
-        head[PER] = per
-        parts.append(block_maxima(grid.z, per).ravel())
-    return np.concatenate(parts)
+    drop, window, touch = cam_tables(ae, be, ce)
+    if wtable is None:
+        wtable = np.zeros((0, 2))
+    wtable = np.ascontiguousarray(wtable, np.float64)
+    z = grid.z
+    per = max(1, int(round(BLOCK / grid.dx)))
+    if z.shape[0] > 2:  # block maxima per pair of grid rows
+        maxima = block_maxima(z, per)
+    else:
+        maxima = np.zeros((0, z.shape[1] - 1))
+    return EnvelopingParams(
+        unloaded_radius=r0, width=w0, length_law=int(lmode), length_c1=float(a1),
+        length_c2=float(a2), width_law=int(wmode), width_c1=float(b1), width_c2=float(b2),
+        width_c3=float(b3), max_half_width=float(b_max), cam_half_length=float(ae),
+        cam_half_height=float(be), cam_exponent=float(ce), base_length_factor=float(pls),
+        n_width=nw, n_length=nl, cam_reach=float(cap), step=float(step),
+        # a 2D road: every row of cams sees the same road
+        profile_road=bool(np.all(z == z[:, :1])),
+        cam_drop=drop, cam_window=window, cam_touch=touch, width_table=wtable,
+        block_per=per, row_block_max=maxima)
 
 
-def contact_patch(cp, deflection):
-    """``(a, b)`` half length and half width [m] the kernel uses at ``deflection`` [m]."""
-    a = half_length(int(cp[LMODE]), cp[A1], cp[A2], cp[R0], deflection)
-    b = half_width(int(cp[WMODE]), cp[B1], cp[B2], cp[B3], cp[W0], cp[R0], deflection, cp,
-                   int(cp[WOFF]), int(cp[WROWS]), cp[BMAX])
-    return a, b
+def contact_patch(params: EnvelopingParams, deflection: float):
+    """``(a, b)`` half length and half width [m] the model uses at ``deflection`` [m]."""
+    return half_length(params, float(deflection)), half_width(params, float(deflection))
 
 
-@nb.njit(cache=True)
-def enveloping_contact(cp, gp, z, zinfo, cx, cy, cz, ax, ay, az, geo):
-    """Deflection, contact point and effective-plane normal from the cams.
+@nb.njit(cache=True, inline="always")
+def cam_plane(params, road, cx, cy, cz, fx, fy, dx, dy, cosg, zmax):
+    """The cams' least-squares effective plane under a wheel centre (cx, cy, cz).
 
-    Parameters as :func:`tyrelab.tyre.contact.point.point_contact`, with
-    ``cp`` from :func:`enveloping_params`; ``geo[7]`` receives the effective
-    road curvature [1/m].
+    ``(fx, fy)`` the horizontal heading, ``(dx, dy)`` the horizontal part of
+    the in-plane down vector, ``cosg`` minus its vertical part (the cosine of the
+    wheel plane's tilt), ``zmax`` a bound of the road within reach. Returns
+    ``(px, py, height, slope, camber, curvature, a, b)``: the patch centre,
+    the plane's height there, its slopes along the heading and across (to
+    the left), the curvature of the quadratic fit along the heading [1/m]
+    (0 when the cams cannot fit one) and the half length and half width the
+    cams were spread over.
     """
-    r0 = cp[R0]
-    fx, fy, fz, dx, dy, dz = wheel_axes(ax, ay, az)
-    cosg = -dz
-    if cosg < 1e-3:
-        no_contact(r0, cx, cy, cz, 1.0, geo)
-        return
-    ae, be = cp[AE], cp[BE]
-    reach = (r0 + ae) * abs(fx) + cp[BMAX] * abs(fy) + 1e-9
-    zmax = local_zmax(zinfo, cx - reach, cx + reach)
-    geo[7] = 0.0
-    if (cz - zmax) * cosg >= r0:
-        no_contact(r0, cx, cy, cz, (cz - zmax) * cosg - r0, geo)
-        return
-    if zinfo[1] == zinfo[0]:  # one level plane everywhere
-        plane_contact(r0, cx, cy, cz, ax, ay, az, cx, cy, zinfo[0], 0.0, 0.0, 1.0, 0.0, geo)
-        return
-    n_tab, off, cap, step = int(cp[TN]), int(cp[TOFF]), cp[CAP], cp[STEP]
-    cm, per = int(cp[CM]), int(cp[PER])
-    lever = (cz - grid_height(gp, z, cx, cy)) / cosg
+    r0 = params.unloaded_radius
+    cap = params.cam_reach
+    has_blocks = params.row_block_max.shape[0] > 0
+    lever = (cz - road_height(road, cx, cy)) / cosg
     px = cx + dx * lever  # contact patch centre: the wheel plane's trace on the road
     py = cy + dy * lever
     lx, ly = -fy, fx  # horizontal, to the left of the heading
     # along grid x (the rigs), a row of cams lies on one grid row (the drift of y along
     # the heading, u fy, is ignored) and is searched row-wise: see cams.cam_row
     aligned = abs(fy) < 0.01
-    nl, nw = int(cp[NL]), int(cp[NW])
-    same_rows = cp[YINV] != 0.0 and aligned  # a 2D profile: every row sees the same road
+    nl, nw = params.n_length, params.n_width
+    same_rows = params.profile_road and aligned  # a 2D profile: every row sees the same road
     rows = 1 if same_rows else nw
     mult = float(nw) if same_rows else 1.0
     # one cam under the centre: its height sizes the patch
-    w = cam_height(cp, off, n_tab, ae, be, cap, cp, cm, per, step, gp, z, px, py, fx, fy, zmax)
+    w = cam_height(params, road, px, py, fx, fy, zmax)
     rho0 = max(r0 - (cz - w) / cosg, 0.0)
-    a = half_length(int(cp[LMODE]), cp[A1], cp[A2], r0, rho0)
-    b = half_width(int(cp[WMODE]), cp[B1], cp[B2], cp[B3], cp[W0], r0, rho0, cp,
-                   int(cp[WOFF]), int(cp[WROWS]), cp[BMAX])
-    ls = 2.0 * cp[PLS] * a  # eq. 2.6
+    a = half_length(params, rho0)
+    b = half_width(params, rho0)
+    ls = 2.0 * params.base_length_factor * a  # eq. 2.6
     du = ls / (nl - 1) if nl > 1 else 0.0
     dv = 2.0 * b / (nw - 1) if nw > 1 else 0.0
     u_first = -0.5 * ls if nl > 1 else 0.0
@@ -239,20 +305,19 @@ def enveloping_contact(cp, gp, z, zinfo, cx, cy, cz, ax, ay, az, geo):
     for jr in range(rows):
         v = 0.0 if same_rows else v_first + jr * dv
         if aligned:
-            j, wy = grid_row(gp, z, py + v * ly)
+            j, wy = grid_row(road, py + v * ly)
             x_a = px + u_first * fx + v * lx  # first and last cam of the row
             x_b = x_a + (nl - 1) * du * fx
             x_lo, x_hi = min(x_a, x_b), max(x_a, x_b)
-            top = row_block_max(cp, cm, per, gp, z, j, x_lo - cap, x_hi + cap) if cm > 0 else zmax
-            cam_row(cp, off, n_tab, ae, be, cap, cp, cm, per, gp, z, j, wy, x_lo, du * abs(fx), nl,
-                    top, w_row)
+            top = row_block_max(params, road, j, x_lo - cap, x_hi + cap) if has_blocks else zmax
+            cam_row(params, road, j, wy, x_lo, du * abs(fx), nl, top, w_row)
         for i in range(nl):
             u = u_first + i * du
             if aligned:
                 w = w_row[i] if fx > 0.0 else w_row[nl - 1 - i]
             else:
-                w = cam_height(cp, off, n_tab, ae, be, cap, cp, cm, per, step, gp, z,
-                               px + u * fx + v * lx, py + u * fy + v * ly, fx, fy, zmax)
+                w = cam_height(params, road, px + u * fx + v * lx, py + u * fy + v * ly, fx, fy,
+                               zmax)
             sw += mult * w
             suw += mult * u * w
             svw += mult * v * w
@@ -270,10 +335,171 @@ def enveloping_contact(cp, gp, z, zinfo, cx, cy, cz, ax, ay, az, geo):
     sv = svw / svv if svv > 0.0 and not same_rows else 0.0  # road camber
     mean_u2 = suu / count
     den = su4 - count * mean_u2 * mean_u2
+    curvature = 0.0
     if den > 1e-30:
-        geo[7] = 2.0 * (su2w - mean_u2 * sw) / den  # curvature of the quadratic fit along u
-    w0 = sw / count - slope_support(cp, off, n_tab, ae, su)
+        curvature = 2.0 * (su2w - mean_u2 * sw) / den  # curvature of the quadratic fit along u
+    w0 = sw / count - slope_support(params, su)
+    return px, py, w0, su, sv, curvature, a, b
+
+
+@nb.njit(cache=True, inline="always")
+def enveloping_contact(params, road, pose):
+    """Deflection, contact point and effective-plane normal from the cams.
+
+    Parameters
+    ----------
+    params : EnvelopingParams
+    road : RoadSurface
+    pose : WheelPose
+        Only the centre and the spin axis are used.
+
+    Returns
+    -------
+    ContactGeometry
+        As :func:`tyrelab.tyre.contact.point.point_contact`, on the cams'
+        effective plane, with the effective road curvature [1/m].
+    """
+    r0 = params.unloaded_radius
+    cx, cy, cz = pose.cx, pose.cy, pose.cz
+    ax, ay, az = pose.ax, pose.ay, pose.az
+    fx, fy, fz, dx, dy, dz = wheel_axes(ax, ay, az)
+    cosg = -dz
+    if cosg < 1e-3:
+        return no_contact(r0, cx, cy, cz, 1.0)
+    reach = (r0 + params.cam_half_length) * abs(fx) + params.max_half_width * abs(fy) + 1e-9
+    zmax = local_zmax(road, cx - reach, cx + reach)
+    if (cz - zmax) * cosg >= r0:
+        return no_contact(r0, cx, cy, cz, (cz - zmax) * cosg - r0)
+    if road.zmax == road.zmin:  # one level plane everywhere
+        return plane_contact(r0, cx, cy, cz, ax, ay, az, cx, cy, road.zmin, 0.0, 0.0, 1.0, 0.0)
+    px, py, w0, su, sv, curvature, _, _ = cam_plane(params, road, cx, cy, cz, fx, fy, dx, dy,
+                                                    cosg, zmax)
+    lx, ly = -fy, fx
     nx, ny, nz = unit(-(su * fx + sv * lx), -(su * fy + sv * ly), 1.0)
-    curvature = geo[7]
-    plane_contact(r0, cx, cy, cz, ax, ay, az, px, py, w0, nx, ny, nz, 0.0, geo)
-    geo[7] = curvature
+    g = plane_contact(r0, cx, cy, cz, ax, ay, az, px, py, w0, nx, ny, nz, 0.0)
+    return ContactGeometry(g.deflection, g.px, g.py, g.pz, g.nx, g.ny, g.nz, curvature)
+
+
+@nb.njit(cache=True)
+def effective_road_at(params, road, pose):
+    """:class:`EffectiveRoad` under a wheel at ``pose`` (compiled; see :func:`effective_road`).
+
+    The plane is the one :func:`enveloping_contact` uses. It is found also
+    when the tyre does not touch the road: the patch then has its size at
+    zero deflection (no length: each row of cams sits at the patch centre);
+    on a road level everywhere it is that level. A wheel lying (nearly)
+    flat has none: NaN.
+    """
+    deflection = enveloping_contact(params, road, pose).deflection
+    r0 = params.unloaded_radius
+    cx, cy, cz = pose.cx, pose.cy, pose.cz
+    fx, fy, fz, dx, dy, dz = wheel_axes(pose.ax, pose.ay, pose.az)
+    cosg = -dz
+    if cosg < 1e-3:
+        return EffectiveRoad(math.nan, math.nan, math.nan, math.nan, deflection, 0.0, 0.0)
+    if road.zmax == road.zmin:
+        rho0 = max(r0 - (cz - road.zmin) / cosg, 0.0)
+        return EffectiveRoad(road.zmin, 0.0, 0.0, 0.0, deflection, half_length(params, rho0),
+                             half_width(params, rho0))
+    reach = (r0 + params.cam_half_length) * abs(fx) + params.max_half_width * abs(fy) + 1e-9
+    zmax = local_zmax(road, cx - reach, cx + reach)
+    _, _, w0, su, sv, curvature, a, b = cam_plane(params, road, cx, cy, cz, fx, fy, dx, dy,
+                                                  cosg, zmax)
+    return EffectiveRoad(w0, su, sv, curvature, deflection, a, b)
+
+
+@nb.njit(cache=True)
+def _effective_many(params, road, poses, out):
+    for k in range(poses.shape[0]):
+        p = poses[k]
+        e = effective_road_at(params, road, WheelPose(p[0], p[1], p[2], p[3], p[4], p[5],
+                                                      0.0, 0.0, 0.0, 0.0))
+        for j in range(7):
+            out[k, j] = e[j]
+
+
+def _wheel_positions(tyre, road, x, y, z, axis):
+    """(grid, poses (n, 6)) for the plain functions below."""
+    from ...road.grid import RoadGrid
+    from ...road.spec import road_from_spec
+    grid = road if isinstance(road, RoadGrid) else road_from_spec(road).grid()
+    x, y = np.broadcast_arrays(np.asarray(x, float), np.asarray(y, float))
+    x, y = x.ravel(), y.ravel()
+    if z is None:
+        z = grid.height(x, y) + float(tyre.unloaded_radius)
+    z = np.broadcast_to(np.asarray(z, float), x.shape)
+    poses = np.empty((x.size, 6))
+    poses[:, 0], poses[:, 1], poses[:, 2] = x, y, z
+    poses[:, 3:6] = np.asarray(axis, float)
+    return grid, poses
+
+
+def effective_road(tyre, road, x, y=0.0, z=None, axis=(0.0, 1.0, 0.0), **options):
+    """The effective road of the enveloping model under wheel centres ``(x, y, z)``.
+
+    Schmeitz's cams (thesis 2.3.3, eq. 2.5) spread over the contact patch
+    (half length eq. 2.3, half width eq. 2.4 or their MF-Swift forms or the
+    ``[CONTACT_WIDTH_CURVE]`` table, base length eq. 2.6) rest on the road;
+    the least-squares plane through their heights is the effective road the
+    vertical law (eq. 2.2) acts on. The values come from a compiled helper
+    (:func:`effective_road_at`, record :class:`EffectiveRoad`) that runs the
+    very code of the contact model, so they are exact, not recovered from the
+    contact normal.
+
+    Parameters
+    ----------
+    tyre : Tyre
+        ``[CONTACT_PATCH]`` keys as in the module docstring.
+    road : str, Road or RoadGrid
+        A road name (:func:`tyrelab.road.spec.road_from_spec`), road or grid.
+    x, y : array_like
+        Wheel-centre positions [m] (broadcast).
+    z : array_like, optional
+        Wheel-centre heights [m]; default: the unloaded radius above the
+        road straight below the centre (the tyre just touching a level road).
+    axis : 3 floats
+        Unit spin axis (default level, heading +x).
+    **options
+        Options of :func:`enveloping_params` (``n_width``, ``n_length``,
+        ``width_table``, ``step``).
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per position: ``x, y, z`` and the :class:`EffectiveRoad`
+        fields -- ``height`` [m] of the effective plane at the patch centre
+        (the wheel plane's trace below the centre; ``x, y`` for an upright
+        wheel), ``slope`` along the heading and ``camber`` across (rise per
+        metre to the wheel's left), ``curvature`` [1/m] along the heading,
+        ``deflection`` [m] to the effective plane (<= 0: no contact; the
+        plane is then that of a patch of zero deflection, of no length) and
+        the ``half_length`` and ``half_width`` [m] of the patch the cams were
+        spread over (taken at the deflection of a single cam under the
+        centre).
+    """
+    import pandas as pd
+    grid, poses = _wheel_positions(tyre, road, x, y, z, axis)
+    out = np.empty((poses.shape[0], len(EffectiveRoad._fields)))
+    _effective_many(enveloping_params(tyre, grid, **options), grid.surface(), poses, out)
+    table = pd.DataFrame(out, columns=list(EffectiveRoad._fields))
+    for k, name in ((2, "z"), (1, "y"), (0, "x")):
+        table.insert(0, name, poses[:, k])
+    return table
+
+
+def enveloping_geometry(tyre, road, x, y=0.0, z=None, axis=(0.0, 1.0, 0.0), **options):
+    """Deflection, contact point, normal and curvature of the enveloping model at wheel
+    centres ``(x, y, z)``.
+
+    See :func:`tyrelab.tyre.model.contact_geometry_table` for the arguments
+    and the returned table; ``options`` are those of :func:`enveloping_params`.
+    """
+    from ..model import TyreModel, contact_geometry_table
+    return contact_geometry_table(TyreModel(tyre, "enveloping", options=dict(options)), road,
+                                  x, y, z, axis)
+
+
+register_contact(ContactModel("enveloping", EnvelopingParams, enveloping_params,
+                              geometry=enveloping_contact,
+                              summary="3D enveloping contact (tandem elliptical cams), "
+                                      "thesis 2.3.3"))

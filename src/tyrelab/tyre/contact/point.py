@@ -23,40 +23,35 @@ plane's, but the force stays in the wheel plane.
 from __future__ import annotations
 
 import math
+from typing import NamedTuple
 
 import numba as nb
 
 from ...core.vec3 import unit, wheel_axes
-from ...road.grid import grid_height
-
-#: geometry output layout written by every contact model
-GEO_RHO, GEO_PX, GEO_PY, GEO_PZ, GEO_NX, GEO_NY, GEO_NZ = range(7)
-GEO_SIZE = 8
+from ...road.grid import local_zmax, road_height
+from ..registry import ContactModel, register_contact
+from ..wheel import ContactGeometry
 
 
-@nb.njit(cache=True)
-def local_zmax(zinfo, x0, x1):
-    """Highest road point over road x in [x0, x1], from the block maxima.
+class PointParams(NamedTuple):
+    """Parameters of the one-point contact model.
 
-    ``zinfo`` = ``[zmin, zmax, block_x0, block_dx, nblocks, max_0, max_1, ...]``
-    (see :func:`tyrelab.tyre.kernel.road_info`).
+    ``unloaded_radius`` R0 [m]; ``step`` [m] the sampling step along road
+    sections not aligned with the grid (the grid spacing).
     """
-    nb_ = int(zinfo[4])
-    if nb_ == 0:
-        return zinfo[1]
-    i0 = int(math.floor((x0 - zinfo[2]) / zinfo[3]))
-    i1 = int(math.floor((x1 - zinfo[2]) / zinfo[3]))
-    if i0 < 0:
-        i0 = 0
-    if i1 > nb_ - 1:
-        i1 = nb_ - 1
-    if i1 < i0:  # beyond the grid: the edge blocks continue
-        i0 = i1 = 0 if x1 < zinfo[2] else nb_ - 1
-    m = -1e300
-    for i in range(i0, i1 + 1):
-        if zinfo[5 + i] > m:
-            m = zinfo[5 + i]
-    return m
+
+    unloaded_radius: float
+    step: float
+
+
+def point_params(tyre, grid, **options) -> PointParams:
+    """The point model's record for ``tyre`` on road ``grid`` (it takes no options)."""
+    from ...errors import InputError
+    if options:
+        raise InputError(f"unknown point-model option(s) {', '.join(sorted(options))}; "
+                         "the point model takes none", field="options")
+    step = min(grid.dx, grid.dy if grid.z.shape[1] > 2 else grid.dx)
+    return PointParams(float(tyre.unloaded_radius), max(step, 1e-4))
 
 
 @nb.njit(cache=True, inline="always")
@@ -84,13 +79,13 @@ def _nearer(s0, q0, s1, q1, bs, bq, best):
 
 
 @nb.njit(cache=True, inline="always")
-def _depth(gp, z, cx, cy, cz, fx, fy, dz, hx, hy, base_q, s):
+def _depth(road, cx, cy, cz, fx, fy, dz, hx, hy, base_q, s):
     """Depth below the centre, along the in-plane down vector, of the section at s."""
-    return base_q + (grid_height(gp, z, cx + s * fx + hx, cy + s * fy + hy) - cz) * dz
+    return base_q + (road_height(road, cx + s * fx + hx, cy + s * fy + hy) - cz) * dz
 
 
 @nb.njit(cache=True)
-def _scan(gp, z, cx, cy, cz, fx, fy, dz, hx, hy, base_q, sa, sb, step, bs, bq, best):
+def _scan(road, cx, cy, cz, fx, fy, dz, hx, hy, base_q, sa, sb, step, bs, bq, best):
     """Nearest point to the centre on the section between s = sa and sb.
 
     When the wheel heads along x (the rigs drive along x) the section is
@@ -100,24 +95,24 @@ def _scan(gp, z, cx, cy, cz, fx, fy, dz, hx, hy, base_q, sa, sb, step, bs, bq, b
     section is sampled every ``step``.
     """
     s0 = sa
-    q0 = _depth(gp, z, cx, cy, cz, fx, fy, dz, hx, hy, base_q, s0)
+    q0 = _depth(road, cx, cy, cz, fx, fy, dz, hx, hy, base_q, s0)
     if abs(fx) > 0.9:
         # node coordinates of the two ends, walked in the direction of s
-        u0 = (cx + sa * fx - gp[0]) * gp[4]
-        u1 = (cx + sb * fx - gp[0]) * gp[4]
+        u0 = (cx + sa * fx - road.x0) * road.inv_dx
+        u1 = (cx + sb * fx - road.x0) * road.inv_dx
         k_first = int(math.floor(u0)) + 1 if u1 > u0 else int(math.ceil(u0)) - 1
         k_last = int(math.ceil(u1)) - 1 if u1 > u0 else int(math.floor(u1)) + 1
         direction = 1 if u1 > u0 else -1
         count = (k_last - k_first) * direction + 1
         for j in range(count + 1):
             if j < count:
-                xk = gp[0] + (k_first + j * direction) * gp[2]
+                xk = road.x0 + (k_first + j * direction) * road.dx
                 s1 = (xk - cx) / fx
             else:
                 s1 = sb
             if s1 <= s0:
                 continue
-            q1 = _depth(gp, z, cx, cy, cz, fx, fy, dz, hx, hy, base_q, s1)
+            q1 = _depth(road, cx, cy, cz, fx, fy, dz, hx, hy, base_q, s1)
             bs, bq, best = _nearer(s0, q0, s1, q1, bs, bq, best)
             s0 = s1
             q0 = q1
@@ -128,7 +123,7 @@ def _scan(gp, z, cx, cy, cz, fx, fy, dz, hx, hy, base_q, sa, sb, step, bs, bq, b
     ds = (sb - sa) / (n - 1)
     for i in range(1, n):
         s1 = sa + i * ds
-        q1 = _depth(gp, z, cx, cy, cz, fx, fy, dz, hx, hy, base_q, s1)
+        q1 = _depth(road, cx, cy, cz, fx, fy, dz, hx, hy, base_q, s1)
         bs, bq, best = _nearer(s0, q0, s1, q1, bs, bq, best)
         s0 = s1
         q0 = q1
@@ -136,45 +131,35 @@ def _scan(gp, z, cx, cy, cz, fx, fy, dz, hx, hy, base_q, sa, sb, step, bs, bq, b
 
 
 @nb.njit(cache=True)
-def point_contact(r0, step, gp, z, zinfo, cx, cy, cz, ax, ay, az, geo):
+def point_contact(params, road, pose):
     """Contact geometry of a rigid disc on a gridded road.
 
     Parameters
     ----------
-    r0 : float
-        Unloaded radius [m].
-    step : float
-        Sampling step along the road section [m] (the road grid spacing).
-    gp, z : arrays
-        Road grid (see :mod:`tyrelab.road.grid`).
-    zinfo : float64 array
-        Road height bounds (see :func:`local_zmax`); they bound the part of
-        the section that can touch.
-    cx, cy, cz : float
-        Wheel centre [m].
-    ax, ay, az : float
-        Unit spin axis.
-    geo : float64 array
-        Output: deflection, contact point (3), unit road normal (3).
-        Deflection <= 0 means no contact.
+    params : PointParams
+    road : RoadSurface
+    pose : WheelPose
+        Only the centre and the spin axis are used.
+
+    Returns
+    -------
+    ContactGeometry
+        Deflection ``R0 - distance`` (<= 0: no contact), the nearest point
+        of the section and the unit normal from it to the centre.
     """
-    fx, fy, fz, dx, dy, dz = wheel_axes(ax, ay, az)
+    r0 = params.unloaded_radius
+    step = params.step
+    cx, cy, cz = pose.cx, pose.cy, pose.cz
+    fx, fy, fz, dx, dy, dz = wheel_axes(pose.ax, pose.ay, pose.az)
     cosg = -dz  # cosine of the wheel plane's tilt from vertical
     reach = r0 * abs(fx) + 1e-9
-    zmax = local_zmax(zinfo, cx - reach, cx + reach)
+    zmax = local_zmax(road, cx - reach, cx + reach)
     q_top = (cz - zmax) * cosg
     if q_top >= r0:  # even the highest road point is out of reach
-        geo[GEO_RHO] = r0 - q_top
-        geo[GEO_PX] = cx
-        geo[GEO_PY] = cy
-        geo[GEO_PZ] = cz - r0
-        geo[GEO_NX] = 0.0
-        geo[GEO_NY] = 0.0
-        geo[GEO_NZ] = 1.0
-        return
+        return ContactGeometry(r0 - q_top, cx, cy, cz - r0, 0.0, 0.0, 1.0, 0.0)
     half = math.sqrt(r0 * r0 - q_top * q_top)
     # lateral shift of the section's ground trace for a cambered wheel
-    lever = (cz - grid_height(gp, z, cx, cy)) / cosg
+    lever = (cz - road_height(road, cx, cy)) / cosg
     hx = dx * lever
     hy = dy * lever
     base_q = lever * (dx * dx + dy * dy)
@@ -187,13 +172,14 @@ def point_contact(r0, step, gp, z, zinfo, cx, cy, cz, ax, ay, az, geo):
     best = 1e300
     bs = 0.0
     bq = 0.0
-    nblk = int(zinfo[4])
+    blocks = road.block_max
+    nblk = blocks.shape[0]
     if nblk == 0 or abs(fx) < 0.9:
-        bs, bq, best = _scan(gp, z, cx, cy, cz, fx, fy, dz, hx, hy, base_q, -half, half, step,
+        bs, bq, best = _scan(road, cx, cy, cz, fx, fy, dz, hx, hy, base_q, -half, half, step,
                              bs, bq, best)
     else:
-        bx0 = zinfo[2]
-        bdx = zinfo[3]
+        bx0 = road.block_x0
+        bdx = road.block_dx
         sgn = 1.0 if fx > 0.0 else -1.0
         # the block holding the centre, then alternately outwards
         ic = int(math.floor((cx - bx0) / bdx))
@@ -217,12 +203,12 @@ def point_contact(r0, step, gp, z, zinfo, cx, cy, cz, ax, ay, az, geo):
             jb = ib if ib >= 0 else 0
             if jb > nblk - 1:
                 jb = nblk - 1
-            q_lo = (cz - zinfo[5 + jb]) * cosg
+            q_lo = (cz - blocks[jb]) * cosg
             s_lo = 0.0 if sa <= 0.0 <= sb else min(abs(sa), abs(sb))
             lb = s_lo * s_lo + (q_lo * q_lo if q_lo > 0.0 else 0.0)
             if lb >= best:
                 continue
-            bs, bq, best = _scan(gp, z, cx, cy, cz, fx, fy, dz, hx, hy, base_q, sa, sb, step,
+            bs, bq, best = _scan(road, cx, cy, cz, fx, fy, dz, hx, hy, base_q, sa, sb, step,
                                  bs, bq, best)
     dist = math.sqrt(best)
     px = cx + bs * fx + bq * dx
@@ -231,10 +217,18 @@ def point_contact(r0, step, gp, z, zinfo, cx, cy, cz, ax, ay, az, geo):
     # the normal lies in the wheel plane: from the contact point to the
     # centre (the supporting line of the section; well defined at a corner)
     ux, uy, uz = unit(cx - px, cy - py, cz - pz)
-    geo[GEO_RHO] = r0 - dist
-    geo[GEO_PX] = px
-    geo[GEO_PY] = py
-    geo[GEO_PZ] = pz
-    geo[GEO_NX] = ux
-    geo[GEO_NY] = uy
-    geo[GEO_NZ] = uz
+    return ContactGeometry(r0 - dist, px, py, pz, ux, uy, uz, 0.0)
+
+
+def point_geometry(tyre, road, x, y=0.0, z=None, axis=(0.0, 1.0, 0.0)):
+    """Deflection, contact point and normal of the point model at wheel centres ``(x, y, z)``.
+
+    See :func:`tyrelab.tyre.model.contact_geometry_table` for the arguments
+    and the returned table.
+    """
+    from ..model import TyreModel, contact_geometry_table
+    return contact_geometry_table(TyreModel(tyre, "point"), road, x, y, z, axis)
+
+
+register_contact(ContactModel("point", PointParams, point_params, geometry=point_contact,
+                              summary="one-point (roller) contact, thesis 2.3.1"))

@@ -7,11 +7,12 @@ resampled to the same number of equally spaced ones; the intervals between
 them are the discs of the equivalent volume model, whose widths add up to
 the tyre width. Without a table the section is square (all radii R0).
 
-The compiled part intersects one disc with the road: the road's section in
-the disc plane is walked as straight pieces (exact for a bilinear grid
-driven along x), each piece is clipped to the disc's circle in closed form,
-and the area and first moments of the region inside the disc and below the
-road are integrated exactly (:func:`disc_intersection`).
+The compiled part intersects one disc with the road (a
+:class:`~tyrelab.road.grid.RoadSurface`): the road's section in the disc
+plane is walked as straight pieces (exact for a bilinear grid driven along
+x), each piece is clipped to the disc's circle in closed form, and the area
+and first moments of the region inside the disc and below the road are
+integrated exactly (:func:`disc_intersection`).
 """
 
 from __future__ import annotations
@@ -22,7 +23,7 @@ import numba as nb
 import numpy as np
 
 from ...errors import InputError
-from ...road.grid import grid_height
+from ...road.grid import road_height
 
 
 #: discs per half width for a square section (no [SHAPE] table)
@@ -101,6 +102,11 @@ def profile_breaks(z: np.ndarray) -> np.ndarray | None:
     x node ``i``, the next node ``k > i`` where the profile's slope changes
     (or the last node). Between ``i`` and ``k`` the road is one straight line.
     None when the road varies across.
+
+    Returns
+    -------
+    ndarray of int64, shape (nx,) or None
+        The next kink's node index for every x node.
     """
     if not np.all(z == z[:, :1]):
         return None
@@ -113,7 +119,7 @@ def profile_breaks(z: np.ndarray) -> np.ndarray | None:
         kink[1:-1] = np.abs(np.diff(slope)) > 1e-12
     kinks = np.flatnonzero(kink)
     nxt = kinks[np.searchsorted(kinks, np.arange(nx), side="right").clip(max=kinks.size - 1)]
-    return nxt.astype(float)
+    return nxt.astype(np.int64)
 
 
 # --- one disc against one straight piece of road ------------------------------
@@ -218,9 +224,10 @@ def _row_height(z, i, j, wy):
 
 
 @nb.njit(cache=True, inline="always")
-def _x_height(gp, z, x, j, wy):
+def _x_height(road, x, j, wy):
     """Height at any x on a grid row line (edge continuation outside the grid)."""
-    u = (x - gp[0]) * gp[4]
+    z = road.z
+    u = (x - road.x0) * road.inv_dx
     nx = z.shape[0]
     if u <= 0.0:
         return _row_height(z, 0, j, wy)
@@ -232,18 +239,20 @@ def _x_height(gp, z, x, j, wy):
 
 
 @nb.njit(cache=True, inline="always")
-def section_walk(gp, z, x0, y0, fx, fy, sa, sb, step):
+def section_walk(road, x0, y0, fx, fy, sa, sb, step):
     """Set up a walk along the line (x0, y0) + s (fx, fy), s from sa to sb.
 
-    Returns ``walk = (aligned, j, wy, a, b, k, k_end, kdir, h_a, h_b)``. When
-    the line runs along x (|fy| < 0.01; the rigs drive along x) the samples
-    are the grid's x nodes strictly inside (sa, sb), at ``s = a + k b``, on
-    the row y0 (exact: the bilinear road is linear between nodes; the small
-    drift of y along the line is ignored); otherwise samples every ``step``.
-    ``h_a``, ``h_b``: heights at the ends.
+    ``road`` is a :class:`~tyrelab.road.grid.RoadSurface`. Returns ``walk =
+    (aligned, j, wy, a, b, k, k_end, kdir, h_a, h_b)``. When the line runs
+    along x (|fy| < 0.01; the rigs drive along x) the samples are the grid's
+    x nodes strictly inside (sa, sb), at ``s = a + k b``, on the row y0
+    (exact: the bilinear road is linear between nodes; the small drift of y
+    along the line is ignored); otherwise samples every ``step``. ``h_a``,
+    ``h_b``: heights at the ends.
     """
+    z = road.z
     if abs(fy) < 0.01:
-        jf = (y0 - gp[1]) * gp[5]
+        jf = (y0 - road.y0) * road.inv_dy
         ny = z.shape[1]
         if jf <= 0.0:
             j, wy = 0, 0.0
@@ -253,47 +262,48 @@ def section_walk(gp, z, x0, y0, fx, fy, sa, sb, step):
             j = min(int(jf), ny - 2)
             wy = jf - j
         nx = z.shape[0]
-        u0 = (x0 + sa * fx - gp[0]) * gp[4]
-        u1 = (x0 + sb * fx - gp[0]) * gp[4]
+        u0 = (x0 + sa * fx - road.x0) * road.inv_dx
+        u1 = (x0 + sb * fx - road.x0) * road.inv_dx
         if fx > 0.0:
             k, k_end, kdir = max(int(math.floor(u0)) + 1, 0), min(int(math.ceil(u1)) - 1, nx - 1), 1
         else:
             k, k_end, kdir = min(int(math.ceil(u0)) - 1, nx - 1), max(int(math.floor(u1)) + 1, 0), -1
-        return (True, j, wy, (gp[0] - x0) / fx, gp[2] / fx, k, k_end, kdir,
-                _x_height(gp, z, x0 + sa * fx, j, wy), _x_height(gp, z, x0 + sb * fx, j, wy))
+        return (True, j, wy, (road.x0 - x0) / fx, road.dx / fx, k, k_end, kdir,
+                _x_height(road, x0 + sa * fx, j, wy), _x_height(road, x0 + sb * fx, j, wy))
     n = max(int(math.ceil((sb - sa) / step)), 1)
     return (False, 0, 0.0, sa, (sb - sa) / n, 1, n - 1, 1,
-            grid_height(gp, z, x0 + sa * fx, y0 + sa * fy),
-            grid_height(gp, z, x0 + sb * fx, y0 + sb * fy))
+            road_height(road, x0 + sa * fx, y0 + sa * fy),
+            road_height(road, x0 + sb * fx, y0 + sb * fy))
 
 
 @nb.njit(cache=True, inline="always")
-def _height(gp, z, aligned, j, wy, x0, y0, fx, fy, k, s):
+def _height(road, aligned, j, wy, x0, y0, fx, fy, k, s):
     if aligned:
+        z = road.z
         return z[k, j] * (1.0 - wy) + z[k, j + 1] * wy
-    return grid_height(gp, z, x0 + s * fx, y0 + s * fy)
+    return road_height(road, x0 + s * fx, y0 + s * fy)
 
 
 @nb.njit(cache=True, inline="always")
-def road_piece(cp, brk, gp, z, x0, y0, fx, fy, sb, walk, k, s0, h0):
+def road_piece(road, breaks, x0, y0, fx, fy, sb, walk, k, s0, h0):
     """The maximal straight piece of the section that starts at (s0, h0).
 
     Consecutive samples on one line are merged (a flat block top is one
-    piece); on 2D-profile roads (``brk`` > 0: offset of
-    :func:`profile_breaks` in ``cp``) the walk jumps from kink to kink.
-    Returns ``(s1, h1, k, done)``: the piece's end, the index of the next
-    unused sample and whether the end ``sb`` was reached.
+    piece); on 2D-profile roads (``breaks``, from :func:`profile_breaks`,
+    not empty) the walk jumps from kink to kink. Returns ``(s1, h1, k,
+    done)``: the piece's end, the index of the next unused sample and
+    whether the end ``sb`` was reached.
     """
     aligned, j, wy, a, b, _, k_end, kdir, _, h_b = walk
-    jump = aligned and brk > 0 and kdir > 0
+    jump = aligned and breaks.shape[0] > 0 and kdir > 0
     if (k - k_end) * kdir > 0:
         return sb, h_b, k, True
     s1 = a + k * b
-    h1 = _height(gp, z, aligned, j, wy, x0, y0, fx, fy, k, s1)
+    h1 = _height(road, aligned, j, wy, x0, y0, fx, fy, k, s1)
     m = (h1 - h0) / (s1 - s0)
     while True:
         if jump:
-            nxt = int(cp[brk + k])
+            nxt = breaks[k]
             k = nxt if nxt > k else k + 1
         else:
             k += kdir
@@ -302,7 +312,7 @@ def road_piece(cp, brk, gp, z, x0, y0, fx, fy, sb, walk, k, s0, h0):
                 return sb, h_b, k, True
             return s1, h1, k, False
         s2 = a + k * b
-        h2 = _height(gp, z, aligned, j, wy, x0, y0, fx, fy, k, s2)
+        h2 = _height(road, aligned, j, wy, x0, y0, fx, fy, k, s2)
         if abs(h2 - (h1 + m * (s2 - s1))) > 1e-10:
             return s1, h1, k, False
         s1 = s2
@@ -310,17 +320,20 @@ def road_piece(cp, brk, gp, z, x0, y0, fx, fy, sb, walk, k, s0, h0):
 
 
 @nb.njit(cache=True, inline="always")
-def disc_intersection(cp, brk, step, gp, z, r, xc, yc, zc, fx, fy, cosg, sa, sb):
+def disc_intersection(road, breaks, step, r, xc, yc, zc, fx, fy, cosg, sa, sb):
     """Area and first moments of a disc's intersection with the road.
 
-    The disc (radius r, centre (xc, yc, zc)) lies in a plane with horizontal
-    forward direction (fx, fy); s runs along it, q is the depth below the
-    centre measured in the plane, ``(zc - h) / cos(camber)``. Returns
-    ``(A, Ms, Mq)``: the area of the region inside the disc and below the
-    road, ``int s dA`` and ``int q dA``. Each straight piece of the section
-    is clipped to the circle exactly (:func:`_chord`); the road's integrals
-    are added per piece, the arc's closed-form integrals once per run of
-    contiguous inside pieces (they telescope).
+    ``road`` is a :class:`~tyrelab.road.grid.RoadSurface`, ``breaks`` its
+    profile breakpoints (:func:`profile_breaks`; empty when the road varies
+    across), ``step`` the sampling step [m] along sections not aligned with
+    the grid. The disc (radius r, centre (xc, yc, zc)) lies in a plane with
+    horizontal forward direction (fx, fy); s runs along it, q is the depth
+    below the centre measured in the plane, ``(zc - h) / cos(camber)``.
+    Returns ``(A, Ms, Mq)``: the area of the region inside the disc and
+    below the road, ``int s dA`` and ``int q dA``. Each straight piece of
+    the section is clipped to the circle exactly (:func:`_chord`); the
+    road's integrals are added per piece, the arc's closed-form integrals
+    once per run of contiguous inside pieces (they telescope).
     """
     area = 0.0
     ms = 0.0
@@ -328,7 +341,7 @@ def disc_intersection(cp, brk, step, gp, z, r, xc, yc, zc, fx, fy, cosg, sa, sb)
     run_open = False
     run_start = 0.0
     run_end = 0.0
-    walk = section_walk(gp, z, xc, yc, fx, fy, sa, sb, step)
+    walk = section_walk(road, xc, yc, fx, fy, sa, sb, step)
     k = walk[5]
     inv_cosg = 1.0 / cosg
     sixth = 1.0 / 6.0
@@ -337,7 +350,7 @@ def disc_intersection(cp, brk, step, gp, z, r, xc, yc, zc, fx, fy, cosg, sa, sb)
     q0 = (zc - h0) * inv_cosg
     done = False
     while not done:
-        s1, h1, k, done = road_piece(cp, brk, gp, z, xc, yc, fx, fy, sb, walk, k, s0, h0)
+        s1, h1, k, done = road_piece(road, breaks, xc, yc, fx, fy, sb, walk, k, s0, h0)
         q1 = (zc - h1) * inv_cosg
         if s1 > s0:
             u0, u1, inside = _chord(r, s0, q0, s1, q1)

@@ -28,7 +28,7 @@ and over the discs, weighted by the intersected volume ``A * width``:
 On a flat or uniformly inclined road every contacting disc sees the same
 plane, so the effective plane is the road plane and the deflection is the
 one of a rigid disc (the point model's). The vertical law (eq. 2.2) then
-acts along the effective normal (:func:`tyrelab.tyre.kernel.wheel_force`).
+acts along the effective normal (:func:`tyrelab.tyre.wheel.analytic_wheel_step`).
 
 The road is bilinear on its grid; driven along a grid axis, each section is
 piecewise linear between grid nodes, and each piece is intersected with the
@@ -42,28 +42,51 @@ operations per disc.
 from __future__ import annotations
 
 import math
+from typing import NamedTuple
 
 import numba as nb
 import numpy as np
 
 from ...core.vec3 import unit, wheel_axes
 from ...errors import InputError
-from ...road.grid import grid_height
-from .point import GEO_NX, GEO_NY, GEO_NZ, GEO_PX, GEO_PY, GEO_PZ, GEO_RHO, local_zmax
+from ...road.grid import local_zmax, road_height
+from ..registry import ContactModel, register_contact
+from ..wheel import ContactGeometry
 from .shape import (carcass_discs, disc_intersection, profile_breaks,
                     segment_area, segment_depth)
 
-#: cp layout: header, then (offset, radius, weight) per disc, then the profile breakpoints
-CP_R0, CP_NDISC, CP_STEP, CP_BREAKS, CP_NX = range(5)
-CP_HEADER = 5
 #: default sampling step [m] along sections not aligned with the grid
 DEFAULT_STEP = 0.005
 #: options the enveloping model takes (accepted and ignored here)
 _OTHER_OPTIONS = ("width_table", "n_width", "n_length")
 
 
-def volume_params(tyre, grid, discs=None, step=DEFAULT_STEP, **options) -> np.ndarray:
-    """Pack the disc set and the road's profile breakpoints for :func:`volume_contact`.
+class VolumeParams(NamedTuple):
+    """Parameters of the equivalent volume model.
+
+    ``unloaded_radius`` R0 [m]; ``step`` [m] the sampling step along road
+    sections not aligned with the grid; ``disc_offsets``, ``disc_radii``,
+    ``disc_widths`` [m] the discs across the tyre
+    (:func:`~tyrelab.tyre.contact.shape.carcass_discs`: centres along the
+    spin axis from the wheel plane, symmetric and increasing, their radii and
+    widths); ``profile_breaks`` (int) for a road that does not vary across,
+    the next kink's x node for every x node
+    (:func:`~tyrelab.tyre.contact.shape.profile_breaks`), empty when the road
+    varies across; ``road_x_nodes`` the number of x nodes of the road grid
+    the record was built for.
+    """
+
+    unloaded_radius: float
+    step: float
+    disc_offsets: np.ndarray
+    disc_radii: np.ndarray
+    disc_widths: np.ndarray
+    profile_breaks: np.ndarray
+    road_x_nodes: int
+
+
+def volume_params(tyre, grid, discs=None, step=DEFAULT_STEP, **options) -> VolumeParams:
+    """The volume model's record: the disc set and the road's profile breakpoints.
 
     Parameters
     ----------
@@ -77,6 +100,13 @@ def volume_params(tyre, grid, discs=None, step=DEFAULT_STEP, **options) -> np.nd
     step : float
         Sampling step [m] along sections that are not aligned with a grid
         axis (a wheel heading obliquely across the grid).
+    **options
+        The enveloping model's options (``width_table``, ``n_width``,
+        ``n_length``) are accepted and ignored; any other is an error.
+
+    Returns
+    -------
+    VolumeParams
     """
     unknown = set(options) - set(_OTHER_OPTIONS)
     if unknown:
@@ -86,24 +116,22 @@ def volume_params(tyre, grid, discs=None, step=DEFAULT_STEP, **options) -> np.nd
         raise InputError(f"sampling step must be positive, got {step}", field="step")
     offsets, radii, widths = carcass_discs(tyre, discs)
     breaks = profile_breaks(grid.z)
-    n = offsets.size
-    head = np.zeros(CP_HEADER)
-    head[CP_R0] = tyre.unloaded_radius
-    head[CP_NDISC] = n
-    head[CP_STEP] = step
-    head[CP_NX] = grid.z.shape[0]
-    discs_packed = np.column_stack([offsets, radii, widths]).ravel()
     if breaks is None:
-        return np.r_[head, discs_packed]
-    head[CP_BREAKS] = CP_HEADER + 3 * n
-    return np.r_[head, discs_packed, breaks]
+        breaks = np.zeros(0, np.int64)
+
+    def floats(a):
+        return np.ascontiguousarray(a, dtype=np.float64)
+
+    return VolumeParams(float(tyre.unloaded_radius), float(step), floats(offsets), floats(radii),
+                        floats(widths), np.ascontiguousarray(breaks, dtype=np.int64),
+                        int(grid.z.shape[0]))
 
 
 # --- the effective plane ---------------------------------------------------------
 
 @nb.njit(cache=True)
-def plane_contact(r0, cx, cy, cz, ax, ay, az, px, py, pz, nx, ny, nz, lateral, geo):
-    """Write deflection, contact point and normal of a wheel on a plane into ``geo``.
+def plane_contact(r0, cx, cy, cz, ax, ay, az, px, py, pz, nx, ny, nz, lateral):
+    """:class:`ContactGeometry` of a wheel on a plane.
 
     The plane passes through (px, py, pz) with unit normal n (pointing out of
     the road). As for a rigid disc (the point model), the deflection is
@@ -115,57 +143,61 @@ def plane_contact(r0, cx, cy, cz, ax, ay, az, px, py, pz, nx, ny, nz, lateral, g
     na = nx * ax + ny * ay + nz * az
     wx, wy, wz = nx - na * ax, ny - na * ay, nz - na * az  # n projected on the wheel plane
     wn = math.sqrt(wx * wx + wy * wy + wz * wz)
-    if wn < 1e-9:  # wheel lying flat on the plane
-        geo[GEO_RHO] = -1.0
-        return
+    if wn < 1e-9:  # wheel lying flat on the plane: no contact the laws describe
+        return ContactGeometry(-1.0, cx, cy, cz - r0, 0.0, 0.0, 1.0, 0.0)
     dist = (cx - px) * nx + (cy - py) * ny + (cz - pz) * nz
     q = dist / wn
     t = (dist + lateral * na) / wn  # distance along -n_w to the plane at the lateral offset
-    geo[GEO_RHO] = r0 - q
-    geo[GEO_PX] = cx + lateral * ax - t * wx / wn
-    geo[GEO_PY] = cy + lateral * ay - t * wy / wn
-    geo[GEO_PZ] = cz + lateral * az - t * wz / wn
-    geo[GEO_NX] = nx
-    geo[GEO_NY] = ny
-    geo[GEO_NZ] = nz
+    return ContactGeometry(r0 - q, cx + lateral * ax - t * wx / wn,
+                           cy + lateral * ay - t * wy / wn, cz + lateral * az - t * wz / wn,
+                           nx, ny, nz, 0.0)
 
 
 @nb.njit(cache=True)
-def no_contact(r0, cx, cy, cz, gap, geo):
+def no_contact(r0, cx, cy, cz, gap):
     """No contact: deflection ``-gap`` (<= 0), point below the centre, normal up."""
-    geo[GEO_RHO] = -gap if gap > 0.0 else 0.0
-    geo[GEO_PX] = cx
-    geo[GEO_PY] = cy
-    geo[GEO_PZ] = cz - r0
-    geo[GEO_NX] = 0.0
-    geo[GEO_NY] = 0.0
-    geo[GEO_NZ] = 1.0
+    return ContactGeometry(-gap if gap > 0.0 else 0.0, cx, cy, cz - r0, 0.0, 0.0, 1.0, 0.0)
 
 
 @nb.njit(cache=True)
-def volume_contact(cp, gp, z, zinfo, cx, cy, cz, ax, ay, az, geo):
+def volume_contact(params, road, pose):
     """Deflection, contact point and effective normal of the equivalent volume model.
 
-    Parameters as :func:`tyrelab.tyre.contact.point.point_contact`, with
-    ``cp`` from :func:`volume_params`.
+    Parameters
+    ----------
+    params : VolumeParams
+    road : RoadSurface
+    pose : WheelPose
+        Only the centre and the spin axis are used.
+
+    Returns
+    -------
+    ContactGeometry
+        Deflection ``R0`` minus the distance from the centre to the
+        effective plane in the wheel plane (<= 0: no contact), the contact
+        point on the effective plane at the volume centroid's lateral
+        offset, the effective plane's unit normal; curvature 0.
     """
-    r0 = cp[CP_R0]
-    nd = int(cp[CP_NDISC])
+    r0 = params.unloaded_radius
+    offsets = params.disc_offsets
+    radii = params.disc_radii
+    widths = params.disc_widths
+    nd = offsets.shape[0]
+    cx, cy, cz = pose.cx, pose.cy, pose.cz
+    ax, ay, az = pose.ax, pose.ay, pose.az
     fx, fy, fz, dx, dy, dz = wheel_axes(ax, ay, az)
     cosg = -dz
     if cosg < 1e-3:
-        no_contact(r0, cx, cy, cz, 1.0, geo)
-        return
-    half_width = abs(cp[CP_HEADER + 3 * (nd - 1)])
+        return no_contact(r0, cx, cy, cz, 1.0)
+    half_width = abs(offsets[nd - 1])
     reach = r0 * abs(fx) + half_width * abs(ax) + 1e-9
-    zmax = local_zmax(zinfo, cx - reach, cx + reach)
+    zmax = local_zmax(road, cx - reach, cx + reach)
     if (cz - half_width * abs(az) - zmax) * cosg >= r0:
-        no_contact(r0, cx, cy, cz, (cz - zmax) * cosg - r0, geo)
-        return
-    brk = int(cp[CP_BREAKS])
-    step = cp[CP_STEP]
-    flat = zinfo[1] == zinfo[0]  # one level plane everywhere (e.g. the trailer's other wheel)
-    lever = (cz - grid_height(gp, z, cx, cy)) / cosg
+        return no_contact(r0, cx, cy, cz, (cz - zmax) * cosg - r0)
+    breaks = params.profile_breaks
+    step = params.step
+    flat = road.zmax == road.zmin  # one level plane everywhere (e.g. the trailer's other wheel)
+    lever = (cz - road_height(road, cx, cy)) / cosg
     hx = dx * lever
     hy = dy * lever
     sw = 0.0  # sums over discs, weighted by intersected volume
@@ -176,9 +208,9 @@ def volume_contact(cp, gp, z, zinfo, cx, cy, cz, ax, ay, az, geo):
     sus = 0.0
     suq = 0.0
     for k in range(nd):
-        e = cp[CP_HEADER + 3 * k]
-        r = cp[CP_HEADER + 3 * k + 1]
-        width = cp[CP_HEADER + 3 * k + 2]
+        e = offsets[k]
+        r = radii[k]
+        width = widths[k]
         zk = cz + e * az
         q_top = (zk - zmax) / cosg
         if q_top >= r:
@@ -190,7 +222,7 @@ def volume_contact(cp, gp, z, zinfo, cx, cy, cz, ax, ay, az, geo):
             uq_k = 1.0
         else:
             half = r if q_top <= 0.0 else math.sqrt(r * r - q_top * q_top)
-            area, ms, mq = disc_intersection(cp, brk, step, gp, z, r, cx + e * ax + hx,
+            area, ms, mq = disc_intersection(road, breaks, step, r, cx + e * ax + hx,
                                              cy + e * ay + hy, zk, fx, fy, cosg, -half, half)
             mn = math.sqrt(ms * ms + mq * mq)
             if not (area > 1e-14 * r * r) or mn <= 0.0:
@@ -207,8 +239,7 @@ def volume_contact(cp, gp, z, zinfo, cx, cy, cz, ax, ay, az, geo):
         sus += wk * us_k
         suq += wk * uq_k
     if sw <= 0.0:
-        no_contact(r0, cx, cy, cz, 0.0, geo)
-        return
+        return no_contact(r0, cx, cy, cz, 0.0)
     # weighted least-squares line chord = q0 + g * e across the discs
     den = sw * see - se * se
     g = 0.0
@@ -221,5 +252,58 @@ def volume_contact(cp, gp, z, zinfo, cx, cy, cz, ax, ay, az, geo):
     uq /= un
     ux, uy, uz = us * fx + uq * dx, us * fy + uq * dy, us * fz + uq * dz  # centre -> road
     nx, ny, nz = unit(g * ax - ux, g * ay - uy, g * az - uz)
-    plane_contact(r0, cx, cy, cz, ax, ay, az, cx + q0 * ux, cy + q0 * uy, cz + q0 * uz,
-                  nx, ny, nz, se / sw, geo)
+    return plane_contact(r0, cx, cy, cz, ax, ay, az, cx + q0 * ux, cy + q0 * uy, cz + q0 * uz,
+                         nx, ny, nz, se / sw)
+
+
+def volume_geometry(tyre, road, x, y=0.0, z=None, axis=(0.0, 1.0, 0.0), discs=None):
+    """Contact geometry of the 3D equivalent volume model (thesis 2.3.2, 4.3).
+
+    The tyre is a row of discs across its width (its ``[SHAPE]`` carcass
+    table); each disc is intersected with the road's section in its plane,
+    and the discs' intersected areas, weighted by their widths, give an
+    effective road plane: the deflection is ``R0`` minus the distance from
+    the wheel centre to that plane in the wheel plane, the normal is the
+    plane's (tilted back at a step edge, sideways on an oblique cleat or a
+    banked road), the contact point lies on it at the intersected volume's
+    centroid across the width.
+
+    Parameters
+    ----------
+    tyre : Tyre
+        Radius, width and carcass shape (from a ``.tir`` or
+        :func:`tyrelab.tyre.library.load_tyre`).
+    road : str, Road or RoadGrid
+        A road name (:func:`tyrelab.road.spec.road_from_spec`), road or grid.
+    x, y : array_like
+        Wheel-centre positions [m] (broadcast).
+    z : array_like, optional
+        Wheel-centre heights [m]; default: the unloaded radius above the
+        road straight below the centre.
+    axis : 3 floats
+        Unit spin axis (default level, heading +x).
+    discs : int, optional
+        Discs per half width (default: from the shape table, see
+        :func:`~tyrelab.tyre.contact.shape.carcass_discs`).
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per position: ``x, y, z`` and the
+        :class:`~tyrelab.tyre.wheel.ContactGeometry` fields: ``deflection``
+        [m] (<= 0: no contact), ``px, py, pz`` the contact point [m], ``nx,
+        ny, nz`` the effective plane's unit normal, ``curvature`` (0 for
+        this model).
+
+    See Also
+    --------
+    tyrelab.tyre.model.contact_geometry_table
+    tyrelab.tyre.contact.point.point_geometry
+    """
+    from ..model import TyreModel, contact_geometry_table
+    options = {} if discs is None else {"discs": discs}
+    return contact_geometry_table(TyreModel(tyre, "volume", options=options), road, x, y, z, axis)
+
+
+register_contact(ContactModel("volume", VolumeParams, volume_params, geometry=volume_contact,
+                              summary="3D equivalent volume contact, thesis 2.3.2"))

@@ -34,22 +34,30 @@ Project Chrono's ``ChPac89Tire`` (which reads the same coefficients).
 from __future__ import annotations
 
 import math
+from typing import NamedTuple
 
 import numba as nb
 import numpy as np
 
 from ...errors import InputError
+from ..registry import HandlingModel, register_handling
+from .slip import DKAPPA, slip
 
 #: property-file sections and key counts of the three curves (ADAMS PAC89 layout)
 SECTIONS = (("LATERAL_COEFFICIENTS", "A", 14), ("LONGITUDINAL_COEFFICIENTS", "B", 11),
             ("ALIGNING_COEFFICIENTS", "C", 18))
-#: offsets of A0, B0, C0 in the packed parameter array
-IA, IB, IC = 0, 14, 25
-N_PARAMS = 43
 
 
-def pac89_params(tyre) -> np.ndarray:
-    """Coefficients ``[A0..A13, B0..B10, C0..C17]`` from the tyre's property file.
+class Pac89Params(NamedTuple):
+    """PAC89 coefficients: ``lateral`` A0-A13, ``longitudinal`` B0-B10, ``aligning`` C0-C17."""
+
+    lateral: np.ndarray
+    longitudinal: np.ndarray
+    aligning: np.ndarray
+
+
+def pac89_params(tyre) -> Pac89Params:
+    """The three coefficient sets from the tyre's property file.
 
     Parameters
     ----------
@@ -64,9 +72,9 @@ def pac89_params(tyre) -> np.ndarray:
         Naming the file, the section and the first missing key.
     """
     tir = tyre.tir
-    out = np.zeros(N_PARAMS)
-    k = 0
+    sets = []
     for section, letter, count in SECTIONS:
+        out = np.zeros(count)
         for i in range(count):
             key = f"{letter}{i}"
             value = tir.get(section, key)
@@ -74,9 +82,9 @@ def pac89_params(tyre) -> np.ndarray:
                 raise InputError(f"no PAC89 coefficient {key} in section [{section}]; the "
                                  "pac89 handling model needs A0-A13, B0-B10 and C0-C17",
                                  source=tir.source, field=key)
-            out[k] = tir.number(section, key)
-            k += 1
-    return out
+            out[i] = tir.number(section, key)
+        sets.append(out)
+    return Pac89Params(*sets)
 
 
 @nb.njit(cache=True)
@@ -96,9 +104,8 @@ def _stiffness_factor(bcd, c, d):
 
 
 @nb.njit(cache=True)
-def pac89_longitudinal(hp, fz_kn, kappa_pct):
-    """Fx [N] in the PAC89 axes from Fz [kN] and kappa [%] (coefficients B0-B10)."""
-    b = hp[IB:IB + 11]
+def pac89_longitudinal(b, fz_kn, kappa_pct):
+    """Fx [N] in the PAC89 axes from Fz [kN] and kappa [%] (coefficients ``b`` = B0-B10)."""
     c = b[0]
     d = max((b[1] * fz_kn + b[2]) * fz_kn, 0.0)
     bcd = (b[3] * fz_kn * fz_kn + b[4] * fz_kn) * math.exp(-b[5] * fz_kn)
@@ -108,9 +115,8 @@ def pac89_longitudinal(hp, fz_kn, kappa_pct):
 
 
 @nb.njit(cache=True)
-def pac89_lateral(hp, fz_kn, alpha_deg, gamma_deg):
-    """Fy [N] in the PAC89 axes from Fz [kN], alpha and gamma [deg] (A0-A13)."""
-    a = hp[IA:IA + 14]
+def pac89_lateral(a, fz_kn, alpha_deg, gamma_deg):
+    """Fy [N] in the PAC89 axes from Fz [kN], alpha and gamma [deg] (``a`` = A0-A13)."""
     c = a[0]
     d = max((a[1] * fz_kn + a[2]) * fz_kn, 0.0)
     bcd = 0.0
@@ -123,9 +129,8 @@ def pac89_lateral(hp, fz_kn, alpha_deg, gamma_deg):
 
 
 @nb.njit(cache=True)
-def pac89_aligning(hp, fz_kn, alpha_deg, gamma_deg):
-    """Mz [N m] in the PAC89 axes from Fz [kN], alpha and gamma [deg] (C0-C17)."""
-    q = hp[IC:IC + 18]
+def pac89_aligning(q, fz_kn, alpha_deg, gamma_deg):
+    """Mz [N m] in the PAC89 axes from Fz [kN], alpha and gamma [deg] (``q`` = C0-C17)."""
     c = q[0]
     d = q[1] * fz_kn * fz_kn + q[2] * fz_kn
     bcd = ((q[3] * fz_kn * fz_kn + q[4] * fz_kn) * (1.0 - q[6] * abs(gamma_deg))
@@ -142,7 +147,7 @@ def pac89_forces(hp, fz, kappa, alpha, gamma):
 
     Parameters
     ----------
-    hp : float64 array
+    hp : Pac89Params
         :func:`pac89_params`.
     fz : float
         Normal load [N] (no force at fz <= 0).
@@ -166,9 +171,25 @@ def pac89_forces(hp, fz, kappa, alpha, gamma):
     kappa_pct = 100.0 * min(1.0, max(-1.0, kappa))
     alpha_deg = min(89.5, max(-89.5, math.degrees(alpha)))
     gamma_deg = math.degrees(gamma)
-    fx = pac89_longitudinal(hp, fz_kn, kappa_pct)
-    fy = pac89_lateral(hp, fz_kn, alpha_deg, gamma_deg)
-    mz = pac89_aligning(hp, fz_kn, alpha_deg, gamma_deg)
+    fx = pac89_longitudinal(hp.longitudinal, fz_kn, kappa_pct)
+    fy = pac89_lateral(hp.lateral, fz_kn, alpha_deg, gamma_deg)
+    mz = pac89_aligning(hp.aligning, fz_kn, alpha_deg, gamma_deg)
     if not (math.isfinite(fx) and math.isfinite(fy) and math.isfinite(mz)):
         return 0.0, 0.0, 0.0
     return fx, -fy, -mz
+
+
+@nb.njit(cache=True)
+def pac89_wheel_forces(hp, fz, v_long, v_slip_x, v_slip_y, gamma):
+    """PAC89 from the contact point's slip velocities, with the slip stiffness.
+
+    Returns ``(FXW, FYW, MZW, kappa, alpha, dFXW/dkappa)`` (forward difference).
+    """
+    kappa, alpha = slip(v_long, v_slip_x, v_slip_y)
+    fx, fy, mz = pac89_forces(hp, fz, kappa, alpha, gamma)
+    fx2, _, _ = pac89_forces(hp, fz, kappa + DKAPPA, alpha, gamma)
+    return fx, fy, mz, kappa, alpha, (fx2 - fx) / DKAPPA
+
+
+register_handling(HandlingModel("pac89", Pac89Params, pac89_params, pac89_wheel_forces,
+                                "Pacejka '89 (Bakker et al.), pure slip"))

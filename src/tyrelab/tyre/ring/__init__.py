@@ -1,8 +1,11 @@
 """The flexible ring tyre model (FTire class): belt segments, tread blocks.
 
-See ``docs/ring.md`` for the equations. Public entry points:
-:func:`~.model.ring_params`, :func:`~.model.ring_initial_state`,
-:func:`~.kernel.ring_wheel_force`, :func:`~.static.ring_static_press`,
+See ``docs/ring.md`` for the equations. Public entry points: the records
+:class:`~.records.RingParams` and :class:`~.records.RingState`,
+:func:`~.model.ring_params`, :func:`~.model.ring_initial_state`, the
+compiled step :func:`~.kernel.ring_step` (behind
+:func:`tyrelab.tyre.wheel.wheel_step`; the models "ring" and "ring-tp"
+register in :mod:`.model`), :func:`~.static.ring_static_press`,
 :func:`~.static.ring_footprint`, :func:`~.modal.ring_modal`,
 :class:`~.parameters.RingParameters`.
 """

@@ -37,31 +37,30 @@ import math
 
 import numba as nb
 
-from .layout import (CP_CB, CP_CEA, CP_CR, CP_CT, CP_CY, CP_DTH, CP_EA, CP_EI, CP_EIO, CP_GJ,
-                     CP_KB, CP_KR, CP_KT, CP_KY, CP_L0, CP_N, CP_OFF_COS, CP_OFF_SIN, CP_PB,
-                     CP_RB, CP_T0, S_B, S_P1, S_P2, S_V1, S_V2, S_VB, S_VY, S_Y, TS_HEADER)
-
 
 @nb.njit(cache=True)
-def foundation_forces(cp, ts, f1, f2, fy, fb):
-    """Rim-to-belt springs and dampers; sets (not adds) the force arrays.
+def foundation_forces(params, state):
+    """Rim-to-belt springs and dampers; sets (not adds) the force arrays of ``state``.
 
     Returns nothing; the rim receives the opposite forces (see the kernel).
     """
-    n = int(cp[CP_N])
-    o = TS_HEADER
-    kr, kt, ky, kb = cp[CP_KR], cp[CP_KT], cp[CP_KY], cp[CP_KB]
-    cr, ct, cy, cb = cp[CP_CR], cp[CP_CT], cp[CP_CY], cp[CP_CB]
-    rb = cp[CP_RB]
-    oc = int(cp[CP_OFF_COS])
-    os_ = int(cp[CP_OFF_SIN])
+    n = params.n_segments
+    kr, kt, ky, kb = (params.radial_stiffness, params.tangential_stiffness,
+                      params.lateral_stiffness, params.torsion_stiffness)
+    cr, ct, cy, cb = (params.radial_damping, params.tangential_damping, params.lateral_damping,
+                      params.torsion_damping)
+    rb = params.belt_radius
+    cos_t = params.cos_theta
+    sin_t = params.sin_theta
+    p1s, p2s, v1s, v2s = state.p1, state.p2, state.v1, state.v2
+    f1, f2, fy, fb = state.f1, state.f2, state.fy, state.fb
     for i in range(n):
-        c = cp[oc + i]
-        s = cp[os_ + i]
-        p1 = ts[o + S_P1 * n + i]
-        p2 = ts[o + S_P2 * n + i]
-        v1 = ts[o + S_V1 * n + i]
-        v2 = ts[o + S_V2 * n + i]
+        c = cos_t[i]
+        s = sin_t[i]
+        p1 = p1s[i]
+        p2 = p2s[i]
+        v1 = v1s[i]
+        v2 = v2s[i]
         ur = p1 * c + p2 * s - rb
         ut = -p1 * s + p2 * c
         vr = v1 * c + v2 * s
@@ -70,22 +69,24 @@ def foundation_forces(cp, ts, f1, f2, fy, fb):
         ft = -kt * ut - ct * vt
         f1[i] = fr * c - ft * s
         f2[i] = fr * s + ft * c
-        fy[i] = -ky * ts[o + S_Y * n + i] - cy * ts[o + S_VY * n + i]
-        fb[i] = -kb * ts[o + S_B * n + i] - cb * ts[o + S_VB * n + i]
+        fy[i] = -ky * state.y[i] - cy * state.vy[i]
+        fb[i] = -kb * state.beta[i] - cb * state.vbeta[i]
 
 
 @nb.njit(cache=True)
-def membrane_forces(cp, ts, f1, f2):
+def membrane_forces(params, state):
     """Add chord tension (pre-tension + extension + its damping) and pressure."""
-    n = int(cp[CP_N])
-    o = TS_HEADER
-    t0, ea, cea, l0, pb = cp[CP_T0], cp[CP_EA], cp[CP_CEA], cp[CP_L0], cp[CP_PB]
+    n = params.n_segments
+    t0, ea, cea, l0, pb = (params.pretension, params.extension_stiffness,
+                           params.extension_damping, params.chord_length, params.pressure_load)
+    p1, p2, v1, v2 = state.p1, state.p2, state.v1, state.v2
+    f1, f2 = state.f1, state.f2
     for i in range(n):
         j = i + 1 if i + 1 < n else 0
-        d1 = ts[o + S_P1 * n + j] - ts[o + S_P1 * n + i]
-        d2 = ts[o + S_P2 * n + j] - ts[o + S_P2 * n + i]
-        w1 = ts[o + S_V1 * n + j] - ts[o + S_V1 * n + i]
-        w2 = ts[o + S_V2 * n + j] - ts[o + S_V2 * n + i]
+        d1 = p1[j] - p1[i]
+        d2 = p2[j] - p2[i]
+        w1 = v1[j] - v1[i]
+        w2 = v2[j] - v2[i]
         length = math.sqrt(d1 * d1 + d2 * d2)
         rate = (d1 * w1 + d2 * w2) / length
         t = t0 + ea * (length - l0) / l0 + cea * rate / l0
@@ -103,21 +104,22 @@ def membrane_forces(cp, ts, f1, f2):
 
 
 @nb.njit(cache=True)
-def bending_forces(cp, ts, f1, f2):
+def bending_forces(params, state):
     """Add the in-plane bending springs ``M = EI/L0 (phi_i - dth)`` at every node."""
-    n = int(cp[CP_N])
-    o = TS_HEADER
-    k = cp[CP_EI] / cp[CP_L0]
+    n = params.n_segments
+    k = params.bending_stiffness / params.chord_length
     if k == 0.0:
         return
-    dth = cp[CP_DTH]
+    dth = params.segment_angle
+    p1, p2 = state.p1, state.p2
+    f1, f2 = state.f1, state.f2
     for i in range(n):
         h = i - 1 if i > 0 else n - 1
         j = i + 1 if i + 1 < n else 0
-        a1 = ts[o + S_P1 * n + i] - ts[o + S_P1 * n + h]
-        a2 = ts[o + S_P2 * n + i] - ts[o + S_P2 * n + h]
-        b1 = ts[o + S_P1 * n + j] - ts[o + S_P1 * n + i]
-        b2 = ts[o + S_P2 * n + j] - ts[o + S_P2 * n + i]
+        a1 = p1[i] - p1[h]
+        a2 = p2[i] - p2[h]
+        b1 = p1[j] - p1[i]
+        b2 = p2[j] - p2[i]
         phi = math.atan2(a1 * b2 - a2 * b1, a1 * b1 + a2 * b2)
         m = -k * (phi - dth)
         la = a1 * a1 + a2 * a2
@@ -136,23 +138,23 @@ def bending_forces(cp, ts, f1, f2):
 
 
 @nb.njit(cache=True)
-def out_of_plane_forces(cp, ts, fy, fb):
+def out_of_plane_forces(params, state):
     """Add lateral bending, torsion and pre-tension string forces (linear)."""
-    n = int(cp[CP_N])
-    o = TS_HEADER
-    rb = cp[CP_RB]
-    dth = cp[CP_DTH]
-    l0 = cp[CP_L0]
-    eio = cp[CP_EIO]
-    gj = cp[CP_GJ]
-    ks = cp[CP_T0] / l0
-    yo = o + S_Y * n
-    bo = o + S_B * n
+    n = params.n_segments
+    rb = params.belt_radius
+    dth = params.segment_angle
+    l0 = params.chord_length
+    eio = params.lateral_bending_stiffness
+    gj = params.belt_torsion_stiffness
+    ks = params.pretension / l0
+    y = state.y
+    b = state.beta
+    fy, fb = state.fy, state.fb
     for i in range(n):
         h = i - 1 if i > 0 else n - 1
         j = i + 1 if i + 1 < n else 0
         # bending at node i: kappa = (y'' + Rb beta) / Rb^2
-        kap = ((ts[yo + j] - 2.0 * ts[yo + i] + ts[yo + h]) / (dth * dth) + rb * ts[bo + i]) / (rb * rb)
+        kap = ((y[j] - 2.0 * y[i] + y[h]) / (dth * dth) + rb * b[i]) / (rb * rb)
         m = eio * kap * l0
         dk_dy = 1.0 / (dth * dth * rb * rb)
         fy[j] -= m * dk_dy
@@ -160,70 +162,71 @@ def out_of_plane_forces(cp, ts, fy, fb):
         fy[i] += 2.0 * m * dk_dy
         fb[i] -= m / rb
         # torsion between i and j: tau = ((b_j - b_i) - (y_j - y_i)/Rb) / (Rb dth)
-        tau = ((ts[bo + j] - ts[bo + i]) - (ts[yo + j] - ts[yo + i]) / rb) / (rb * dth)
+        tau = ((b[j] - b[i]) - (y[j] - y[i]) / rb) / (rb * dth)
         q = gj * tau * l0 / (rb * dth)
         fb[j] -= q
         fb[i] += q
         fy[j] += q / rb
         fy[i] -= q / rb
         # string stiffness of the pre-tension
-        s = ks * (ts[yo + j] - ts[yo + i])
+        s = ks * (y[j] - y[i])
         fy[i] += s
         fy[j] -= s
 
 
 @nb.njit(cache=True)
-def belt_forces(cp, ts, f1, f2, fy, fb):
-    """All structural forces on the segments (foundation included)."""
-    foundation_forces(cp, ts, f1, f2, fy, fb)
-    membrane_forces(cp, ts, f1, f2)
-    bending_forces(cp, ts, f1, f2)
-    out_of_plane_forces(cp, ts, fy, fb)
+def belt_forces(params, state):
+    """All structural forces on the segments (foundation included), into ``state.f1 .. fb``."""
+    foundation_forces(params, state)
+    membrane_forces(params, state)
+    bending_forces(params, state)
+    out_of_plane_forces(params, state)
 
 
 @nb.njit(cache=True)
-def belt_potential(cp, ts):
+def belt_potential(params, state):
     """Elastic + pressure potential energy of the belt [J] (dampers excluded).
 
     ``V = sum 1/2 k u^2 (foundation) + sum [T0 (L - L0) + EA (L - L0)^2 / (2 L0)]
     - p b A + sum EI/(2 L0) (phi - dth)^2 + out-of-plane terms``, A the
     polygon area. Its negative gradient is :func:`belt_forces` without dampers.
     """
-    n = int(cp[CP_N])
-    o = TS_HEADER
-    rb = cp[CP_RB]
-    dth = cp[CP_DTH]
-    l0 = cp[CP_L0]
-    oc = int(cp[CP_OFF_COS])
-    os_ = int(cp[CP_OFF_SIN])
+    n = params.n_segments
+    rb = params.belt_radius
+    dth = params.segment_angle
+    l0 = params.chord_length
     e = 0.0
     area = 0.0
+    ps1, ps2, ys, bs = state.p1, state.p2, state.y, state.beta
     for i in range(n):
         h = i - 1 if i > 0 else n - 1
         j = i + 1 if i + 1 < n else 0
-        c = cp[oc + i]
-        s = cp[os_ + i]
-        p1 = ts[o + S_P1 * n + i]
-        p2 = ts[o + S_P2 * n + i]
+        c = params.cos_theta[i]
+        s = params.sin_theta[i]
+        p1 = ps1[i]
+        p2 = ps2[i]
         ur = p1 * c + p2 * s - rb
         ut = -p1 * s + p2 * c
-        y = ts[o + S_Y * n + i]
-        b = ts[o + S_B * n + i]
-        e += 0.5 * (cp[CP_KR] * ur * ur + cp[CP_KT] * ut * ut + cp[CP_KY] * y * y + cp[CP_KB] * b * b)
-        q1 = ts[o + S_P1 * n + j]
-        q2 = ts[o + S_P2 * n + j]
+        y = ys[i]
+        b = bs[i]
+        e += 0.5 * (params.radial_stiffness * ur * ur + params.tangential_stiffness * ut * ut
+                    + params.lateral_stiffness * y * y + params.torsion_stiffness * b * b)
+        q1 = ps1[j]
+        q2 = ps2[j]
         length = math.sqrt((q1 - p1) ** 2 + (q2 - p2) ** 2)
-        e += cp[CP_T0] * (length - l0) + 0.5 * cp[CP_EA] * (length - l0) ** 2 / l0
+        e += params.pretension * (length - l0) + 0.5 * params.extension_stiffness * (
+            length - l0) ** 2 / l0
         area += 0.5 * (p1 * q2 - p2 * q1)
-        a1 = p1 - ts[o + S_P1 * n + h]
-        a2 = p2 - ts[o + S_P2 * n + h]
+        a1 = p1 - ps1[h]
+        a2 = p2 - ps2[h]
         phi = math.atan2(a1 * (q2 - p2) - a2 * (q1 - p1), a1 * (q1 - p1) + a2 * (q2 - p2))
-        e += 0.5 * cp[CP_EI] / l0 * (phi - dth) ** 2
-        yh = ts[o + S_Y * n + h]
-        yj = ts[o + S_Y * n + j]
-        bj = ts[o + S_B * n + j]
+        e += 0.5 * params.bending_stiffness / l0 * (phi - dth) ** 2
+        yh = ys[h]
+        yj = ys[j]
+        bj = bs[j]
         kap = ((yj - 2.0 * y + yh) / (dth * dth) + rb * b) / (rb * rb)
         tau = ((bj - b) - (yj - y) / rb) / (rb * dth)
-        e += 0.5 * (cp[CP_EIO] * kap * kap + cp[CP_GJ] * tau * tau) * l0
-        e += 0.5 * cp[CP_T0] / l0 * (yj - y) ** 2
-    return e - cp[CP_PB] * area
+        e += 0.5 * (params.lateral_bending_stiffness * kap * kap
+                    + params.belt_torsion_stiffness * tau * tau) * l0
+        e += 0.5 * params.pretension / l0 * (yj - y) ** 2
+    return e - params.pressure_load * area

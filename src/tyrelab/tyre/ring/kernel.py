@@ -1,10 +1,10 @@
 """Compiled time step of the flexible ring tyre: belt dynamics and hub loads.
 
-``ring_wheel_force(model, cp, ts, gp, z, zinfo, c, a, v, omega, dt, out)``
-advances the belt state ``ts`` (relative to the rim, see
-:mod:`tyrelab.tyre.ring.layout`) by ``dt`` while the rim centre moves with
-velocity ``v`` and spins at ``omega`` about ``a``, and writes the loads on
-the rim into ``out`` (layout of :mod:`tyrelab.tyre.kernel`).
+:func:`ring_step` (the ring's step behind :func:`tyrelab.tyre.wheel.wheel_step`)
+advances the belt state ``wheel.state`` (a :class:`~.records.RingState`,
+relative to the rim) by ``dt`` while the rim centre moves with velocity
+``pose.v`` and spins at ``pose.omega`` about ``pose.a``, and returns the
+loads on the rim as :class:`~tyrelab.tyre.wheel.WheelLoads`.
 
 Equations of motion of segment i in the rim-fixed axes that spin with the
 rim (rotating frame, angular velocity ``Omega = omega a``)::
@@ -32,34 +32,38 @@ import math
 
 import numba as nb
 
-from ...road.grid import grid_height
+from ...road.grid import road_height
+from ..wheel import WheelLoads, WheelPose
 from .belt import bending_forces, foundation_forces, membrane_forces, out_of_plane_forces
-from .layout import (CP_J, CP_M, CP_N, CP_NB, CP_OFF_COS, CP_OFF_SIN, CP_R0, CP_RELAX,
-                     CP_DTMAX, N_SCRATCH, N_SEG_ARRAYS, S_B, S_P1, S_P2, S_V1, S_V2, S_VB,
-                     S_VY, S_Y, TS_HEADER, TS_INIT, TS_OMEGA, TS_PSI, TS_TIME, TS_VX, TS_VY,
-                     TS_VZ)
+from .records import KIN_OMEGA, KIN_PSI, KIN_TIME, KIN_VX, KIN_VY, KIN_VZ
 from .tread import (ACC_DEFL, ACC_FX, ACC_FY, ACC_FZ, ACC_NX, ACC_NY, ACC_NZ, ACC_PX, ACC_PY,
-                    ACC_PZ, ACC_SIZE, ACC_W, clear_segment, segment_can_touch, segment_contact)
+                    ACC_PZ, ACC_W, SegmentFrame, SegmentMotion, clear_segment, segment_can_touch,
+                    segment_contact)
 
 
 @nb.njit(cache=True)
-def ring_substep(cp, ts, gp, z, zinfo, cx, cy, cz, ax, ay, az, vx, vy, vz, omega, arx, ary,
-                 arz, domega, h, rim, acc, pressure_out):
-    """One internal step of length h; adds the rim loads (world) into ``rim[0:6]``."""
-    n = int(cp[CP_N])
-    nbk = int(cp[CP_NB])
-    o = TS_HEADER
-    m = cp[CP_M]
-    jt = cp[CP_J]
-    so = TS_HEADER + N_SEG_ARRAYS * n
-    o1 = so
-    o2 = so + n * nbk
-    fo = so + 2 * n * nbk
-    f1 = ts[fo:fo + n]
-    f2 = ts[fo + n:fo + 2 * n]
-    fy = ts[fo + 2 * n:fo + 3 * n]
-    fb = ts[fo + 3 * n:fo + 4 * n]
-    blk = ts[fo + N_SCRATCH * n + ACC_SIZE:fo + N_SCRATCH * n + ACC_SIZE + 4]
+def ring_substep(params, state, road, pose, arx, ary, arz, domega, h):
+    """One internal step of length h at ``pose`` (centre at this step's start).
+
+    ``ar`` the rim's acceleration [m/s^2], ``domega`` its spin acceleration
+    [rad/s^2]. Returns the loads on the rim ``(Fx, Fy, Fz, Mx, My, Mz)``
+    (world, moment about the centre) at the start of the step.
+    """
+    n = params.n_segments
+    m = params.segment_mass
+    jt = params.segment_twist_inertia
+    cx, cy, cz = pose.cx, pose.cy, pose.cz
+    ax, ay, az = pose.ax, pose.ay, pose.az
+    vx, vy, vz = pose.vx, pose.vy, pose.vz
+    omega = pose.omega
+    p1s, p2s, v1s, v2s = state.p1, state.p2, state.v1, state.v2
+    ys, vys, bs, vbs = state.y, state.vy, state.beta, state.vbeta
+    f1, f2, fy, fb = state.f1, state.f2, state.fy, state.fb
+    acc = state.patch
+    kin = state.kinematics
+    in_reach = state.in_reach
+    cos_t = params.cos_theta
+    sin_t = params.sin_theta
     # rotating axes: E1 = cos(psi) f - sin(psi) up, E2 = sin(psi) f + cos(psi) up,
     # f = a x e_z (forward), up = f x a; a x E1 = -E2, a x E2 = E1
     fl = math.sqrt(ay * ay + ax * ax)
@@ -69,7 +73,7 @@ def ring_substep(cp, ts, gp, z, zinfo, cx, cy, cz, ax, ay, az, vx, vy, vz, omega
     upx = fwy * az - fwz * ay
     upy = fwz * ax - fwx * az
     upz = fwx * ay - fwy * ax
-    psi = ts[TS_PSI]
+    psi = kin[KIN_PSI]
     cps = math.cos(psi)
     sps = math.sin(psi)
     e1x = cps * fwx - sps * upx
@@ -79,9 +83,7 @@ def ring_substep(cp, ts, gp, z, zinfo, cx, cy, cz, ax, ay, az, vx, vy, vz, omega
     e2y = sps * fwy + cps * upy
     e2z = sps * fwz + cps * upz
     # foundation: its reaction is the load on the rim
-    foundation_forces(cp, ts, f1, f2, fy, fb)
-    oc = int(cp[CP_OFF_COS])
-    os_ = int(cp[CP_OFF_SIN])
+    foundation_forces(params, state)
     r1 = 0.0
     r2 = 0.0
     ry = 0.0
@@ -89,8 +91,8 @@ def ring_substep(cp, ts, gp, z, zinfo, cx, cy, cz, ax, ay, az, vx, vy, vz, omega
     m1 = 0.0
     m2 = 0.0
     for i in range(n):
-        p1 = ts[o + S_P1 * n + i]
-        p2 = ts[o + S_P2 * n + i]
+        p1 = p1s[i]
+        p2 = p2s[i]
         g1 = -f1[i]
         g2 = -f2[i]
         gy = -fy[i]
@@ -102,45 +104,48 @@ def ring_substep(cp, ts, gp, z, zinfo, cx, cy, cz, ax, ay, az, vx, vy, vz, omega
         ma -= p1 * g2 - p2 * g1
         m1 -= gy * p2
         m2 += gy * p1
-        m1 += fb[i] * cp[os_ + i]
-        m2 -= fb[i] * cp[oc + i]
-    rim[0] += r1 * e1x + r2 * e2x + ry * ax
-    rim[1] += r1 * e1y + r2 * e2y + ry * ay
-    rim[2] += r1 * e1z + r2 * e2z + ry * az
-    rim[3] += m1 * e1x + m2 * e2x + ma * ax
-    rim[4] += m1 * e1y + m2 * e2y + ma * ay
-    rim[5] += m1 * e1z + m2 * e2z + ma * az
-    membrane_forces(cp, ts, f1, f2)
-    bending_forces(cp, ts, f1, f2)
-    out_of_plane_forces(cp, ts, fy, fb)
+        m1 += fb[i] * sin_t[i]
+        m2 -= fb[i] * cos_t[i]
+    rim_fx = r1 * e1x + r2 * e2x + ry * ax
+    rim_fy = r1 * e1y + r2 * e2y + ry * ay
+    rim_fz = r1 * e1z + r2 * e2z + ry * az
+    rim_mx = m1 * e1x + m2 * e2x + ma * ax
+    rim_my = m1 * e1y + m2 * e2y + ma * ay
+    rim_mz = m1 * e1z + m2 * e2z + ma * az
+    membrane_forces(params, state)
+    bending_forces(params, state)
+    out_of_plane_forces(params, state)
     # inertial (rotating-frame) forces: centrifugal, rim acceleration, spin acceleration
     a1 = arx * e1x + ary * e1y + arz * e1z
     a2 = arx * e2x + ary * e2y + arz * e2z
     aa = arx * ax + ary * ay + arz * az
     w2 = omega * omega
     for i in range(n):
-        p1 = ts[o + S_P1 * n + i]
-        p2 = ts[o + S_P2 * n + i]
+        p1 = p1s[i]
+        p2 = p2s[i]
         f1[i] += m * (w2 * p1 - a1 - domega * p2)
         f2[i] += m * (w2 * p2 - a2 + domega * p1)
         fy[i] -= m * aa
     # tread contact
     acc[ACC_DEFL] = -1.0
     for i in range(n):
-        p1 = ts[o + S_P1 * n + i]
-        p2 = ts[o + S_P2 * n + i]
-        yi = ts[o + S_Y * n + i]
-        beta = ts[o + S_B * n + i]
+        p1 = p1s[i]
+        p2 = p2s[i]
+        yi = ys[i]
+        beta = bs[i]
         px = cx + p1 * e1x + p2 * e2x + yi * ax
         py = cy + p1 * e1y + p2 * e2y + yi * ay
         pz = cz + p1 * e1z + p2 * e2z + yi * az
-        if not segment_can_touch(cp, zinfo, px, py, pz, az, beta):
-            clear_segment(cp, ts, o1, o2, i, pressure_out)
+        if not segment_can_touch(params, road, px, py, pz, az, beta):
+            if in_reach[i]:  # else its blocks are clear already
+                clear_segment(params, state, i)
+                in_reach[i] = False
             continue
+        in_reach[i] = True
         hh = i - 1 if i > 0 else n - 1
         j = i + 1 if i + 1 < n else 0
-        d1 = ts[o + S_P1 * n + j] - ts[o + S_P1 * n + hh]
-        d2 = ts[o + S_P2 * n + j] - ts[o + S_P2 * n + hh]
+        d1 = p1s[j] - p1s[hh]
+        d2 = p2s[j] - p2s[hh]
         dl = math.sqrt(d1 * d1 + d2 * d2)
         n1 = d2 / dl
         n2 = -d1 / dl
@@ -150,10 +155,10 @@ def ring_substep(cp, ts, gp, z, zinfo, cx, cy, cz, ax, ay, az, vx, vy, vz, omega
         tx = -n2 * e1x + n1 * e2x
         ty = -n2 * e1y + n1 * e2y
         tz = -n2 * e1z + n1 * e2z
-        v1 = ts[o + S_V1 * n + i]
-        v2 = ts[o + S_V2 * n + i]
-        vyy = ts[o + S_VY * n + i]
-        vb = ts[o + S_VB * n + i]
+        v1 = v1s[i]
+        v2 = v2s[i]
+        vyy = vys[i]
+        vb = vbs[i]
         # absolute velocity of the segment centre: v + omega a x p + p'
         q1 = v1 + omega * p2
         q2 = v2 - omega * p1
@@ -164,115 +169,130 @@ def ring_substep(cp, ts, gp, z, zinfo, cx, cy, cz, ax, ay, az, vx, vy, vz, omega
         ux = omega * (ay * tz - az * ty)
         uy = omega * (az * tx - ax * tz)
         uz = omega * (ax * ty - ay * tx)
-        segment_contact(cp, gp, z, zinfo, i, px, py, pz, nx, ny, nz, tx, ty, tz, ax, ay, az, beta,
-                        ubx, uby, ubz, ux, uy, uz, -vb * nx, -vb * ny, -vb * nz,
-                        fwx, fwy, fwz, cx, cy, cz, ts, o1, o2, h, acc, blk, pressure_out)
-        f1[i] += blk[0] * e1x + blk[1] * e1y + blk[2] * e1z
-        f2[i] += blk[0] * e2x + blk[1] * e2y + blk[2] * e2z
-        fy[i] += blk[0] * ax + blk[1] * ay + blk[2] * az
-        fb[i] += blk[3]
+        bfx, bfy, bfz, btw = segment_contact(
+            params, road, state, i, SegmentFrame(px, py, pz, nx, ny, nz, tx, ty, tz, beta),
+            SegmentMotion(ubx, uby, ubz, ux, uy, uz, -vb * nx, -vb * ny, -vb * nz),
+            pose, fwx, fwy, fwz, h)
+        f1[i] += bfx * e1x + bfy * e1y + bfz * e1z
+        f2[i] += bfx * e2x + bfy * e2y + bfz * e2z
+        fy[i] += bfx * ax + bfy * ay + bfz * az
+        fb[i] += btw
     # symplectic Euler; Coriolis as an exact rotation of the in-plane velocity
-    relax = 1.0 / (1.0 + h * cp[CP_RELAX])
+    relax = 1.0 / (1.0 + h * params.relax_rate)
     cr = math.cos(2.0 * omega * h)
     sr = math.sin(2.0 * omega * h)
     hm = h / m
     hj = h / jt
     for i in range(n):
         # Boris splitting: half kick, rotation, half kick (no energy drift)
-        v1 = ts[o + S_V1 * n + i] + 0.5 * hm * f1[i]
-        v2 = ts[o + S_V2 * n + i] + 0.5 * hm * f2[i]
+        v1 = v1s[i] + 0.5 * hm * f1[i]
+        v2 = v2s[i] + 0.5 * hm * f2[i]
         w1 = (cr * v1 - sr * v2 + 0.5 * hm * f1[i]) * relax
         w2_ = (sr * v1 + cr * v2 + 0.5 * hm * f2[i]) * relax
-        ts[o + S_V1 * n + i] = w1
-        ts[o + S_V2 * n + i] = w2_
-        ts[o + S_P1 * n + i] += h * w1
-        ts[o + S_P2 * n + i] += h * w2_
-        vyy = (ts[o + S_VY * n + i] + hm * fy[i]) * relax
-        ts[o + S_VY * n + i] = vyy
-        ts[o + S_Y * n + i] += h * vyy
-        vb = (ts[o + S_VB * n + i] + hj * fb[i]) * relax
-        ts[o + S_VB * n + i] = vb
-        ts[o + S_B * n + i] += h * vb
-    ts[TS_PSI] = psi + omega * h
+        v1s[i] = w1
+        v2s[i] = w2_
+        p1s[i] += h * w1
+        p2s[i] += h * w2_
+        vyy = (vys[i] + hm * fy[i]) * relax
+        vys[i] = vyy
+        ys[i] += h * vyy
+        vb = (vbs[i] + hj * fb[i]) * relax
+        vbs[i] = vb
+        bs[i] += h * vb
+    kin[KIN_PSI] = psi + omega * h
+    return rim_fx, rim_fy, rim_fz, rim_mx, rim_my, rim_mz
 
 
 @nb.njit(cache=True)
-def ring_advance(cp, ts, gp, z, zinfo, cx, cy, cz, ax, ay, az, vx, vy, vz, omega, dt, rim, acc,
-                 pressure_out):
-    """Advance ``ts`` by ``dt`` in internal steps; returns their number.
+def ring_advance(params, state, road, pose, dt):
+    """Advance ``state`` by ``dt`` in internal steps at ``pose`` (the rim's pose at the start).
 
-    ``rim[0:6]`` receives the mean rim force and moment, ``acc`` the summed
-    contact-patch quantities (see :mod:`.tread`).
+    Returns ``(n_sub, Fx, Fy, Fz, Mx, My, Mz)``: the number of internal
+    steps and the mean rim force and moment over them; ``state.patch``
+    receives the summed contact-patch quantities (see :mod:`.tread`),
+    its ``ACC_DEFL`` entry those of the last internal step.
     """
-    n_sub = int(math.ceil(dt / cp[CP_DTMAX] - 1e-9))
+    n_sub = int(math.ceil(dt / params.max_step - 1e-9))
     if n_sub < 1:
         n_sub = 1
     h = dt / n_sub
-    if ts[TS_INIT] > 0.0 and dt > 0.0:
-        arx = (vx - ts[TS_VX]) / dt
-        ary = (vy - ts[TS_VY]) / dt
-        arz = (vz - ts[TS_VZ]) / dt
-        dom = (omega - ts[TS_OMEGA]) / dt
+    cx, cy, cz = pose.cx, pose.cy, pose.cz
+    vx, vy, vz = pose.vx, pose.vy, pose.vz
+    omega = pose.omega
+    kin = state.kinematics
+    if state.initialised[0] and dt > 0.0:
+        arx = (vx - kin[KIN_VX]) / dt
+        ary = (vy - kin[KIN_VY]) / dt
+        arz = (vz - kin[KIN_VZ]) / dt
+        dom = (omega - kin[KIN_OMEGA]) / dt
     else:
         arx = 0.0
         ary = 0.0
         arz = 0.0
         dom = 0.0
-    for k in range(6):
-        rim[k] = 0.0
+    fx = 0.0
+    fy = 0.0
+    fz = 0.0
+    mx = 0.0
+    my = 0.0
+    mz = 0.0
+    acc = state.patch
     for k in range(acc.shape[0]):
         acc[k] = 0.0
     defl = -1.0
     for k in range(n_sub):
         t = k * h
-        ring_substep(cp, ts, gp, z, zinfo, cx + vx * t, cy + vy * t, cz + vz * t, ax, ay, az,
-                     vx, vy, vz, omega, arx, ary, arz, dom, h, rim, acc, pressure_out)
+        at = WheelPose(cx + vx * t, cy + vy * t, cz + vz * t, pose.ax, pose.ay, pose.az,
+                       vx, vy, vz, omega)
+        rfx, rfy, rfz, rmx, rmy, rmz = ring_substep(params, state, road, at, arx, ary, arz,
+                                                    dom, h)
+        fx += rfx
+        fy += rfy
+        fz += rfz
+        mx += rmx
+        my += rmy
+        mz += rmz
         defl = acc[ACC_DEFL]
-    for k in range(6):
-        rim[k] /= n_sub
     acc[ACC_DEFL] = defl
-    ts[TS_INIT] = 1.0
-    ts[TS_VX] = vx
-    ts[TS_VY] = vy
-    ts[TS_VZ] = vz
-    ts[TS_OMEGA] = omega
-    ts[TS_TIME] += dt
-    return n_sub
+    state.initialised[0] = True
+    kin[KIN_VX] = vx
+    kin[KIN_VY] = vy
+    kin[KIN_VZ] = vz
+    kin[KIN_OMEGA] = omega
+    kin[KIN_TIME] += dt
+    return n_sub, fx / n_sub, fy / n_sub, fz / n_sub, mx / n_sub, my / n_sub, mz / n_sub
+
+
+@nb.njit(cache=True, inline="always")
+def _finite(x):
+    return x if math.isfinite(x) else 0.0
 
 
 @nb.njit(cache=True)
-def ring_wheel_force(model, cp, ts, gp, z, zinfo, cx, cy, cz, ax, ay, az,
-                     vx, vy, vz, omega, dt, out):
-    """Advance the ring by ``dt`` and write the loads on the rim into ``out``.
+def ring_step(wheel, pose, dt):
+    """Advance the ring of ``wheel`` by ``dt`` [s] at ``pose``; the loads on the rim.
 
-    ``model`` 3 (evenly spaced blocks) or 4 (tread pattern): the block layout
-    is in ``cp``, so both run the same code. Forces are the means over the
-    internal steps.
+    ``wheel.contact`` is the :class:`~.records.RingParams`, ``wheel.state``
+    the :class:`~.records.RingState` (advanced in place), ``wheel.road``
+    the road. Forces and moments are the means over the internal steps;
+    the contact point and normal are the normal-force-weighted means over
+    the patch, the deflection the largest of a contact point (or the gap
+    below the centre when nothing touches); FXW, FYW, FZW the patch's
+    resultant in the W-axis. Non-finite values are returned as 0.
     """
-    n = int(cp[CP_N])
-    nbk = int(cp[CP_NB])
-    fo = TS_HEADER + N_SEG_ARRAYS * n + 2 * n * nbk + N_SCRATCH * n
-    acc = ts[fo:fo + ACC_SIZE]
-    rim = out[11:17]  # out as scratch, rearranged below
-    tmp = ts[fo + ACC_SIZE:fo + ACC_SIZE + 4]
-    n_sub = ring_advance(cp, ts, gp, z, zinfo, cx, cy, cz, ax, ay, az, vx, vy, vz, omega, dt,
-                         rim, acc, tmp[:1])
-    fx, fy, fz = rim[0], rim[1], rim[2]
-    mx, my, mz = rim[3], rim[4], rim[5]
-    for k in range(out.shape[0]):
-        out[k] = 0.0
-    out[0] = fx
-    out[1] = fy
-    out[2] = fz
-    out[14] = mx
-    out[15] = my
-    out[16] = mz
+    params = wheel.contact
+    state = wheel.state
+    road = wheel.road
+    n_sub, fx, fy, fz, mx, my, mz = ring_advance(params, state, road, pose, dt)
+    cx, cy, cz = pose.cx, pose.cy, pose.cz
+    ax, ay, az = pose.ax, pose.ay, pose.az
+    acc = state.patch
     w = acc[ACC_W]
-    r0 = cp[CP_R0]
+    r0 = params.unloaded_radius
     if w > 0.0:
-        out[3] = acc[ACC_PX] / w
-        out[4] = acc[ACC_PY] / w
-        out[5] = acc[ACC_PZ] / w
+        px = acc[ACC_PX] / w
+        py = acc[ACC_PY] / w
+        pz = acc[ACC_PZ] / w
         nl = math.sqrt(acc[ACC_NX] ** 2 + acc[ACC_NY] ** 2 + acc[ACC_NZ] ** 2)
         nx = acc[ACC_NX] / nl
         ny = acc[ACC_NY] / nl
@@ -281,21 +301,17 @@ def ring_wheel_force(model, cp, ts, gp, z, zinfo, cx, cy, cz, ax, ay, az,
         if rho <= 0.0:
             rho = 1e-9
     else:
-        g = grid_height(gp, z, cx, cy)
-        out[3] = cx
-        out[4] = cy
-        out[5] = g
+        g = road_height(road, cx, cy)
+        px = cx
+        py = cy
+        pz = g
         nx = 0.0
         ny = 0.0
         nz = 1.0
         rho = r0 - (cz - g)
         if rho > -1e-9:
             rho = -1e-9
-    out[6] = nx
-    out[7] = ny
-    out[8] = nz
-    out[9] = rho
-    out[10] = -(vx * nx + vy * ny + vz * nz)
+    rho_dot = -(pose.vx * nx + pose.vy * ny + pose.vz * nz)
     # contact-patch resultant in the W-axis: z along the normal, x = a x n
     cfx = acc[ACC_FX] / n_sub
     cfy = acc[ACC_FY] / n_sub
@@ -311,10 +327,11 @@ def ring_wheel_force(model, cp, ts, gp, z, zinfo, cx, cy, cz, ax, ay, az,
     wy1 = ny * wx3 - nz * wx2
     wy2 = nz * wx1 - nx * wx3
     wy3 = nx * wx2 - ny * wx1
-    out[11] = cfx * wx1 + cfy * wx2 + cfz * wx3
-    out[12] = cfx * wy1 + cfy * wy2 + cfz * wy3
+    fxw = cfx * wx1 + cfy * wx2 + cfz * wx3
+    fyw = cfx * wy1 + cfy * wy2 + cfz * wy3
     fzw = cfx * nx + cfy * ny + cfz * nz
-    out[13] = fzw if fzw > 0.0 else 0.0
-    for k in range(17):
-        if not math.isfinite(out[k]):
-            out[k] = 0.0
+    fzw = fzw if fzw > 0.0 else 0.0
+    return WheelLoads(_finite(fx), _finite(fy), _finite(fz), _finite(mx), _finite(my),
+                      _finite(mz), _finite(px), _finite(py), _finite(pz), _finite(nx),
+                      _finite(ny), _finite(nz), _finite(rho), _finite(rho_dot), _finite(fxw),
+                      _finite(fyw), _finite(fzw), 0.0, 0.0, 0.0)

@@ -29,8 +29,8 @@ import numba as nb
 import numpy as np
 import pandas as pd
 
-from . import layout as L
 from .belt import belt_forces
+from .records import VELOCITIES, copy_state
 
 MODE_NAMES = {
     1: "in-plane rotation about the spin axis",
@@ -45,55 +45,47 @@ MODE_SHAPES = {1: (True, 0), 2: (True, 1), 3: (False, 0), 4: (False, 1), 5: (Tru
 
 
 @nb.njit(cache=True)
-def generalized_forces(cp, ts, omega, q):
+def generalized_forces(params, state, omega, q):
     """Forces on the 4N DOFs (p1, p2, y, beta) of the free belt spinning at omega.
 
     Centrifugal force included, Coriolis not (see :func:`linearize`).
     """
-    n = int(cp[L.CP_N])
-    nbk = int(cp[L.CP_NB])
-    fo = L.TS_HEADER + L.N_SEG_ARRAYS * n + 2 * n * nbk
-    f1 = ts[fo:fo + n]
-    f2 = ts[fo + n:fo + 2 * n]
-    fy = ts[fo + 2 * n:fo + 3 * n]
-    fb = ts[fo + 3 * n:fo + 4 * n]
-    belt_forces(cp, ts, f1, f2, fy, fb)
-    o = L.TS_HEADER
-    m = cp[L.CP_M]
+    n = params.n_segments
+    belt_forces(params, state)
+    m = params.segment_mass
     for i in range(n):
-        q[i] = f1[i] + m * omega * omega * ts[o + L.S_P1 * n + i]
-        q[n + i] = f2[i] + m * omega * omega * ts[o + L.S_P2 * n + i]
-        q[2 * n + i] = fy[i]
-        q[3 * n + i] = fb[i]
-
-
-def _dof_index(n):
-    o = L.TS_HEADER
-    pos = np.r_[o + L.S_P1 * n + np.arange(n), o + L.S_P2 * n + np.arange(n),
-                o + L.S_Y * n + np.arange(n), o + L.S_B * n + np.arange(n)]
-    vel = np.r_[o + L.S_V1 * n + np.arange(n), o + L.S_V2 * n + np.arange(n),
-                o + L.S_VY * n + np.arange(n), o + L.S_VB * n + np.arange(n)]
-    return pos, vel
+        q[i] = state.f1[i] + m * omega * omega * state.p1[i]
+        q[n + i] = state.f2[i] + m * omega * omega * state.p2[i]
+        q[2 * n + i] = state.fy[i]
+        q[3 * n + i] = state.fb[i]
 
 
 @nb.njit(cache=True)
-def _difference_matrices(cp, ts, omega, pos, vel, K, C):
-    """Central differences of :func:`generalized_forces` in positions and velocities."""
-    ndof = pos.shape[0]
+def _difference_matrices(params, state, omega, K, C):
+    """Central differences of :func:`generalized_forces` in positions and velocities.
+
+    DOF k is entry ``k % N`` of ``p1, p2, y, beta`` (positions) or ``v1,
+    v2, vy, vbeta`` (velocities) for ``k // N`` = 0, 1, 2, 3.
+    """
+    n = params.n_segments
+    ndof = 4 * n
+    pos = (state.p1, state.p2, state.y, state.beta)
+    vel = (state.v1, state.v2, state.vy, state.vbeta)
     fp = np.empty(ndof)
     fm = np.empty(ndof)
-    eps_p = 1e-6 * cp[L.CP_RB]
+    eps_p = 1e-6 * params.belt_radius
     eps_v = 1e-4
     for k in range(ndof):
         for which in range(2):
-            idx = pos[k] if which == 0 else vel[k]
+            arr = pos[k // n] if which == 0 else vel[k // n]
+            idx = k % n
             eps = eps_p if which == 0 else eps_v
-            x0 = ts[idx]
-            ts[idx] = x0 + eps
-            generalized_forces(cp, ts, omega, fp)
-            ts[idx] = x0 - eps
-            generalized_forces(cp, ts, omega, fm)
-            ts[idx] = x0
+            x0 = arr[idx]
+            arr[idx] = x0 + eps
+            generalized_forces(params, state, omega, fp)
+            arr[idx] = x0 - eps
+            generalized_forces(params, state, omega, fm)
+            arr[idx] = x0
             for r in range(ndof):
                 d = -(fp[r] - fm[r]) / (2.0 * eps)
                 if which == 0:
@@ -102,23 +94,22 @@ def _difference_matrices(cp, ts, omega, pos, vel, K, C):
                     C[r, k] = d
 
 
-def linearize(cp, ts, omega=0.0, contact=None):
-    """``(M, C, K)`` of the belt about state ``ts`` (4N DOFs).
+def linearize(params, state, omega=0.0, contact=None):
+    """``(M, C, K)`` of the belt about ``state`` (4N DOFs: p1, p2, y, beta per segment).
 
     ``contact`` optionally adds a stiffness matrix of the tread contact.
     With spin ``omega`` the Coriolis term adds ``2 m omega J`` to C.
     """
-    n = int(cp[L.CP_N])
-    pos, vel = _dof_index(n)
-    ts = ts.copy()
+    n = params.n_segments
+    state = copy_state(state)
     ndof = 4 * n
     K = np.empty((ndof, ndof))
     C = np.empty((ndof, ndof))
-    _difference_matrices(cp, ts, float(omega), pos.astype(np.int64), vel.astype(np.int64), K, C)
+    _difference_matrices(params, state, float(omega), K, C)
     if contact is not None:
         K = K + contact
-    m = cp[L.CP_M]
-    M = np.diag(np.r_[np.full(3 * n, m), np.full(n, cp[L.CP_J])])
+    m = params.segment_mass
+    M = np.diag(np.r_[np.full(3 * n, m), np.full(n, params.segment_twist_inertia)])
     if omega != 0.0:
         # Coriolis -2 m Omega x v: on (v1, v2) it is 2 m omega (v2, -v1) as a damping-like term
         i = np.arange(n)
@@ -147,10 +138,10 @@ def eigenmodes(M, C, K):
     return freq, zeta, vec
 
 
-def classify(cp, shape):
+def classify(params, shape):
     """``(in_plane, n, tangential)`` of a mode shape over the 4N DOFs."""
-    n = int(cp[L.CP_N])
-    rb = cp[L.CP_RB]
+    n = params.n_segments
+    rb = params.belt_radius
     th = 2 * np.pi * np.arange(n) / n
     s = np.real(shape * np.exp(-1j * np.angle(shape[np.argmax(np.abs(shape))])))
     p1, p2, y, b = s[:n], s[n:2 * n], s[2 * n:3 * n], s[3 * n:]
@@ -166,17 +157,18 @@ def classify(cp, shape):
     return bool(in_plane), wave, bool(tangential)
 
 
-def table_modes(cp, freq, zeta, vec) -> pd.DataFrame:
+def table_modes(params, freq, zeta, vec) -> pd.DataFrame:
     """The six modes of thesis Table 3-3 picked from the eigen-solution."""
     found = {}
     for k in range(freq.size):
-        in_plane, wave, tangential = classify(cp, vec[:, k])
+        in_plane, wave, tangential = classify(params, vec[:, k])
         for mode, (ip, nw) in MODE_SHAPES.items():
             if mode in found or ip != in_plane or nw != wave:
                 continue
             if mode == 1 and not tangential:
                 continue
-            if mode == 3 and np.sum(np.abs(vec[2 * int(cp[L.CP_N]):3 * int(cp[L.CP_N]), k])) == 0:
+            n = params.n_segments
+            if mode == 3 and np.sum(np.abs(vec[2 * n:3 * n, k])) == 0:
                 continue
             found[mode] = (freq[k], zeta[k])
     rows = [{"mode": m, "description": MODE_NAMES[m],
@@ -199,58 +191,60 @@ def ring_modal(tyre, pressure=None, load=0.0, omega=0.0, **options) -> pd.DataFr
     if pressure is not None:
         tyre = copy.copy(tyre)
         tyre.pressure = float(pressure)
-    cp = ring_params(tyre, None, **options)
+    params = ring_params(tyre, None, **options)
     contact = None
     if load > 0:
-        ts = ring_initial_state(tyre, load, **options)
-        contact = contact_stiffness(tyre, cp, ts, load, options)
+        state = ring_initial_state(tyre, load, params, **options)
+        contact = contact_stiffness(tyre, params, state, load, options)
     else:
-        ts = nominal_state(cp)
-    M, C, K = linearize(cp, ts, omega, contact)
+        state = nominal_state(params)
+    M, C, K = linearize(params, state, omega, contact)
     freq, zeta, vec = eigenmodes(M, C, K)
-    return table_modes(cp, freq, zeta, vec)
+    return table_modes(params, freq, zeta, vec)
 
 
-def contact_stiffness(tyre, cp, ts, load, options):
+#: the fields of :class:`~.records.RingParams` zeroed to isolate the tread contact
+STRUCTURE = ("radial_stiffness", "tangential_stiffness", "lateral_stiffness",
+             "torsion_stiffness", "radial_damping", "tangential_damping", "lateral_damping",
+             "torsion_damping", "pretension", "extension_stiffness", "extension_damping",
+             "bending_stiffness", "lateral_bending_stiffness", "belt_torsion_stiffness",
+             "pressure_load", "tread_damping", "tread_shear_damping", "relax_rate")
+
+
+def contact_stiffness(tyre, params, state, load, options):
     """Stiffness of the tread contact about a pressed state (blocks in stick).
 
     For each belt DOF of a segment in contact, the DOF is moved by +-eps
     through one tiny kernel step with velocity eps/h -- so the stuck blocks'
     tangential deflections move with it, as in stick -- and the contact
     forces of a following step at rest are differenced. The structure and
-    all dampers are switched off in a copy of ``cp``.
+    all dampers are switched off in a copy of ``params``.
     """
     from ...road.obstacles import Flat
-    from ..kernel import road_info
-    from .kernel import ring_wheel_force
-    n = int(cp[L.CP_N])
-    grid = Flat().grid()
-    zi = road_info(grid)
+    from ..wheel import WheelPose
+    from .kernel import ring_advance
+    n = params.n_segments
+    road = Flat().grid().surface()
     height = tyre.unloaded_radius - tyre.static_deflection(float(load))
-    _, vel = _dof_index(n)
-    cpc = cp.copy()
-    for key in (L.CP_KR, L.CP_KT, L.CP_KY, L.CP_KB, L.CP_CR, L.CP_CT, L.CP_CY, L.CP_CB,
-                L.CP_T0, L.CP_EA, L.CP_CEA, L.CP_EI, L.CP_EIO, L.CP_GJ, L.CP_PB,
-                L.CP_CTR, L.CP_CSH, L.CP_RELAX):
-        cpc[key] = 0.0
     h = 1e-7
-    cpc[L.CP_DTMAX] = h
-    out = np.zeros(20)
-    mass = np.r_[np.full(3 * n, cp[L.CP_M]), np.full(n, cp[L.CP_J])]
+    bare = params._replace(max_step=h, **{name: 0.0 for name in STRUCTURE})
+    mass = np.r_[np.full(3 * n, params.segment_mass), np.full(n, params.segment_twist_inertia)]
+    at = WheelPose(0.0, 0.0, height, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0)
 
-    def step(st):
-        ring_wheel_force(3, cpc, st, grid.params, grid.z, zi, 0.0, 0.0, height, 0.0, 1.0, 0.0,
-                         0.0, 0.0, 0.0, 0.0, h, out)
+    def velocities(st):
+        return [getattr(st, name) for name in VELOCITIES]
 
     def forces_after(k, eps):
-        st = ts.copy()
-        st[vel] = 0.0
+        st = copy_state(state)
+        for v in velocities(st):
+            v[:] = 0.0
         if k >= 0:
-            st[vel[k]] = eps / h
-        step(st)               # moves DOF k by eps, the stuck tips with it
-        st[vel] = 0.0
-        step(st)               # contact forces at rest in the moved state
-        return st[vel] * mass / h
+            velocities(st)[k // n][k % n] = eps / h
+        ring_advance(bare, st, road, at, h)   # moves DOF k by eps, the stuck tips with it
+        for v in velocities(st):
+            v[:] = 0.0
+        ring_advance(bare, st, road, at, h)   # contact forces at rest in the moved state
+        return np.concatenate(velocities(st)) * mass / h
 
     base = forces_after(-1, 0.0)
     segs = np.unique(np.flatnonzero(np.abs(base) > 0) % n)

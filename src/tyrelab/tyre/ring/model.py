@@ -1,9 +1,12 @@
-"""The ring model's Python side: parameter packing and the initial state.
+"""The ring model's Python side: its parameter record, its initial state, its registration.
 
-:func:`ring_params` packs everything the compiled kernel needs into one
-float array ``cp`` (layout in :mod:`.layout`), at the tyre's inflation
-pressure; :func:`ring_initial_state` returns the belt in static equilibrium
-on a flat road at the rig's starting height ``R0 - static_deflection(load)``.
+:func:`ring_params` builds the :class:`~.records.RingParams` record the
+compiled step takes, at the tyre's inflation pressure;
+:func:`ring_initial_state` returns the belt (:class:`~.records.RingState`)
+in static equilibrium on a flat road at the rigs' starting height
+``R0 - static_deflection(load)``. The "ring" (evenly spaced blocks) and
+"ring-tp" (blocks on the tread pattern) contact models register at the
+bottom: both run :func:`~.kernel.ring_step`.
 """
 
 from __future__ import annotations
@@ -13,15 +16,20 @@ import math
 import numpy as np
 
 from ...errors import InputError
-from . import layout as L
+from ..registry import ContactModel, register_contact
+from .kernel import ring_step
 from .parameters import ring_parameters, stable_step, tread_half_width
 from .pattern import default_pattern, even_blocks, pattern_blocks, read_pattern
+from .records import KIN_TIME, RingParams, RingState, copy_state, empty_state, params_key
 
 #: default discretisation (thesis 2.3.4: 100-200 belt elements, 10-100 blocks each)
 N_SEGMENTS = 100
 N_BLOCKS = 10
 #: relaxation damping rate [1/s] used to find static equilibria
 RELAX_RATE = 250.0
+#: samples across a block's width in a static test on a road that varies across
+#: the wheel (a longitudinal cleat): one every ~10 mm
+STATIC_LATERAL_SAMPLES = 4
 
 _OPTIONS = ("n_segments", "n_blocks", "friction", "dt_max", "pattern", "parameters", "relax",
             "lateral_samples")
@@ -29,8 +37,8 @@ _OPTIONS = ("n_segments", "n_blocks", "friction", "dt_max", "pattern", "paramete
 
 def ring_params(tyre, grid=None, tread_pattern=False, n_segments=N_SEGMENTS, n_blocks=N_BLOCKS,
                 friction=None, dt_max=None, pattern=None, parameters=None, relax=0.0,
-                lateral_samples=1, **options) -> np.ndarray:
-    """Kernel parameters ``cp`` of the flexible ring for ``tyre`` at ``tyre.pressure``.
+                lateral_samples=None, **options) -> RingParams:
+    """The :class:`~.records.RingParams` of the flexible ring for ``tyre`` at ``tyre.pressure``.
 
     Parameters
     ----------
@@ -38,7 +46,8 @@ def ring_params(tyre, grid=None, tread_pattern=False, n_segments=N_SEGMENTS, n_b
         Dimensions, carcass shape, pressure; ring parameters from its
         ``[FLEXIBLE_RING]`` or the built-in identified file.
     grid : RoadGrid, optional
-        Not needed (the contact search adapts to any road).
+        The road; only needed for the default of ``lateral_samples`` in a
+        static build (the contact search adapts to any road).
     tread_pattern : bool
         Place blocks from the tread ``pattern`` ("ring-tp") instead of evenly.
     n_segments, n_blocks : int
@@ -52,10 +61,13 @@ def ring_params(tyre, grid=None, tread_pattern=False, n_segments=N_SEGMENTS, n_b
     parameters : RingParameters, optional
         Overrides the parameters read from files (identification uses it).
     relax : float
-        Extra velocity damping rate [1/s] (static relaxation only).
-    lateral_samples : int
+        Extra velocity damping rate [1/s] (static relaxation only; the
+        registry adds ``relax=RELAX_RATE`` for static tests).
+    lateral_samples : int, optional
         Samples across a block's width where the road is uneven under it
-        (see :mod:`.tread`); 1 = along the strip only.
+        (see :mod:`.tread`); 1 = along the strip only. Default 1, but
+        :data:`STATIC_LATERAL_SAMPLES` in a static build (``relax`` > 0) on a
+        ``grid`` that varies across the wheel (a longitudinal cleat).
     """
     unknown = set(options) - set(_OPTIONS)
     if unknown:
@@ -71,6 +83,9 @@ def ring_params(tyre, grid=None, tread_pattern=False, n_segments=N_SEGMENTS, n_b
     if not (math.isfinite(p) and p > 0):
         raise InputError("the ring model needs the inflation pressure (INFLPRES)",
                          source=tyre.tir.source, field="INFLPRES")
+    if lateral_samples is None:
+        varies_across = grid is not None and np.ptp(grid.z, axis=1).max() > 0
+        lateral_samples = STATIC_LATERAL_SAMPLES if relax > 0 and varies_across else 1
     r0 = tyre.unloaded_radius
     rb = r0 - rp.tread_depth
     dth = 2.0 * math.pi / n
@@ -84,103 +99,118 @@ def ring_params(tyre, grid=None, tread_pattern=False, n_segments=N_SEGMENTS, n_b
     half = tread_half_width(tyre, rp)
     m = rp.ring_mass / n
     seg = rb * dth  # arc length per segment, for the per-length quantities
-    cp = np.zeros(L.CP_HEADER + 2 * n + 4 * n * nb)
-    cp[L.CP_N] = n
-    cp[L.CP_NB] = nb
-    cp[L.CP_R0] = r0
-    cp[L.CP_RB] = rb
-    cp[L.CP_P] = p
-    cp[L.CP_M] = m
-    cp[L.CP_J] = m * (2.0 * half) ** 2 / 12.0
-    cp[L.CP_KR] = ks["kr"] * seg
-    cp[L.CP_KT] = ks["kt"] * seg
-    cp[L.CP_KY] = ks["ky"] * seg
-    cp[L.CP_KB] = ks["kb"] * seg
-    cp[L.CP_CR] = rp.cr * seg
-    cp[L.CP_CT] = rp.ct * seg
-    cp[L.CP_CY] = rp.cy * seg
-    cp[L.CP_CB] = rp.cb * seg
-    # pre-tension in exact equilibrium with the pressure on the polygon
-    cp[L.CP_T0] = ks["pb"] * rb * math.cos(0.5 * dth)
-    cp[L.CP_EA] = rp.ea
-    cp[L.CP_CEA] = rp.cea
-    cp[L.CP_EI] = rp.ei
-    cp[L.CP_EIO] = rp.eio
-    cp[L.CP_GJ] = rp.gj
-    cp[L.CP_PB] = ks["pb"]
-    cp[L.CP_KTR] = rp.tread_stiffness
-    cp[L.CP_KNL] = rp.tread_progression
-    cp[L.CP_CTR] = rp.tread_damping
-    cp[L.CP_KSH] = rp.tread_shear_stiffness
-    cp[L.CP_CSH] = rp.tread_shear_damping
-    cp[L.CP_MU] = rp.friction if friction is None else float(friction)
     step = stable_step(rp, tyre, n, nb) if dt_max is None else float(dt_max)
     if relax > 0:
         step = min(step, 0.5 / relax)
-    cp[L.CP_DTMAX] = step
-    cp[L.CP_RELAX] = relax
-    cp[L.CP_L0] = l0
-    cp[L.CP_DTH] = dth
-    cp[L.CP_HMAX] = float(h.max())
-    cp[L.CP_HALFW] = half
-    cp[L.CP_NLAT] = max(1, int(lateral_samples))
-    o = L.CP_HEADER
     th = dth * np.arange(n)
-    cp[L.CP_OFF_COS] = o
-    cp[o:o + n] = np.cos(th)
-    cp[L.CP_OFF_SIN] = o + n
-    cp[o + n:o + 2 * n] = np.sin(th)
-    o += 2 * n
-    for key, arr in ((L.CP_OFF_BY, y), (L.CP_OFF_BC, s), (L.CP_OFF_BH, h), (L.CP_OFF_BK, area)):
-        cp[key] = o
-        cp[o:o + n * nb] = arr
-        o += n * nb
-    return cp
+
+    def table(a):
+        return np.ascontiguousarray(a, dtype=np.float64).copy()
+
+    return RingParams(
+        n_segments=n, n_blocks=nb, lateral_samples=max(1, int(lateral_samples)),
+        unloaded_radius=float(r0), belt_radius=float(rb), pressure=p,
+        segment_mass=float(m), segment_twist_inertia=float(m * (2.0 * half) ** 2 / 12.0),
+        radial_stiffness=float(ks["kr"] * seg), tangential_stiffness=float(ks["kt"] * seg),
+        lateral_stiffness=float(ks["ky"] * seg), torsion_stiffness=float(ks["kb"] * seg),
+        radial_damping=float(rp.cr * seg), tangential_damping=float(rp.ct * seg),
+        lateral_damping=float(rp.cy * seg), torsion_damping=float(rp.cb * seg),
+        # pre-tension in exact equilibrium with the pressure on the polygon
+        pretension=float(ks["pb"] * rb * math.cos(0.5 * dth)),
+        extension_stiffness=float(rp.ea), extension_damping=float(rp.cea),
+        bending_stiffness=float(rp.ei), lateral_bending_stiffness=float(rp.eio),
+        belt_torsion_stiffness=float(rp.gj), pressure_load=float(ks["pb"]),
+        tread_stiffness=float(rp.tread_stiffness), tread_progression=float(rp.tread_progression),
+        tread_damping=float(rp.tread_damping),
+        tread_shear_stiffness=float(rp.tread_shear_stiffness),
+        tread_shear_damping=float(rp.tread_shear_damping),
+        friction=float(rp.friction if friction is None else friction),
+        max_step=float(step), relax_rate=float(relax), chord_length=float(l0),
+        segment_angle=float(dth), max_block_height=float(h.max()),
+        tread_half_width=float(half),
+        cos_theta=table(np.cos(th)), sin_theta=table(np.sin(th)),
+        block_y=table(y), block_s=table(s), block_h=table(h), block_area=table(area))
 
 
-def nominal_state(cp: np.ndarray) -> np.ndarray:
-    """The unloaded, undeformed belt at rest (``ts`` with p_i = Rb (cos, sin))."""
-    n = int(cp[L.CP_N])
-    nb = int(cp[L.CP_NB])
-    ts = np.zeros(L.ts_size(n, nb))
-    o = L.TS_HEADER
-    rb = cp[L.CP_RB]
-    oc, os_ = int(cp[L.CP_OFF_COS]), int(cp[L.CP_OFF_SIN])
-    ts[o + L.S_P1 * n:o + (L.S_P1 + 1) * n] = rb * cp[oc:oc + n]
-    ts[o + L.S_P2 * n:o + (L.S_P2 + 1) * n] = rb * cp[os_:os_ + n]
-    return ts
+def nominal_state(params: RingParams) -> RingState:
+    """The unloaded, undeformed belt at rest (p_i = Rb (cos, sin) th_i)."""
+    state = empty_state(params.n_segments, params.n_blocks)
+    state.p1[:] = params.belt_radius * params.cos_theta
+    state.p2[:] = params.belt_radius * params.sin_theta
+    return state
 
 
 _CACHE: dict = {}
 
 
-def ring_initial_state(tyre, load, tread_pattern=False, **options) -> np.ndarray:
+def ring_initial_state(tyre, load, params=None, tread_pattern=False, **options) -> RingState:
     """Belt state in static equilibrium on a flat road under ``load`` [N].
 
     The rim is lowered onto a flat road to the centre height
     ``R0 - tyre.static_deflection(load)`` (where the rigs start it) and the
-    belt relaxes there (:func:`tyrelab.tyre.ring.static.settle`).
+    belt relaxes there (:func:`tyrelab.tyre.ring.static.settle`, with its
+    own relaxed parameters built from ``options``). For ``load`` <= 0 the
+    state is the inflated belt as built (:func:`nominal_state`), which is
+    its equilibrium off the road. ``params`` (the record the state will run
+    with) is not needed; the states of equal ``(options, height)`` are cached.
     """
     from ...road.obstacles import Flat
     from .static import settle
     grid = Flat().grid()
     relaxed = dict(options)
     relaxed["relax"] = RELAX_RATE
-    cp = ring_params(tyre, grid, tread_pattern=tread_pattern, **relaxed)
-    height = tyre.unloaded_radius - tyre.static_deflection(float(load)) if load > 0 else \
-        tyre.unloaded_radius + 0.01
-    key = (cp.tobytes(), round(height, 9))
+    rp = ring_params(tyre, grid, tread_pattern=tread_pattern, **relaxed)
+    if not load > 0:
+        return nominal_state(rp)
+    height = tyre.unloaded_radius - tyre.static_deflection(float(load))
+    key = (params_key(rp), round(height, 9))
     if key not in _CACHE:
-        ts = nominal_state(cp)
-        settle(cp, ts, grid, [height])
+        state = nominal_state(rp)
+        settle(rp, state, grid.surface(), [height])
         if len(_CACHE) > 16:
             _CACHE.clear()
-        _CACHE[key] = ts
-    ts = _CACHE[key].copy()
-    o = L.TS_HEADER
-    n = int(cp[L.CP_N])
-    for k in (L.S_V1, L.S_V2, L.S_VY, L.S_VB):
-        ts[o + k * n:o + (k + 1) * n] = 0.0
-    ts[L.TS_INIT] = 0.0
-    ts[L.TS_TIME] = 0.0
-    return ts
+        _CACHE[key] = state
+    state = copy_state(_CACHE[key])
+    for velocity in (state.v1, state.v2, state.vy, state.vbeta):
+        velocity[:] = 0.0
+    state.initialised[0] = False
+    state.kinematics[KIN_TIME] = 0.0
+    return state
+
+
+def ring_footprint_of(wheel, load, deflection, tyre) -> dict:
+    """Footprint of a ring ``wheel`` pressed on the plate (the registry's ``footprint`` hook).
+
+    ``wheel.state.block_force`` holds each block's normal force after the
+    last step; ``load`` [N] the plate force, ``deflection`` [m] the press
+    depth. See :func:`tyrelab.tyre.ring.static.ring_footprint` for the dict.
+    """
+    from .static import footprint_from_blocks
+    return footprint_from_blocks(wheel.contact, wheel.state, wheel.state.block_force.copy(),
+                                 load, deflection, tyre.pressure)
+
+
+def _ring_build(tyre, grid=None, **options) -> RingParams:
+    return ring_params(tyre, grid, tread_pattern=False, **options)
+
+
+def _ring_tp_build(tyre, grid=None, **options) -> RingParams:
+    return ring_params(tyre, grid, tread_pattern=True, **options)
+
+
+def _ring_state(tyre, load, params=None, **options) -> RingState:
+    return ring_initial_state(tyre, load, params, tread_pattern=False, **options)
+
+
+def _ring_tp_state(tyre, load, params=None, **options) -> RingState:
+    return ring_initial_state(tyre, load, params, tread_pattern=True, **options)
+
+
+register_contact(ContactModel("ring", RingParams, _ring_build, step=ring_step,
+                              initial_state=_ring_state, static_options={"relax": RELAX_RATE},
+                              footprint=ring_footprint_of,
+                              summary="flexible ring (FTire class), evenly spaced tread blocks"))
+register_contact(ContactModel("ring-tp", RingParams, _ring_tp_build, step=ring_step,
+                              initial_state=_ring_tp_state,
+                              static_options={"relax": RELAX_RATE}, footprint=ring_footprint_of,
+                              summary="flexible ring with blocks on the tread pattern"))

@@ -13,27 +13,30 @@ from __future__ import annotations
 import numba as nb
 import numpy as np
 
-from .kernel import ring_wheel_force
-
-OUT_SIZE = 20  # at least tyrelab.tyre.kernel.OUT_SIZE; the ring writes 0:17
+from ..wheel import WheelPose
+from .kernel import ring_step
 
 
 @nb.njit(cache=True)
-def roll_fixed_height(cp, ts, gp, z, zinfo, x0, height, speed, omega0, inertia, n_steps, dt,
-                      res):
-    """Roll ``n_steps``; ``res[k] = (x, Fx, Fz, My, omega)`` (road on tyre, at the rim)."""
-    out = np.zeros(OUT_SIZE)
+def roll_fixed_height(wheel, x0, height, speed, omega0, inertia, n_steps, dt, res):
+    """Roll ``n_steps``; ``res[k] = (x, Fx, Fz, My, omega)`` (road on tyre, at the rim).
+
+    Step k: the rim at ``(x, 0, height)``, spin axis y, velocity ``(speed,
+    0, 0)``, spin ``omega``; ``x`` and ``omega`` are recorded as they were
+    at the start of the step, the loads as the step returns them; then
+    ``omega += dt My / inertia`` (explicit Euler) and ``x += speed dt``.
+    """
     omega = omega0
     x = x0
     for k in range(n_steps):
-        ring_wheel_force(3, cp, ts, gp, z, zinfo, x, 0.0, height, 0.0, 1.0, 0.0,
-                         speed, 0.0, 0.0, omega, dt, out)
+        loads = ring_step(wheel, WheelPose(x, 0.0, height, 0.0, 1.0, 0.0, speed, 0.0, 0.0,
+                                           omega), dt)
         res[k, 0] = x
-        res[k, 1] = out[0]
-        res[k, 2] = out[2]
-        res[k, 3] = out[15]
+        res[k, 1] = loads.fx
+        res[k, 2] = loads.fz
+        res[k, 3] = loads.my
         res[k, 4] = omega
-        omega += dt * out[15] / inertia
+        omega += dt * loads.my / inertia
         x += speed * dt
 
 
@@ -41,21 +44,19 @@ def roll_over(model, road, height, x_start, x_end, speed=0.5, dt=1e-3, load=None
     """Roll a ring ``model`` over ``road`` at axle ``height`` from ``x_start`` to ``x_end``.
 
     Starts from the static state at ``load`` (default: the load-deflection
-    load at that height). Returns a dict of arrays ``x, FX, FZ, MY, omega``.
+    load at that height), spinning at ``speed / height``; the spin inertia
+    is the tyre's (at least 1 kg m^2). Returns a dict of arrays ``x, FX,
+    FZ, MY, omega``.
     """
     from ...road.spec import road_from_spec
-    from ..kernel import road_info
-    from .model import ring_initial_state
     road = road_from_spec(road)
     grid = road.grid()
     tyre = model.tyre
     if load is None:
         load = float(tyre.vertical_law.static_load(tyre.unloaded_radius - height))
-    cp = model.contact_params(grid)
-    ts = ring_initial_state(tyre, load, tread_pattern=model.contact == "ring-tp", **model.options)
+    wheel = model.wheel(grid, load)
     n = int(round((x_end - x_start) / (speed * dt)))
     res = np.zeros((n, 5))
     inertia = max(tyre.wheel_spin_inertia, 1.0)
-    roll_fixed_height(cp, ts, grid.params, grid.z, road_info(grid), x_start, height, speed,
-                      speed / height, inertia, n, dt, res)
+    roll_fixed_height(wheel, x_start, height, speed, speed / height, inertia, n, dt, res)
     return {"x": res[:, 0], "FX": res[:, 1], "FZ": res[:, 2], "MY": res[:, 3], "omega": res[:, 4]}

@@ -31,84 +31,128 @@ neither stepped over nor felt by the whole block. On flat ground this
 costs nothing; on a rough road every block in contact samples its strip.
 With the option ``lateral_samples`` > 1 the strip is also sampled across
 the block's width (for obstacles narrower than the block column pitch
-running along the wheel, as a longitudinal cleat; the static press sets it
-when the road varies across).
+running along the wheel, as a longitudinal cleat; a static build sets it
+when the road varies across, see :func:`~.model.ring_params`).
 """
 
 from __future__ import annotations
 
 import math
+from typing import NamedTuple
 
 import numba as nb
 
-from ...road.grid import grid_height_gradient
-from ..contact.point import local_zmax
-from .layout import (CP_CSH, CP_CTR, CP_HALFW, CP_HMAX, CP_KNL, CP_KSH, CP_KTR, CP_L0, CP_MU, CP_NB,
-                     CP_NLAT,
-                     CP_OFF_BC, CP_OFF_BH, CP_OFF_BK, CP_OFF_BY, CP_R0)
+from ...road.grid import local_zmax, road_height_gradient
 
-#: accumulator layout for the contact patch (world frame)
-ACC_FX, ACC_FY, ACC_FZ, ACC_PX, ACC_PY, ACC_PZ, ACC_NX, ACC_NY, ACC_NZ, ACC_W, ACC_DEFL, \
-    ACC_N = range(12)
-ACC_SIZE = 12
+#: contact-patch sums of a step (``RingState.patch``, world frame): force of the
+#: road on the blocks, normal-force-weighted contact point and normal, total
+#: normal force, and the largest deflection of a contact point
+ACC_FX, ACC_FY, ACC_FZ, ACC_PX, ACC_PY, ACC_PZ, ACC_NX, ACC_NY, ACC_NZ, ACC_W, ACC_DEFL = range(11)
+ACC_SIZE = 11
 #: sampling step along a block's strip where the road is uneven under it [m]
 STRIP_STEP = 0.01
 
 
-@nb.njit(cache=True)
-def segment_can_touch(cp, zinfo, px, py, pz, az, beta):
+class SegmentFrame(NamedTuple):
+    """A belt segment in the world: centre ``p``, belt normal ``n`` and
+    tangent ``t`` (unit vectors), twist ``beta`` [rad]."""
+
+    px: float
+    py: float
+    pz: float
+    nx: float
+    ny: float
+    nz: float
+    tx: float
+    ty: float
+    tz: float
+    beta: float
+
+
+class SegmentMotion(NamedTuple):
+    """Velocity of a segment's block bases: ``ub + u s_j + w y_j`` [m/s].
+
+    ``ub`` the rigid velocity of the segment centre, ``u`` its change per
+    unit offset along the tangent, ``w`` per unit offset along the spin axis.
+    """
+
+    ubx: float
+    uby: float
+    ubz: float
+    ux: float
+    uy: float
+    uz: float
+    wx: float
+    wy: float
+    wz: float
+
+
+@nb.njit(cache=True, inline="always")
+def segment_can_touch(params, road, px, py, pz, az, beta):
     """False when no block of a segment at world point P can reach the road.
 
     The lowest any block tip can be is ``pz - h_max - W/2 (|a_z| + |beta|)``;
     the road's block maxima (:func:`local_zmax`) bound the road under it.
     """
-    reach = cp[CP_HALFW] * (abs(az) + abs(beta)) + cp[CP_HMAX] + 0.002
-    zmax = local_zmax(zinfo, px - reach - 0.05, px + reach + 0.05)
+    reach = params.tread_half_width * (abs(az) + abs(beta)) + params.max_block_height + 0.002
+    zmax = local_zmax(road, px - reach - 0.05, px + reach + 0.05)
     return pz - reach <= zmax
 
 
-@nb.njit(cache=True)
-def segment_contact(cp, gp, z, zinfo, i, px, py, pz, nx, ny, nz, tx, ty, tz, ax, ay, az, beta,
-                    ubx, uby, ubz, ux, uy, uz, wx, wy, wz, fwx, fwy, fwz, cx, cy, cz,
-                    sblk, o1, o2, h, acc, out_f, pressure_out):
-    """Forces of the road on the blocks of segment i; returns their sum and twist moment.
+# inlined into the step: a call passing the three records costs about 15 % of a step
+@nb.njit(cache=True, inline="always")
+def segment_contact(params, road, state, i, seg, motion, pose, fwx, fwy, fwz, h):
+    """Forces of the road on the blocks of segment i: ``(Fx, Fy, Fz, twist moment)``.
 
-    ``P`` segment centre, ``n``/``t`` belt normal and tangent, ``a`` spin axis
-    (world); the base velocity is ``ub + u s_j + w y_j`` (rigid segment
-    velocity, plus the part that varies with the offsets along t and a);
-    ``fw`` the wheel's forward direction; ``sblk[o1 + ...]``, ``sblk[o2 + ...]``
-    the two components of the block deflections; ``h`` the time step. Adds the contact-patch resultant into
-    ``acc``; writes ``(Fx, Fy, Fz)`` and the generalized twist moment into
-    ``out_f``; if ``pressure_out`` has more than one entry, writes each
-    block's normal force there.
+    ``seg`` the segment's :class:`SegmentFrame`, ``motion`` its
+    :class:`SegmentMotion`, ``pose`` the wheel (centre ``c`` at this
+    internal step, spin axis ``a``), ``fw`` the wheel's forward direction,
+    ``h`` the time step. Updates the blocks' tangential deflections
+    ``state.s1, s2`` and normal forces ``state.block_force``, and adds the
+    contact-patch sums into ``state.patch``.
     """
-    nbk = int(cp[CP_NB])
-    oy = int(cp[CP_OFF_BY]) + i * nbk
-    oc = int(cp[CP_OFF_BC]) + i * nbk
-    oh = int(cp[CP_OFF_BH]) + i * nbk
-    ok = int(cp[CP_OFF_BK]) + i * nbk
-    k_n = cp[CP_KTR]
-    q_n = cp[CP_KNL]
-    c_n = cp[CP_CTR]
-    k_s = cp[CP_KSH]
-    c_s = cp[CP_CSH]
-    mu = cp[CP_MU]
-    r0 = cp[CP_R0]
-    half_l = 0.5 * cp[CP_L0]
+    nbk = params.n_blocks
+    o = i * nbk
+    block_y = params.block_y
+    block_s = params.block_s
+    block_h = params.block_h
+    block_area = params.block_area
+    sblk1 = state.s1
+    sblk2 = state.s2
+    force = state.block_force
+    acc = state.patch
+    px, py, pz = seg.px, seg.py, seg.pz
+    nx, ny, nz = seg.nx, seg.ny, seg.nz
+    tx, ty, tz = seg.tx, seg.ty, seg.tz
+    beta = seg.beta
+    ax, ay, az = pose.ax, pose.ay, pose.az
+    cx, cy, cz = pose.cx, pose.cy, pose.cz
+    ubx, uby, ubz = motion.ubx, motion.uby, motion.ubz
+    ux, uy, uz = motion.ux, motion.uy, motion.uz
+    wx, wy, wz = motion.wx, motion.wy, motion.wz
+    k_n = params.tread_stiffness
+    q_n = params.tread_progression
+    c_n = params.tread_damping
+    k_s = params.tread_shear_stiffness
+    c_s = params.tread_shear_damping
+    mu = params.friction
+    r0 = params.unloaded_radius
+    half_l = 0.5 * params.chord_length
     n_strip = int(math.ceil(2.0 * half_l / STRIP_STEP))
-    n_lat = int(cp[CP_NLAT]) if cp[CP_NLAT] >= 1.0 else 1
-    cell_w = 2.0 * cp[CP_HALFW] / nbk
+    n_lat = params.lateral_samples if params.lateral_samples >= 1 else 1
+    cell_w = 2.0 * params.tread_half_width / nbk
+    zmin = road.zmin
     fx_sum = 0.0
     fy_sum = 0.0
     fz_sum = 0.0
     m_twist = 0.0
     for j in range(nbk):
-        area = cp[ok + j]
+        area = block_area[o + j]
         if area <= 0.0:
             continue
-        yj = cp[oy + j]
-        sj = cp[oc + j]
-        hj = cp[oh + j]
+        yj = block_y[o + j]
+        sj = block_s[o + j]
+        hj = block_h[o + j]
         lat = yj
         bx = px + lat * ax + sj * tx - yj * beta * nx
         by = py + lat * ay + sj * ty - yj * beta * ny
@@ -116,14 +160,14 @@ def segment_contact(cp, gp, z, zinfo, i, px, py, pz, nx, ny, nz, tx, ty, tz, ax,
         tipx = bx + hj * nx
         tipy = by + hj * ny
         tipz = bz + hj * nz
-        g, gx, gy = grid_height_gradient(gp, z, tipx, tipy)
+        g, gx, gy = road_height_gradient(road, tipx, tipy)
         pen = g - tipz
         # a block stands for a strip of tread one segment long: where the
         # road under that strip rises above the height at the tip (a cleat
         # narrower than the block pitch), the strip is sampled every <= 10 mm
         # and the deepest point is the block's contact point
-        lz = local_zmax(zinfo, tipx - half_l, tipx + half_l)
-        if lz > zinfo[0] + 1e-4 and lz > tipz:
+        lz = local_zmax(road, tipx - half_l, tipx + half_l)
+        if lz > zmin + 1e-4 and lz > tipz:
             # distributed strip: the block's area is shared by the samples;
             # it presses with the mean penetration, at the penetration-
             # weighted mean point and road gradient
@@ -143,7 +187,7 @@ def segment_contact(cp, gp, z, zinfo, i, px, py, pz, nx, ny, nz, tx, ty, tz, ax,
                     qx = bx0 + u * tx + w * ax
                     qy = by0 + u * ty + w * ay
                     qz = bz0 + u * tz + w * az
-                    gq, gxq, gyq = grid_height_gradient(gp, z, qx, qy)
+                    gq, gxq, gyq = road_height_gradient(road, qx, qy)
                     pq = gq - qz
                     if pq > 0.0:
                         sw += pq
@@ -162,13 +206,11 @@ def segment_contact(cp, gp, z, zinfo, i, px, py, pz, nx, ny, nz, tx, ty, tz, ax,
                 gy = sgy / sw
             else:
                 pen = -1.0
-        ks0 = o1 + i * nbk + j
-        ks1 = o2 + i * nbk + j
+        k = o + j
         if pen <= 0.0:
-            sblk[ks0] = 0.0
-            sblk[ks1] = 0.0
-            if pressure_out.shape[0] > 1:
-                pressure_out[i * nbk + j] = 0.0
+            sblk1[k] = 0.0
+            sblk2[k] = 0.0
+            force[k] = 0.0
             continue
         inv = 1.0 / math.sqrt(1.0 + gx * gx + gy * gy)
         nnx = -gx * inv
@@ -196,8 +238,8 @@ def segment_contact(cp, gp, z, zinfo, i, px, py, pz, nx, ny, nz, tx, ty, tz, ax,
         t2z = nnx * t1y - nny * t1x
         v1 = vbx * t1x + vby * t1y + vbz * t1z
         v2 = vbx * t2x + vby * t2y + vbz * t2z
-        s1 = sblk[ks0] + v1 * h
-        s2 = sblk[ks1] + v2 * h
+        s1 = sblk1[k] + v1 * h
+        s2 = sblk2[k] + v2 * h
         f1 = -area * (k_s * s1 + c_s * v1)
         f2 = -area * (k_s * s2 + c_s * v2)
         fmag = math.sqrt(f1 * f1 + f2 * f2)
@@ -210,8 +252,8 @@ def segment_contact(cp, gp, z, zinfo, i, px, py, pz, nx, ny, nz, tx, ty, tz, ax,
             f2 *= scale
             s1 = -f1 / (area * k_s)
             s2 = -f2 / (area * k_s)
-        sblk[ks0] = s1
-        sblk[ks1] = s2
+        sblk1[k] = s1
+        sblk2[k] = s2
         fbx = fn * nnx + f1 * t1x + f2 * t2x
         fby = fn * nny + f1 * t1y + f2 * t2y
         fbz = fn * nnz + f1 * t1z + f2 * t2z
@@ -231,24 +273,19 @@ def segment_contact(cp, gp, z, zinfo, i, px, py, pz, nx, ny, nz, tx, ty, tz, ax,
         acc[ACC_NY] += fn * nny
         acc[ACC_NZ] += fn * nnz
         acc[ACC_W] += fn
-        acc[ACC_N] += 1.0
         dist = math.sqrt((tipx - cx) ** 2 + (tipy - cy) ** 2 + (g - cz) ** 2)
         if r0 - dist > acc[ACC_DEFL]:
             acc[ACC_DEFL] = r0 - dist
-        if pressure_out.shape[0] > 1:
-            pressure_out[i * nbk + j] = fn
-    out_f[0] = fx_sum
-    out_f[1] = fy_sum
-    out_f[2] = fz_sum
-    out_f[3] = m_twist
+        force[k] = fn
+    return fx_sum, fy_sum, fz_sum, m_twist
 
 
-@nb.njit(cache=True)
-def clear_segment(cp, sblk, o1, o2, i, pressure_out):
-    """Zero the tangential deflections of segment i's blocks (no contact)."""
-    nbk = int(cp[CP_NB])
+@nb.njit(cache=True, inline="always")
+def clear_segment(params, state, i):
+    """Segment i out of reach: zero its blocks' tangential deflections and normal forces."""
+    nbk = params.n_blocks
     for j in range(nbk):
-        sblk[o1 + i * nbk + j] = 0.0
-        sblk[o2 + i * nbk + j] = 0.0
-        if pressure_out.shape[0] > 1:
-            pressure_out[i * nbk + j] = 0.0
+        k = i * nbk + j
+        state.s1[k] = 0.0
+        state.s2[k] = 0.0
+        state.block_force[k] = 0.0

@@ -193,7 +193,9 @@ def pack(tir: TirFile, version: str | None = None) -> tuple[np.ndarray, str]:
                              line=tir.sections[section].lines.get(name), field=name)
         values[INDEX[name]] = value
     _check_physical(values, tir.source)
-    r0, cz0, fz0 = values[INDEX["UNLOADED_RADIUS"]], values[INDEX["VERTICAL_STIFFNESS"]], values[INDEX["FNOMIN"]]
+    r0 = values[INDEX["UNLOADED_RADIUS"]]
+    cz0 = values[INDEX["VERTICAL_STIFFNESS"]]
+    fz0 = values[INDEX["FNOMIN"]]
     values[INDEX["VERSION"]] = VERSION_CODE[version]
     disc = (cz0 * r0 / fz0) ** 2 - 4.0 * values[INDEX["Q_FZ2"]]
     values[INDEX["Q_FZ1"]] = math.sqrt(max(disc, 0.0))  # rearranged load-deflection law

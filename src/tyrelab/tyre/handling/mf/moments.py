@@ -99,7 +99,8 @@ def trail_and_residual(c, fz, fz_low, check, alpha_s, gamma, gamma_s, dfz, dpi, 
           * (1.0 + c[C.QBZ4] * gamma + c[C.QBZ5] * abs(gamma)) * c[C.LKY] / lmuy)  # (A58)
     ct = c[C.QCZ1]  # (4.E41)
     et = ((c[C.QEZ1] + c[C.QEZ2] * dfz + c[C.QEZ3] * dfz * dfz)
-          * (1.0 + (c[C.QEZ4] + c[C.QEZ5] * gamma_s) * (2.0 / math.pi) * math.atan(bt * ct * alphat)))  # (4.E44)
+          * (1.0 + (c[C.QEZ4] + c[C.QEZ5] * gamma_s) * (2.0 / math.pi)
+             * math.atan(bt * ct * alphat)))  # (4.E44)
     if check and et > 1.0:
         et = 1.0
         flags |= 2048
@@ -129,7 +130,8 @@ def aligning_moment(c, kappa, gamma, dfz, cos_alpha_prime, smooth, alphar, alpha
     r0 = c[C.UNLOADED_RADIUS]
     ar_eq = equivalent_slip(alphar, kxk, kya_p, kappa)
     at_eq = equivalent_slip(alphat, kxk, kya_p, kappa)
-    s = r0 * (c[C.SSZ1] + c[C.SSZ2] * (fy / c[C.FNOMIN]) + (c[C.SSZ3] + c[C.SSZ4] * dfz) * gamma) * c[C.LS]  # (A56)
+    s = r0 * (c[C.SSZ1] + c[C.SSZ2] * (fy / c[C.FNOMIN])
+              + (c[C.SSZ3] + c[C.SSZ4] * dfz) * gamma) * c[C.LS]  # (A56)
     mzr = dr * cos_atan(br * ar_eq) * smooth  # (4.E75), Cr = 1 without turn slip
     bx = bt * at_eq
     t = (dt * math.cos(ct * math.atan(bx - et * (bx - math.atan(bx)))) * cos_alpha_prime

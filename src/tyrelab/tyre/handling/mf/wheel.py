@@ -1,0 +1,49 @@
+"""The Magic Formula as a handling model of the wheel interface."""
+
+from __future__ import annotations
+
+from typing import NamedTuple
+
+import numba as nb
+import numpy as np
+
+from ...registry import HandlingModel, register_handling
+from ..slip import DKAPPA, slip
+from .kernel import mf_forces
+
+#: the MFeval use mode the rigs run (limit checks and low-speed model on)
+RIG_USE_MODE = 111
+
+
+class MagicFormulaParams(NamedTuple):
+    """Packed MF coefficients (:func:`~.coefficients.pack`), use mode and pressure [Pa]."""
+
+    coefficients: np.ndarray
+    use_mode: int
+    pressure: float
+
+
+def magic_formula_params(tyre) -> MagicFormulaParams:
+    """The Magic Formula record of ``tyre`` (MF 5.2 / 6.1 / 6.2 property files)."""
+    from .model import MagicFormula
+    mf = MagicFormula.from_tir(tyre.tir)
+    pressure = float(tyre.pressure) if np.isfinite(tyre.pressure) else 0.0
+    return MagicFormulaParams(np.asarray(mf.coefficients, dtype=np.float64), RIG_USE_MODE,
+                              pressure)
+
+
+@nb.njit(cache=True)
+def mf_wheel_forces(params, fz, v_long, v_slip_x, v_slip_y, gamma):
+    """``(FXW, FYW, MZW, kappa, alpha, dFXW/dkappa)`` of the Magic Formula."""
+    kappa, alpha = slip(v_long, v_slip_x, v_slip_y)
+    out = np.empty(6)
+    mf_forces(params.coefficients, params.use_mode, fz, kappa + DKAPPA, alpha, gamma, v_long,
+              params.pressure, out)
+    fx2 = out[0]
+    mf_forces(params.coefficients, params.use_mode, fz, kappa, alpha, gamma, v_long,
+              params.pressure, out)
+    return out[0], out[1], out[4], kappa, alpha, (fx2 - out[0]) / DKAPPA
+
+
+register_handling(HandlingModel("mf", MagicFormulaParams, magic_formula_params, mf_wheel_forces,
+                                "Magic Formula 5.2 / 6.1 / 6.2 (MFeval 4.3.1 agreement)"))

@@ -1,0 +1,150 @@
+"""A tyre with the models that drive it: the Python side of the wheel interface.
+
+:class:`TyreModel` composes a :class:`~tyrelab.tyre.params.Tyre` with a
+contact model and a handling model chosen by name from the registry
+(:mod:`tyrelab.tyre.registry`), and builds the :class:`~tyrelab.tyre.wheel.Wheel`
+record a rig's compiled loop takes. :func:`contact_geometry_table` is the
+plain function behind each model's own ``*_geometry`` function: the
+deflection, contact point and normal at given wheel positions over a road.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numba as nb
+import numpy as np
+import pandas as pd
+
+from ..road.grid import RoadGrid
+from ..road.obstacles import Flat
+from ..road.spec import road_from_spec
+from .params import Tyre
+from .registry import ContactModel, HandlingModel, contact_model, handling_model
+from .wheel import ContactGeometry, Wheel, WheelPose, contact_geometry
+
+
+@dataclass
+class TyreModel:
+    """A tyre with the models that drive it.
+
+    Parameters
+    ----------
+    tyre : Tyre
+        Parameters (from a ``.tir`` or :func:`tyrelab.tyre.library.load_tyre`).
+    contact : str
+        Contact model: a name registered in :mod:`tyrelab.tyre.registry`
+        (``point``, ``volume``, ``enveloping``, ``ring``, ``ring-tp``, ...).
+    handling : str
+        Handling model: ``"none"``, ``"pac89"``, ``"mf"``, ...
+    options : dict
+        Options of the contact model's ``build`` (e.g. ``n_width`` for the
+        enveloping model, ``n_segments`` for the ring).
+    """
+
+    tyre: Tyre
+    contact: str = "point"
+    handling: str = "none"
+    options: dict = field(default_factory=dict)
+
+    def __post_init__(self):
+        self.contact_model  # unknown names fail here, listing the known ones
+        self.handling_model
+
+    @property
+    def contact_model(self) -> ContactModel:
+        return contact_model(self.contact)
+
+    @property
+    def handling_model(self) -> HandlingModel:
+        return handling_model(self.handling)
+
+    @property
+    def has_state(self) -> bool:
+        """True for models with their own dynamics (the ring)."""
+        return self.contact_model.has_state
+
+    def contact_params(self, grid, static: bool = False):
+        """The contact model's parameter record for a road grid.
+
+        ``static`` adds the model's options for static tests (e.g. the
+        ring's relaxation damping).
+        """
+        options = dict(self.options)
+        if static:
+            extra = self.contact_model.static_options
+            for key, value in (extra(grid) if callable(extra) else extra).items():
+                options.setdefault(key, value)
+        return self.contact_model.build(self.tyre, grid, **options)
+
+    def handling_params(self):
+        """The handling model's parameter record."""
+        return self.handling_model.build(self.tyre)
+
+    def initial_state(self, load: float, params=None):
+        """Internal state in static equilibrium at ``load`` [N] on a flat road."""
+        if params is None:
+            params = self.contact_params(Flat().grid())
+        return self.contact_model.initial_state(self.tyre, float(load), params, **self.options)
+
+    def wheel(self, grid, load: float = 0.0, static: bool = False) -> Wheel:
+        """The :class:`Wheel` record of this tyre on road ``grid`` at static ``load`` [N]."""
+        params = self.contact_params(grid, static)
+        return Wheel(self.tyre.vertical_law, params, self.handling_params(), grid.surface(),
+                     self.contact_model.initial_state(self.tyre, float(load), params,
+                                                      **self.options))
+
+
+@nb.njit(cache=True)
+def _geometry_many(params, road, poses, out):
+    for k in range(poses.shape[0]):
+        p = poses[k]
+        geo = contact_geometry(params, road, WheelPose(p[0], p[1], p[2], p[3], p[4], p[5],
+                                                       0.0, 0.0, 0.0, 0.0))
+        for j in range(8):
+            out[k, j] = geo[j]
+
+
+def contact_geometry_table(model: TyreModel, road, x, y=0.0, z=None, axis=(0.0, 1.0, 0.0)):
+    """Contact geometry of an analytic model at wheel centres ``(x, y, z)`` over ``road``.
+
+    Parameters
+    ----------
+    model : TyreModel
+        An analytic contact model (point, volume, enveloping).
+    road : str, Road or RoadGrid
+        A road name (:func:`tyrelab.road.spec.road_from_spec`), road or grid.
+    x, y : array_like
+        Wheel-centre positions [m] (broadcast).
+    z : array_like, optional
+        Wheel-centre heights [m]; default: the unloaded radius above the road
+        straight below the centre (the tyre just touching a level road).
+    axis : 3 floats
+        Unit spin axis (default level, heading +x).
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per position: ``x, y, z`` and the :class:`ContactGeometry`
+        fields (``deflection`` [m], ``px, py, pz`` contact point, ``nx, ny,
+        nz`` normal, ``curvature`` [1/m]).
+    """
+    grid = road if isinstance(road, RoadGrid) else road_from_spec(road).grid()
+    if model.has_state:
+        raise TypeError(f"model '{model.contact}' has its own dynamics; use a rig "
+                        "(tyrelab.rig.static_press, tyrelab.rig.rolling) instead")
+    x, y = np.broadcast_arrays(np.asarray(x, float), np.asarray(y, float))
+    x, y = x.ravel(), y.ravel()
+    if z is None:
+        z = grid.height(x, y) + model.tyre.unloaded_radius
+    z = np.broadcast_to(np.asarray(z, float), x.shape)
+    poses = np.empty((x.size, 6))
+    poses[:, 0], poses[:, 1], poses[:, 2] = x, y, z
+    poses[:, 3:6] = np.asarray(axis, float)
+    out = np.empty((x.size, len(ContactGeometry._fields)))
+    _geometry_many(model.contact_params(grid), grid.surface(), poses, out)
+    table = pd.DataFrame(out, columns=list(ContactGeometry._fields))
+    table.insert(0, "z", z)
+    table.insert(0, "y", y)
+    table.insert(0, "x", x)
+    return table

@@ -1,0 +1,195 @@
+"""The model registry: every contact and handling model, by name and by record type.
+
+A model registers itself in its own module (``register_contact(...)`` at the
+bottom of the file); this module only imports the built-in ones on first
+use, in the order of :data:`BUILTIN_CONTACT` and :data:`BUILTIN_HANDLING`.
+Adding a model: write its module (parameter record, ``build``, compiled
+geometry or step), call ``register_contact`` there, and add its module to
+the tuple below -- see ARCHITECTURE.md, "Adding a contact model".
+
+The compiled side finds a model's code from the type of its parameter
+record (:func:`contact_by_record`), at compile time: numba specialises each
+rig loop per combination of record types and caches each specialisation,
+so no model id, flag or generated entry function is needed.
+"""
+
+from __future__ import annotations
+
+import importlib
+from dataclasses import dataclass, field
+from typing import Any, Callable
+
+import numpy as np
+
+from ..errors import InputError
+
+#: modules that register the built-in contact models (one line per model module)
+BUILTIN_CONTACT = (
+    "tyrelab.tyre.contact.point",
+    "tyrelab.tyre.contact.volume",
+    "tyrelab.tyre.contact.enveloping",
+    "tyrelab.tyre.ring.model",
+)
+#: modules that register the built-in handling models
+BUILTIN_HANDLING = (
+    "tyrelab.tyre.handling.none",
+    "tyrelab.tyre.handling.pac89",
+    "tyrelab.tyre.handling.mf.wheel",
+)
+
+
+def no_state(tyre, load, params, **options) -> np.ndarray:
+    """The internal state of a model that keeps none."""
+    return np.zeros(0)
+
+
+@dataclass(frozen=True)
+class ContactModel:
+    """A contact model as the registry knows it.
+
+    Attributes
+    ----------
+    name : str
+        The name users type (``--model``).
+    record : type
+        Its parameter record (a NamedTuple class); the compiled code is
+        chosen by this type.
+    build : callable
+        ``build(tyre, road, **options) -> record``; ``road`` is the
+        :class:`~tyrelab.road.grid.RoadGrid` it will run on.
+    geometry : numba dispatcher, optional
+        Analytic models: ``geometry(params, road, pose) -> ContactGeometry``;
+        the shared vertical law and handling models make the loads.
+    step : numba dispatcher, optional
+        Models with their own dynamics: ``step(wheel, pose, dt) -> WheelLoads``
+        advances ``wheel.state`` by ``dt``.
+    initial_state : callable
+        ``initial_state(tyre, load, params, **options) -> state`` in static
+        equilibrium under ``load`` [N] on a flat road.
+    static_options : dict or callable
+        Options added (unless the user gave them) when the model is built
+        for a static test, e.g. the ring's relaxation damping; a callable
+        takes the road grid and returns them.
+    footprint : callable, optional
+        ``footprint(wheel, load, deflection, tyre) -> dict`` from a wheel
+        pressed on the plate (models with a pressure distribution, the ring);
+        without it the static press draws the geometric footprint.
+    summary : str
+        One line for listings.
+    """
+
+    name: str
+    record: type
+    build: Callable[..., Any]
+    geometry: Any = None
+    step: Any = None
+    initial_state: Callable[..., Any] = no_state
+    static_options: Any = field(default_factory=dict)
+    footprint: Callable[..., Any] | None = None
+    summary: str = ""
+
+    def __post_init__(self):
+        if (self.geometry is None) == (self.step is None):
+            raise ValueError(f"contact model {self.name!r} needs exactly one of geometry, step")
+
+    @property
+    def has_state(self) -> bool:
+        return self.step is not None
+
+
+@dataclass(frozen=True)
+class HandlingModel:
+    """A handling (tangential force) model.
+
+    ``forces(params, fz, v_long, v_slip_x, v_slip_y, gamma)`` (compiled)
+    returns ``(FXW, FYW, MZW, kappa, alpha, dFXW/dkappa)``; ``build(tyre)``
+    returns its parameter record.
+    """
+
+    name: str
+    record: type
+    build: Callable[..., Any]
+    forces: Any
+    summary: str = ""
+
+
+_CONTACT: dict[str, ContactModel] = {}
+_HANDLING: dict[str, HandlingModel] = {}
+_loaded = False
+
+
+def register_contact(model: ContactModel) -> ContactModel:
+    """Make ``model`` known by its name (a later registration of a name replaces it)."""
+    _CONTACT[model.name] = model
+    return model
+
+
+def register_handling(model: HandlingModel) -> HandlingModel:
+    """Make handling ``model`` known by its name."""
+    _HANDLING[model.name] = model
+    return model
+
+
+def _load_builtins() -> None:
+    global _loaded
+    if not _loaded:
+        _loaded = True
+        for module in BUILTIN_CONTACT + BUILTIN_HANDLING:
+            importlib.import_module(module)
+
+
+def _ordered(registry, builtin):
+    """Built-in models in the order of their modules' list, then the others as registered."""
+    order = {module: k for k, module in enumerate(builtin)}
+    names = list(registry)
+    return {name: registry[name] for name in sorted(
+        names, key=lambda n: (order.get(registry[n].build.__module__, len(order)), names.index(n)))}
+
+
+def contact_models() -> dict[str, ContactModel]:
+    """Every registered contact model by name (built-ins first, in a fixed order)."""
+    _load_builtins()
+    return _ordered(_CONTACT, BUILTIN_CONTACT)
+
+
+def handling_models() -> dict[str, HandlingModel]:
+    """Every registered handling model by name (built-ins first, in a fixed order)."""
+    _load_builtins()
+    return _ordered(_HANDLING, BUILTIN_HANDLING)
+
+
+def contact_model(name: str) -> ContactModel:
+    """The contact model called ``name``; an unknown name lists the known ones."""
+    models = contact_models()
+    if name not in models:
+        raise InputError(f"unknown model '{name}', expected one of {', '.join(models)}",
+                         field="model")
+    return models[name]
+
+
+def handling_model(name: str) -> HandlingModel:
+    """The handling model called ``name``; an unknown name lists the known ones."""
+    models = handling_models()
+    if name not in models:
+        raise InputError(f"unknown handling model '{name}', expected one of {', '.join(models)}",
+                         field="handling")
+    return models[name]
+
+
+def _by_record(registry, numba_type, what):
+    _load_builtins()
+    cls = getattr(numba_type, "instance_class", None)
+    for model in registry.values():
+        if model.record is cls:
+            return model
+    raise TypeError(f"{numba_type} is not the parameter record of a registered {what} model")
+
+
+def contact_by_record(numba_type) -> ContactModel:
+    """The contact model whose parameter record has numba type ``numba_type`` (compile time)."""
+    return _by_record(_CONTACT, numba_type, "contact")
+
+
+def handling_by_record(numba_type) -> HandlingModel:
+    """The handling model whose parameter record has numba type ``numba_type`` (compile time)."""
+    return _by_record(_HANDLING, numba_type, "handling")

@@ -1,0 +1,292 @@
+"""The wheel interface: what every tyre model gives every rig.
+
+As in Project Chrono's ``ChTire``, every tyre model sits behind one step,
+:func:`wheel_step` ("advance this wheel by dt on this road"), so every rig
+takes every model. Across the compiled boundary everything is a named
+record (NamedTuple):
+
+* :class:`Wheel` -- what a rig holds per wheel: the vertical law, the
+  contact model's parameter record, the handling model's parameter record,
+  the road (:class:`~tyrelab.road.grid.RoadSurface`) and the model's
+  internal state;
+* :class:`WheelPose` -- where the rim is and how it moves;
+* :class:`ContactGeometry` -- what an analytic contact model finds;
+* :class:`WheelLoads` -- what the road does to the tyre.
+
+Conventions (written once, see ARCHITECTURE.md): SI units; road frame x
+forward along the road, z up; forces and moments are those *of the road on
+the tyre*, moments about the wheel centre; FXW, FYW, FZW in the W-axis
+system (z along the road normal, x in the wheel plane).
+
+Dispatch happens at compile time, on the type of the parameter records
+(:mod:`tyrelab.tyre.registry`): numba compiles, and caches on disk, one
+specialisation of each rig loop per combination of models.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import NamedTuple
+
+import numba as nb
+import numpy as np
+from numba.extending import overload
+
+from ..core.vec3 import cross, dot, unit
+from ..road.grid import RoadSurface
+from .registry import contact_by_record, handling_by_record
+from .vertical import VerticalLaw, normal_force
+
+#: speed below which slip is computed with this speed instead [m/s]
+VXLOW = 1.0
+
+
+class WheelPose(NamedTuple):
+    """Position and motion of a rim (road frame, SI).
+
+    ``c`` wheel centre [m], ``a`` unit spin axis (pointing to the wheel's
+    left), ``v`` velocity of the centre [m/s], ``omega`` spin rate about
+    ``a`` [rad/s] (positive when rolling forward).
+    """
+
+    cx: float
+    cy: float
+    cz: float
+    ax: float
+    ay: float
+    az: float
+    vx: float
+    vy: float
+    vz: float
+    omega: float
+
+
+class ContactGeometry(NamedTuple):
+    """What an analytic contact model finds: deflection, contact point, normal.
+
+    ``deflection`` <= 0 means no contact (its magnitude is then the gap, or
+    0 when unknown); ``n`` is the unit normal of the (effective) road plane,
+    pointing out of the road; ``curvature`` is the effective road curvature
+    along the heading [1/m] (enveloping model; 0 otherwise).
+    """
+
+    deflection: float
+    px: float
+    py: float
+    pz: float
+    nx: float
+    ny: float
+    nz: float
+    curvature: float
+
+
+class WheelLoads(NamedTuple):
+    """Loads of the road on the tyre after a wheel step.
+
+    ``f`` force [N] and ``m`` moment about the wheel centre [N m] (road
+    frame); ``p`` contact point, ``n`` road normal there; ``deflection``
+    [m] (<= 0: no contact) and its rate [m/s]; ``fxw, fyw, fzw`` the
+    contact force in the W-axis system [N] (``fzw`` >= 0 always); ``kappa``
+    longitudinal slip, ``alpha`` slip angle [rad]; ``dspin_domega``
+    d(spin moment)/d(omega) [N m s], which lets a rig integrate the spin
+    implicitly (the slip stiffness makes it a stiff degree of freedom).
+    """
+
+    fx: float
+    fy: float
+    fz: float
+    mx: float
+    my: float
+    mz: float
+    px: float
+    py: float
+    pz: float
+    nx: float
+    ny: float
+    nz: float
+    deflection: float
+    deflection_rate: float
+    fxw: float
+    fyw: float
+    fzw: float
+    kappa: float
+    alpha: float
+    dspin_domega: float
+
+
+class Wheel(NamedTuple):
+    """One wheel as a rig holds it: laws, parameters, road and state.
+
+    ``contact`` and ``handling`` are the parameter records of the chosen
+    models (:mod:`tyrelab.tyre.registry`); ``state`` is the contact model's
+    internal state (its own record or array; mutated in place by
+    :func:`wheel_step`). Build one with :meth:`tyrelab.tyre.model.TyreModel.wheel`.
+    """
+
+    law: VerticalLaw
+    contact: tuple
+    handling: tuple
+    road: RoadSurface
+    state: object
+
+
+# --- compile-time dispatch on the record types ---------------------------------
+
+def contact_geometry(params, road, pose):
+    """:class:`ContactGeometry` of the analytic contact model whose record is ``params``."""
+    raise NotImplementedError("compiled only")
+
+
+@overload(contact_geometry)
+def _contact_geometry(params, road, pose):
+    geometry = contact_by_record(params).geometry
+    if geometry is None:
+        return None
+
+    def impl(params, road, pose):
+        return geometry(params, road, pose)
+    return impl
+
+
+def handling_forces(params, fz, v_long, v_slip_x, v_slip_y, gamma):
+    """``(FXW, FYW, MZW, kappa, alpha, dFXW/dkappa)`` of the handling model of ``params``."""
+    raise NotImplementedError("compiled only")
+
+
+@overload(handling_forces)
+def _handling_forces(params, fz, v_long, v_slip_x, v_slip_y, gamma):
+    forces = handling_by_record(params).forces
+
+    def impl(params, fz, v_long, v_slip_x, v_slip_y, gamma):
+        return forces(params, fz, v_long, v_slip_x, v_slip_y, gamma)
+    return impl
+
+
+def has_handling(params):
+    """True unless ``params`` is the record of the "none" handling model (compile time)."""
+    raise NotImplementedError("compiled only")
+
+
+@overload(has_handling)
+def _has_handling(params):
+    active = handling_by_record(params).name != "none"
+
+    def impl(params):
+        return active
+    return impl
+
+
+def wheel_step(wheel, pose, dt):
+    """Advance ``wheel`` by ``dt`` [s] at ``pose``; returns its :class:`WheelLoads`.
+
+    Analytic contact models (no state) evaluate their geometry, the vertical
+    law and the handling model (:func:`analytic_wheel_step`); models with
+    dynamics (the ring) advance their state with their own registered step.
+    """
+    raise NotImplementedError("compiled only")
+
+
+def _field_type(record_type, name):
+    """numba type of field ``name`` of a NamedTuple type (at compile time)."""
+    return record_type.types[record_type.fields.index(name)]
+
+
+@overload(wheel_step)
+def _wheel_step(wheel, pose, dt):
+    model = contact_by_record(_field_type(wheel, "contact"))
+    if model.step is not None:
+        step = model.step
+
+        def impl(wheel, pose, dt):
+            return step(wheel, pose, dt)
+        return impl
+
+    def impl(wheel, pose, dt):
+        return analytic_wheel_step(wheel, pose)
+    return impl
+
+
+@nb.njit(cache=True, inline="always")
+def analytic_wheel_step(wheel, pose):
+    """Loads of an analytic contact model: eq. 2.2 along the contact normal, plus handling.
+
+    The normal force is thesis eq. 2.2 with the deflection rate ``-v . n``
+    (the road does not move; the contact point slides along the road
+    without changing the distance to first order); the handling model adds
+    FXW, FYW and an aligning moment from the slip of the contact point
+    (rigid-ring kinematics: the lever is the loaded radius).
+    """
+    geo = contact_geometry(wheel.contact, wheel.road, pose)
+    rho = geo.deflection
+    nx, ny, nz = geo.nx, geo.ny, geo.nz
+    px, py, pz = geo.px, geo.py, geo.pz
+    if rho <= 0.0:
+        return WheelLoads(0.0, 0.0, 0.0, 0.0, 0.0, 0.0, px, py, pz, nx, ny, nz, rho, 0.0,
+                          0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
+    cx, cy, cz = pose.cx, pose.cy, pose.cz
+    ax, ay, az = pose.ax, pose.ay, pose.az
+    vx, vy, vz = pose.vx, pose.vy, pose.vz
+    omega = pose.omega
+    rho_dot = -dot(vx, vy, vz, nx, ny, nz)
+    fz = normal_force(wheel.law, rho, rho_dot)
+    rx, ry, rz = px - cx, py - cy, pz - cz
+    fxw = 0.0
+    fyw = 0.0
+    mzw = 0.0
+    kappa = 0.0
+    alpha = 0.0
+    dspin = 0.0
+    wxx = wxy = wxz = wyx = wyy = wyz = 0.0
+    if has_handling(wheel.handling):
+        # W-axis: z along the normal, x in the wheel plane
+        tx, ty, tz = cross(ax, ay, az, nx, ny, nz)
+        wxx, wxy, wxz = unit(tx, ty, tz)
+        wyx, wyy, wyz = cross(nx, ny, nz, wxx, wxy, wxz)
+        # velocity of the wheel material at the contact point: v + omega a x r
+        sx, sy, sz = cross(ax, ay, az, rx, ry, rz)
+        v_long = dot(vx, vy, vz, wxx, wxy, wxz)
+        v_slip_x = dot(vx + omega * sx, vy + omega * sy, vz + omega * sz, wxx, wxy, wxz)
+        v_slip_y = dot(vx + omega * sx, vy + omega * sy, vz + omega * sz, wyx, wyy, wyz)
+        gamma = math.asin(max(-1.0, min(1.0, dot(ax, ay, az, nx, ny, nz))))
+        fxw, fyw, mzw, kappa, alpha, dfx = handling_forces(wheel.handling, fz, v_long, v_slip_x,
+                                                           v_slip_y, gamma)
+        if dfx != 0.0:
+            # spin moment of FXW at the contact point: ((r x w_x) . a) FXW, and
+            # d kappa / d omega = -((a x r) . w_x) / max(|V_x|, VXLOW)
+            lx, ly, lz = cross(rx, ry, rz, wxx, wxy, wxz)
+            lever = dot(lx, ly, lz, ax, ay, az)
+            vref = abs(v_long) if abs(v_long) > VXLOW else VXLOW
+            dspin = lever * dfx * (-dot(sx, sy, sz, wxx, wxy, wxz) / vref)
+    fx = fz * nx + fxw * wxx + fyw * wyx
+    fy = fz * ny + fxw * wxy + fyw * wyy
+    fzz = fz * nz + fxw * wxz + fyw * wyz
+    mx, my, mz = cross(rx, ry, rz, fx, fy, fzz)
+    return WheelLoads(fx, fy, fzz, mx + mzw * nx, my + mzw * ny, mz + mzw * nz, px, py, pz,
+                      nx, ny, nz, rho, rho_dot, fxw, fyw, fz, kappa, alpha, dspin)
+
+
+def pose(cx=0.0, cy=0.0, cz=0.0, axis=(0.0, 1.0, 0.0), velocity=(0.0, 0.0, 0.0),
+         omega=0.0) -> WheelPose:
+    """A :class:`WheelPose` from named arguments (Python side)."""
+    ax, ay, az = (float(v) for v in axis)
+    vx, vy, vz = (float(v) for v in velocity)
+    return WheelPose(float(cx), float(cy), float(cz), ax, ay, az, vx, vy, vz, float(omega))
+
+
+@nb.njit(cache=True)
+def step_many(wheel, poses, dt, out):
+    """:func:`wheel_step` at each row of ``poses`` (n, 10), loads into ``out`` (n, 20)."""
+    for k in range(poses.shape[0]):
+        p = poses[k]
+        loads = wheel_step(wheel, WheelPose(p[0], p[1], p[2], p[3], p[4], p[5], p[6], p[7],
+                                            p[8], p[9]), dt)
+        for j in range(20):
+            out[k, j] = loads[j]
+
+
+def loads_table(wheel: Wheel, poses, dt: float = 0.0) -> "np.ndarray":
+    """Run :func:`wheel_step` over an array of poses; one :class:`WheelLoads` row each."""
+    poses = np.ascontiguousarray(np.atleast_2d(poses), np.float64)
+    out = np.zeros((poses.shape[0], len(WheelLoads._fields)))
+    step_many(wheel, poses, dt, out)
+    return out

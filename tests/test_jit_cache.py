@@ -1,0 +1,226 @@
+"""tyrelab.core.jit_cache: compiled code follows the kernel sources, and only them.
+
+The end-to-end tests run a copy of the current package (``tyrelab.__file__``'s
+folder) in fresh interpreters, with every cache folder and ``HOME`` inside
+``tmp_path``, so neither the work tree nor the user's caches are touched. Each
+cold run compiles the point model's static press (a few seconds).
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import numba
+import pytest
+from numba.core.caching import NullCache
+
+import tyrelab
+from tyrelab.core import jit_cache
+
+PACKAGE = Path(tyrelab.__file__).resolve().parent
+#: the spline branch of ``static_load`` (the built-in tyre uses the load-deflection table)
+SPLINE_RETURN = "    return value if value > 0.0 else 0.0\n"
+DOUBLED_RETURN = "    return 2.0 * value if value > 0.0 else 0.0\n"
+
+RUN = r"""
+import gc, json
+import tyrelab
+from numba.core.dispatcher import Dispatcher
+from tyrelab.core.jit_cache import cache_dir
+from tyrelab.rig.static_press import static_press
+
+model = tyrelab.make_tyre_model(model="point")
+load = float(static_press(model, [0.03])["load"].iloc[0])
+ours = [d for d in gc.get_objects() if isinstance(d, Dispatcher)
+        and d.py_func.__module__.startswith("tyrelab.")]
+print(json.dumps({
+    "file": tyrelab.__file__,
+    "folder": str(cache_dir()),
+    "load": load,
+    "hits": sum(sum(d.stats.cache_hits.values()) for d in ours),
+    "misses": sum(sum(d.stats.cache_misses.values()) for d in ours),
+}))
+"""
+
+
+def copy_package(tmp_path: Path) -> Path:
+    """A copy of the package under ``tmp_path/src``; returns that ``src``."""
+    shutil.copytree(PACKAGE, tmp_path / "src" / "tyrelab",
+                    ignore=shutil.ignore_patterns("__pycache__", "*.nbi", "*.nbc"))
+    return tmp_path / "src"
+
+
+def edit(path: Path, old: str, new: str) -> None:
+    text = path.read_text()
+    assert text.count(old) == 1, f"{old!r} not found once in {path}"
+    path.write_text(text.replace(old, new))
+
+
+def append_comment(path: Path) -> None:
+    path.write_text(path.read_text() + "# an edit\n")
+
+
+def environment(tmp_path: Path, src: Path, numba_cache_dir: Path | None) -> dict:
+    env = {k: v for k, v in os.environ.items() if k not in ("NUMBA_CACHE_DIR", "PYTHONPATH")}
+    env.update(PYTHONPATH=str(src), HOME=str(tmp_path / "home"), XDG_CACHE_HOME=str(tmp_path / "xdg"))
+    if numba_cache_dir is not None:
+        env["NUMBA_CACHE_DIR"] = str(numba_cache_dir)
+    return env
+
+
+def result(stdout: str, src: Path) -> dict:
+    out = json.loads(stdout.strip().splitlines()[-1])
+    assert Path(out["file"]).is_relative_to(src), "the subprocess imported another tyrelab"
+    return out
+
+
+def run(tmp_path: Path, src: Path, numba_cache_dir: Path | None) -> dict:
+    proc = subprocess.run([sys.executable, "-c", RUN], env=environment(tmp_path, src, numba_cache_dir),
+                          cwd=tmp_path, capture_output=True, text=True, timeout=300)
+    assert proc.returncode == 0, proc.stderr
+    return result(proc.stdout, src)
+
+
+def files(folder: Path) -> dict:
+    return {p: (p.stat().st_mtime_ns, p.stat().st_size) for p in folder.rglob("*") if p.is_file()}
+
+
+# -- unit level: the digest and the choice of cache ---------------------------------------------
+
+def test_digest_follows_kernel_sources_only(tmp_path):
+    package = copy_package(tmp_path) / "tyrelab"
+    before = jit_cache.kernel_digest(package)
+    assert before == jit_cache.kernel_digest(PACKAGE)  # relative paths: the copy has the same digest
+
+    append_comment(package / "cli" / "main.py")
+    (package / "core" / "probe.py").write_text("K = 1\n")  # a new module no kernel imports
+    assert jit_cache.kernel_digest(package) == before
+
+    append_comment(package / "tyre" / "vertical.py")
+    after_kernel = jit_cache.kernel_digest(package)
+    assert after_kernel != before
+
+    # a plain module imported by a kernel: its constants are frozen into the compiled code
+    vertical = package / "tyre" / "vertical.py"
+    vertical.write_text(vertical.read_text() + "from ..core.probe import K\n")
+    assert package / "core" / "probe.py" in jit_cache.kernel_modules(package)
+    with_probe = jit_cache.kernel_digest(package)
+    (package / "core" / "probe.py").write_text("K = 2\n")
+    assert jit_cache.kernel_digest(package) != with_probe
+
+
+def test_cache_dir_honours_numba_cache_dir(tmp_path, monkeypatch):
+    digest = jit_cache.kernel_digest()[:16]
+    monkeypatch.setattr(numba.config, "CACHE_DIR", str(tmp_path / "numba"))
+    assert jit_cache.cache_dir() == (tmp_path / "numba" / f"tyrelab-{digest}").resolve()
+
+    monkeypatch.setattr(numba.config, "CACHE_DIR", "")
+    monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path / "xdg"))
+    assert jit_cache.cache_dir() == (tmp_path / "xdg" / "tyrelab" / "numba" / digest).resolve()
+
+    (tmp_path / "a-file").write_text("")  # nothing can be created below a file
+    monkeypatch.setattr(numba.config, "CACHE_DIR", str(tmp_path / "a-file"))
+    assert jit_cache.cache_dir() is None
+
+
+def function_in(path: Path):
+    """A fresh Python function whose source file is *path* (which must exist)."""
+    namespace = {}
+    exec(compile("def f(x):\n    return x + 1\n", str(path), "exec"), namespace)
+    return namespace["f"]
+
+
+def test_only_tyrelab_functions_use_the_digest_folder(tmp_path, monkeypatch):
+    other_file = tmp_path / "other.py"
+    other_file.write_text("")
+    monkeypatch.setattr(numba.config, "CACHE_DIR", str(tmp_path / "theirs"))
+    monkeypatch.setattr(jit_cache, "_folder", tmp_path / "ours")
+
+    ours = numba.njit(cache=True)(function_in(PACKAGE / "errors.py"))
+    other = numba.njit(cache=True)(function_in(other_file))
+    assert Path(ours.stats.cache_path).is_relative_to(tmp_path / "ours")
+    assert Path(other.stats.cache_path).is_relative_to(tmp_path / "theirs")
+
+    monkeypatch.setattr(jit_cache, "_folder", None)  # no writable folder: compile in memory
+    in_memory = numba.njit(cache=True)(function_in(PACKAGE / "errors.py"))
+    assert isinstance(in_memory._cache, NullCache)
+    assert in_memory(1) == 2
+
+
+def test_two_signatures_saved_at_once_keep_their_own_code(tmp_path):
+    """Process B reads the index, A writes its entry, B saves all of its entry, A's data lands."""
+    def cache_file():
+        return jit_cache._IndexDataFile(str(tmp_path), "f-1.py311", source_stamp="stamp")
+
+    a, b = cache_file(), cache_file()
+    b._load_index = lambda: {}  # B's view of the index predates A's entry
+    write_a = a._save_data
+
+    def late_write(name, data):
+        b.save("key B", "code B")
+        write_a(name, data)
+
+    a._save_data = late_write
+    a.save("key A", "code A")
+    assert cache_file().load("key B") == "code B"
+    assert cache_file().load("key A") in (None, "code A")
+
+
+# -- end to end, in fresh interpreters ----------------------------------------------------------
+
+def kernel_edit_reaches_the_compiled_code(tmp_path, src, numba_cache_dir, first):
+    """Double ``static_load``'s spline branch, a file the press only calls into: new folder, new physics."""
+    old_folder = Path(first["folder"])
+    old_files = files(old_folder)
+    edit(src / "tyrelab" / "tyre" / "vertical.py", SPLINE_RETURN, DOUBLED_RETURN)
+    after = run(tmp_path, src, numba_cache_dir)
+    assert after["folder"] != first["folder"]
+    assert after["misses"] > 0
+    assert after["load"] == pytest.approx(2.0 * first["load"], rel=0.05)
+    assert files(old_folder) == old_files  # the old folder is left alone
+
+
+def test_edits_with_numba_cache_dir(tmp_path):
+    src = copy_package(tmp_path)
+    base = tmp_path / "numba-cache"
+    first = run(tmp_path, src, base)
+    folder = Path(first["folder"])
+    assert folder.parent == base.resolve() and folder.name.startswith("tyrelab-")
+    assert first["misses"] > 0 and files(folder)
+
+    # a non-kernel edit: same folder, everything loaded from it, nothing written
+    append_comment(src / "tyrelab" / "cli" / "main.py")
+    cached = files(base)
+    second = run(tmp_path, src, base)
+    assert second["folder"] == first["folder"]
+    assert second["misses"] == 0 and second["hits"] > 0
+    assert second["load"] == first["load"]
+    assert files(base) == cached
+
+    kernel_edit_reaches_the_compiled_code(tmp_path, src, base, first)
+
+
+def test_edits_with_the_user_cache(tmp_path):
+    src = copy_package(tmp_path)
+    first = run(tmp_path, src, None)
+    assert Path(first["folder"]).parent == (tmp_path / "xdg" / "tyrelab" / "numba").resolve()
+    assert first["misses"] > 0 and files(Path(first["folder"]))
+    kernel_edit_reaches_the_compiled_code(tmp_path, src, None, first)
+
+
+def test_two_processes_compile_into_one_cache_at_once(tmp_path):
+    src = copy_package(tmp_path)
+    env = environment(tmp_path, src, tmp_path / "numba-cache")
+    procs = [subprocess.Popen([sys.executable, "-c", RUN], env=env, cwd=tmp_path, text=True,
+                              stdout=subprocess.PIPE, stderr=subprocess.PIPE) for _ in range(2)]
+    outputs = [p.communicate(timeout=300) for p in procs]
+    for proc, (_, stderr) in zip(procs, outputs):
+        assert proc.returncode == 0, stderr
+    loads = [result(stdout, src)["load"] for stdout, _ in outputs]
+    assert loads[0] == loads[1] > 0.0
+    assert not list((tmp_path / "numba-cache").rglob("*.tmp.*"))  # every write was renamed into place
