@@ -79,7 +79,7 @@ def test_ring_envelops_a_cleat_rigid_disc_does_not(xzl300):
     patch: the ring's vertical force dips when the cleat is mid-patch
     (Zegelaar 1998, Schmeitz 2004); the rigid disc's force peaks there."""
     from tyrelab.road.obstacles import Cleat
-    from tyrelab.tyre.ring.rolling import roll_over
+    from tyrelab.rig.rolling import roll_over
     load = float(load_cases().loc["LC3", "wheel_load_N"])
     height = xzl300.unloaded_radius - xzl300.static_deflection(load)
     cleat = Cleat(0.0254, 0.0254, start=1.0)
@@ -116,8 +116,8 @@ def test_static_press_plate_and_cleat(xzl300):
 
 def test_footprint_and_png(xzl300, tmp_path):
     from tyrelab.report.footprint import plot_footprint
-    from tyrelab.tyre.ring.static import ring_footprint
-    res = ring_footprint(TyreModel(xzl300, contact="ring"), 40e3)
+    from tyrelab.rig.static_press import footprint
+    res = footprint(TyreModel(xzl300, contact="ring"), 40e3)
     for key in ("x", "y", "pressure", "outline", "length", "width", "load"):
         assert key in res
     assert res["force"].sum() == pytest.approx(res["load"], rel=0.05)

@@ -1,4 +1,4 @@
-"""Footprint plot: contact-pressure map and outline of a ring model (thesis 3.3.3, Fig. 4-9)."""
+"""Footprint plot: contact-pressure map and outline of a tyre model (thesis 3.3.3, Fig. 4-9)."""
 
 from __future__ import annotations
 
@@ -8,7 +8,7 @@ import numpy as np
 
 
 def plot_footprint(result: dict, path) -> Path:
-    """Write the footprint of :func:`tyrelab.tyre.ring.static.ring_footprint` as a PNG.
+    """Write the footprint of :func:`tyrelab.rig.static_press.footprint` as a PNG.
 
     Each contacting tread block is drawn as a rectangle of its cell, coloured
     by its contact pressure [kPa]; the outline is drawn in red (as FTire/fit

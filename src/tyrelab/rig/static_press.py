@@ -18,7 +18,6 @@ from __future__ import annotations
 
 import re
 
-import numba as nb
 import numpy as np
 import pandas as pd
 
@@ -26,53 +25,11 @@ from ..errors import InputError
 from ..road.obstacles import Cleat, Flat, Ridge
 from ..tyre.contact.shape import carcass_discs
 from ..tyre.model import TyreModel
-from ..tyre.wheel import WheelPose, wheel_step
+from ..tyre.static import DT, HOLD, PRESS_COLUMNS, PRESS_RATE, WINDOW, press_path
 
 DIRECTIONS = ("lateral", "longitudinal")
-#: press rate [m/s], hold time [s], averaging window [s] and step [s]
-PRESS_RATE = 0.25
-HOLD = 0.12
-WINDOW = 0.02
-DT = 1e-3
 #: the rim starts this far above first touch [m]
 CLEARANCE = 0.002
-#: channels of :func:`press_path`'s result rows
-PRESS_COLUMNS = ("FX", "FY", "FZ", "DEFLECT", "MX", "MY", "MZ")
-
-
-@nb.njit(cache=True)
-def press_path(wheel, z_start, heights, rate, hold, window, dt, res):
-    """Lower the rim centre from ``z_start`` through ``heights`` [m].
-
-    ``res[k]`` receives :data:`PRESS_COLUMNS` at height k: the loads averaged
-    over the last ``window`` of the hold, and the tyre deflection at its end.
-    Returns the final centre height.
-    """
-    zc = z_start
-    n_hold = int(np.ceil(hold / dt))
-    n_win = int(np.ceil(window / dt))
-    for k in range(heights.shape[0]):
-        target = heights[k]
-        n_ramp = int(np.ceil(abs(target - zc) / (rate * dt)))
-        if n_ramp > 0:
-            vz = (target - zc) / (n_ramp * dt)
-            for s in range(n_ramp):
-                wheel_step(wheel, WheelPose(0.0, 0.0, zc, 0.0, 1.0, 0.0, 0.0, 0.0, vz, 0.0), dt)
-                zc += vz * dt
-        zc = target
-        for q in range(res.shape[1]):
-            res[k, q] = 0.0
-        for s in range(n_hold):
-            f = wheel_step(wheel, WheelPose(0.0, 0.0, zc, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0), dt)
-            if s >= n_hold - n_win:
-                res[k, 0] += f.fx / n_win
-                res[k, 1] += f.fy / n_win
-                res[k, 2] += f.fz / n_win
-                res[k, 3] = f.deflection
-                res[k, 4] += f.mx / n_win
-                res[k, 5] += f.my / n_win
-                res[k, 6] += f.mz / n_win
-    return zc
 
 
 def press_road(test: str = "plate", direction: str = "lateral"):

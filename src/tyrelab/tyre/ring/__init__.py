@@ -5,9 +5,10 @@ See ``docs/ring.md`` for the equations. Public entry points: the records
 :func:`~.model.ring_params`, :func:`~.model.ring_initial_state`, the
 compiled step :func:`~.kernel.ring_step` (behind
 :func:`tyrelab.tyre.wheel.wheel_step`; the models "ring" and "ring-tp"
-register in :mod:`.model`), :func:`~.static.ring_static_press`,
-:func:`~.static.ring_footprint`, :func:`~.modal.ring_modal`,
-:class:`~.parameters.RingParameters`.
+register in :mod:`.model`), :func:`~.static.settle` (static states),
+:func:`~.modal.ring_modal`, :class:`~.parameters.RingParameters`. The static
+press, footprint and rolling test are the rigs' (:mod:`tyrelab.rig`), as for
+every model.
 """
 
 from .parameters import RingParameters, ring_parameters  # noqa: F401

@@ -21,6 +21,7 @@ from .kernel import ring_step
 from .parameters import ring_parameters, stable_step, tread_half_width
 from .pattern import default_pattern, even_blocks, pattern_blocks, read_pattern
 from .records import KIN_TIME, RingParams, RingState, copy_state, empty_state, params_key
+from .static import footprint_from_blocks, settle
 
 #: default discretisation (thesis 2.3.4: 100-200 belt elements, 10-100 blocks each)
 N_SEGMENTS = 100
@@ -155,7 +156,6 @@ def ring_initial_state(tyre, load, params=None, tread_pattern=False, **options) 
     with) is not needed; the states of equal ``(options, height)`` are cached.
     """
     from ...road.obstacles import Flat
-    from .static import settle
     grid = Flat().grid()
     relaxed = dict(options)
     relaxed["relax"] = RELAX_RATE
@@ -183,9 +183,8 @@ def ring_footprint_of(wheel, load, deflection, tyre) -> dict:
 
     ``wheel.state.block_force`` holds each block's normal force after the
     last step; ``load`` [N] the plate force, ``deflection`` [m] the press
-    depth. See :func:`tyrelab.tyre.ring.static.ring_footprint` for the dict.
+    depth. See :func:`.static.footprint_from_blocks` for the dict.
     """
-    from .static import footprint_from_blocks
     return footprint_from_blocks(wheel.contact, wheel.state, wheel.state.block_force.copy(),
                                  load, deflection, tyre.pressure)
 
