@@ -125,7 +125,7 @@ def _locate(u, n):
     return i, u - i
 
 
-@nb.njit(cache=True, inline="always")
+@nb.njit(cache=True)
 def road_height(road, x, y):
     """Bilinear height [m] of :class:`RoadSurface` ``road`` at (x, y)."""
     z = road.z

@@ -137,7 +137,7 @@ def contact_geometry(params, road, pose):
     raise NotImplementedError("compiled only")
 
 
-@overload(contact_geometry)
+@overload(contact_geometry, inline="always")
 def _contact_geometry(params, road, pose):
     geometry = contact_by_record(params).geometry
     if geometry is None:

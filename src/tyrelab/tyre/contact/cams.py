@@ -304,7 +304,7 @@ def cam_row(params, road, j, wy, x_first, pitch, count, top, out):
         t_prev = xt
 
 
-@nb.njit(cache=True, inline="always")
+@nb.njit(cache=True)
 def cam_height(params, road, x0, y0, fx, fy, zmax):
     """Height w of the lowest point of one cam resting on the road (basic function).
 
@@ -367,7 +367,7 @@ def row_block_max(params, road, j, xa, xb):
     return top
 
 
-@nb.njit(cache=True, inline="always")
+@nb.njit(cache=True)
 def half_length(params, rho):
     """Half contact length a [m] at deflection ``rho``: eq. 2.3 (``length_law`` 0) or
     MF-Swift (1)."""
@@ -382,7 +382,7 @@ def half_length(params, rho):
     return r0 * (c2 * x + c1 * math.sqrt(x))  # MF-Swift: Q_RA1, Q_RA2
 
 
-@nb.njit(cache=True, inline="always")
+@nb.njit(cache=True)
 def half_width(params, rho):
     """Half contact width b [m] at deflection ``rho``, at most ``params.max_half_width``.
 
