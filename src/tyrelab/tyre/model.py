@@ -95,13 +95,17 @@ class TyreModel:
                                                       **self.options))
 
 
+#: number of fields of a :class:`ContactGeometry`
+N_GEOMETRY = len(ContactGeometry._fields)
+
+
 @nb.njit(cache=True)
 def _geometry_many(params, road, poses, out):
     for k in range(poses.shape[0]):
         p = poses[k]
         geo = contact_geometry(params, road, WheelPose(p[0], p[1], p[2], p[3], p[4], p[5],
                                                        0.0, 0.0, 0.0, 0.0))
-        for j in range(8):
+        for j in range(N_GEOMETRY):
             out[k, j] = geo[j]
 
 
@@ -141,7 +145,7 @@ def contact_geometry_table(model: TyreModel, road, x, y=0.0, z=None, axis=(0.0, 
     poses = np.empty((x.size, 6))
     poses[:, 0], poses[:, 1], poses[:, 2] = x, y, z
     poses[:, 3:6] = np.asarray(axis, float)
-    out = np.empty((x.size, len(ContactGeometry._fields)))
+    out = np.empty((x.size, N_GEOMETRY))
     _geometry_many(model.contact_params(grid), grid.surface(), poses, out)
     table = pd.DataFrame(out, columns=list(ContactGeometry._fields))
     table.insert(0, "z", z)

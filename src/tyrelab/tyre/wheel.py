@@ -114,6 +114,10 @@ class WheelLoads(NamedTuple):
     dspin_domega: float
 
 
+#: number of fields of a :class:`WheelLoads` (the columns of :func:`loads_table`)
+N_LOADS = len(WheelLoads._fields)
+
+
 class Wheel(NamedTuple):
     """One wheel as a rig holds it: laws, parameters, road and state.
 
@@ -275,18 +279,18 @@ def pose(cx=0.0, cy=0.0, cz=0.0, axis=(0.0, 1.0, 0.0), velocity=(0.0, 0.0, 0.0),
 
 @nb.njit(cache=True)
 def step_many(wheel, poses, dt, out):
-    """:func:`wheel_step` at each row of ``poses`` (n, 10), loads into ``out`` (n, 20)."""
+    """:func:`wheel_step` at each row of ``poses`` (n, 10), loads into ``out`` (n, N_LOADS)."""
     for k in range(poses.shape[0]):
         p = poses[k]
         loads = wheel_step(wheel, WheelPose(p[0], p[1], p[2], p[3], p[4], p[5], p[6], p[7],
                                             p[8], p[9]), dt)
-        for j in range(20):
+        for j in range(N_LOADS):
             out[k, j] = loads[j]
 
 
 def loads_table(wheel: Wheel, poses, dt: float = 0.0) -> "np.ndarray":
     """Run :func:`wheel_step` over an array of poses; one :class:`WheelLoads` row each."""
     poses = np.ascontiguousarray(np.atleast_2d(poses), np.float64)
-    out = np.zeros((poses.shape[0], len(WheelLoads._fields)))
+    out = np.zeros((poses.shape[0], N_LOADS))
     step_many(wheel, poses, dt, out)
     return out

@@ -408,13 +408,17 @@ def effective_road_at(params, road, pose):
     return EffectiveRoad(w0, su, sv, curvature, deflection, a, b)
 
 
+#: number of fields of an :class:`EffectiveRoad`
+N_EFFECTIVE = len(EffectiveRoad._fields)
+
+
 @nb.njit(cache=True)
 def _effective_many(params, road, poses, out):
     for k in range(poses.shape[0]):
         p = poses[k]
         e = effective_road_at(params, road, WheelPose(p[0], p[1], p[2], p[3], p[4], p[5],
                                                       0.0, 0.0, 0.0, 0.0))
-        for j in range(7):
+        for j in range(N_EFFECTIVE):
             out[k, j] = e[j]
 
 
@@ -479,7 +483,7 @@ def effective_road(tyre, road, x, y=0.0, z=None, axis=(0.0, 1.0, 0.0), **options
     """
     import pandas as pd
     grid, poses = _wheel_positions(tyre, road, x, y, z, axis)
-    out = np.empty((poses.shape[0], len(EffectiveRoad._fields)))
+    out = np.empty((poses.shape[0], N_EFFECTIVE))
     _effective_many(enveloping_params(tyre, grid, **options), grid.surface(), poses, out)
     table = pd.DataFrame(out, columns=list(EffectiveRoad._fields))
     for k, name in ((2, "z"), (1, "y"), (0, "x")):
