@@ -17,7 +17,7 @@ from ..road.base import Road
 from ..road.spec import road_from_spec
 from ..tyre.model import TyreModel
 from . import _quarter_kernel as K
-from .simulation import levelled_grid, run_chunks, to_signal
+from .simulation import drop_road, levelled_grid, run_chunks, to_signal
 
 G = 9.80665
 
@@ -79,12 +79,7 @@ class QuarterVehicle:
              dt: float = 1e-3, output_rate: float = 1000.0, progress: bool | None = None):
         """A single wheel dropped: the quarter vehicle, standing still, is lifted until
         the tyre just leaves the ground (plus ``lift`` [m]) and released."""
-        road = road_from_spec(road)
-        if not (np.isfinite(lift) and lift >= 0):
-            raise InputError(f"lift must be a number of metres >= 0, got {lift}", field="lift")
-        if not (np.isfinite(duration) and duration > 0):
-            raise InputError(f"duration must be a positive number of seconds, got {duration}",
-                             field="duration")
+        road = drop_road(road, lift, duration)
         return self._run(road, 0.0, self.model.tyre.unloaded_radius + lift, 0.0, 0.0, duration,
                          dt, output_rate, progress, "wheel-drop")
 

@@ -105,7 +105,7 @@ def roll(model: TyreModel, road="cleat:50x50", speed: float = 0.5, height: float
     return to_signal(data, CHANNELS, meta)
 
 
-def roll_over(model, road, height, x_start, x_end, speed=0.5, dt=1e-3, load=None):
+def roll_over(model, road, height, x_start, x_end, speed=0.5, dt=1e-3):
     """Roll ``model`` over ``road`` at axle ``height`` from ``x_start`` to ``x_end``.
 
     Starts from the static state at the load the vertical law gives at that

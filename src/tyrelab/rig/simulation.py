@@ -63,6 +63,18 @@ def levelled_grid(road, x0: float, y0: float = 0.0):
     return RoadGrid(grid.x0, grid.y0, grid.dx, grid.dy, grid.z - offset)
 
 
+def drop_road(road, lift: float, duration: float):
+    """The road of a drop test, after checking its ``lift`` [m] and ``duration`` [s]."""
+    from ..errors import InputError
+    from ..road.spec import road_from_spec
+    if not (np.isfinite(lift) and lift >= 0):
+        raise InputError(f"lift must be a number of metres >= 0, got {lift}", field="lift")
+    if not (np.isfinite(duration) and duration > 0):
+        raise InputError(f"duration must be a positive number of seconds, got {duration}",
+                         field="duration")
+    return road_from_spec(road)
+
+
 class SimulationError(RuntimeError):
     """A run produced a non-finite value or a negative normal force."""
 

@@ -133,31 +133,23 @@ def geometric_footprint(tyre, deflection: float, load: float) -> dict:
     """
     offsets, radii, widths = carcass_discs(tyre)
     h = tyre.unloaded_radius - deflection
-    half = np.sqrt(np.clip(radii ** 2 - h ** 2, 0.0, None))
-    xs, ys, areas, lead = [], [], [], []
-    for e, w, a in zip(offsets, widths, half):
-        if a <= 0.0:
-            continue
-        n = max(1, int(np.ceil(2 * a / FOOTPRINT_PITCH)))
-        edges = np.linspace(-a, a, n + 1)
-        xs.append(0.5 * (edges[1:] + edges[:-1]))
-        ys.append(np.full(n, e))
-        areas.append(np.full(n, w * 2 * a / n))
-        lead.append((a, e, w))
-    if not xs:
-        empty = np.zeros(0)
-        return {"x": empty, "y": empty, "force": empty, "pressure": empty,
-                "outline": np.zeros((0, 2)), "length": 0.0, "width": 0.0, "load": load,
-                "cell": (FOOTPRINT_PITCH, float(widths[0])), "deflection": deflection,
-                "pressure_inflation": float(tyre.pressure)}
-    x, y, area = np.concatenate(xs), np.concatenate(ys), np.concatenate(areas)
-    mean_pressure = load / area.sum()
-    front = [(a, e - w / 2) for a, e, w in lead] + [(lead[-1][0], lead[-1][1] + lead[-1][2] / 2)]
-    back = [(-a, e + w / 2) for a, e, w in lead[::-1]] + [(-lead[0][0], lead[0][1] - lead[0][2] / 2)]
-    outline = np.array(front + back + [front[0]])
-    return {"x": x, "y": y, "force": mean_pressure * area,
-            "pressure": np.full(x.size, mean_pressure),
-            "outline": outline, "length": float(2 * max(a for a, _, _ in lead)),
-            "width": float(max(e + w / 2 for _, e, w in lead) - min(e - w / 2 for _, e, w in lead)),
-            "load": load, "cell": (FOOTPRINT_PITCH, float(widths[0])), "deflection": deflection,
+    touching = radii > h
+    e, w = offsets[touching], widths[touching]
+    a = np.sqrt(radii[touching] ** 2 - h ** 2)  # half chord of each disc on the plate
+    counts = np.maximum(1, np.ceil(2 * a / FOOTPRINT_PITCH).astype(int))
+    # cells of each strip: centres evenly across its chord, equal shares of its area
+    x = np.concatenate([np.linspace(-ak, ak, 2 * n + 1)[1::2] for ak, n in zip(a, counts)] or
+                       [np.zeros(0)])
+    y = np.repeat(e, counts)
+    area = np.repeat(w * 2 * a / counts, counts)
+    force = load * area / area.sum() if area.size else area
+    # outline: the strips' leading ends left to right, their trailing ends back
+    left, right = e - w / 2, e + w / 2
+    outline = np.column_stack([np.r_[a, a[-1:], -a[::-1], -a[:1], a[:1]],
+                               np.r_[left, right[-1:], right[::-1], left[:1], left[:1]]]) \
+        if a.size else np.zeros((0, 2))
+    return {"x": x, "y": y, "force": force, "pressure": force / area if area.size else area,
+            "outline": outline, "length": float(2 * a.max()) if a.size else 0.0,
+            "width": float(right.max() - left.min()) if a.size else 0.0, "load": load,
+            "cell": (FOOTPRINT_PITCH, float(widths[0])), "deflection": deflection,
             "pressure_inflation": float(tyre.pressure)}

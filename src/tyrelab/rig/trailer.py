@@ -29,7 +29,7 @@ from ..road.base import Road
 from ..road.obstacles import Flat
 from ..road.spec import road_from_spec
 from . import _trailer_kernel as K
-from .simulation import levelled_grid, run_chunks, to_signal
+from .simulation import drop_road, levelled_grid, run_chunks, to_signal
 
 G = 9.80665
 
@@ -232,12 +232,7 @@ class Trailer:
         motion (``Z_WC``) then decays to the static equilibrium -- the
         record from which the thesis finds the tyre's damping (eqs. 3.1-3.7).
         """
-        road = road_from_spec(road)
-        if not (np.isfinite(lift) and lift >= 0):
-            raise InputError(f"lift must be a number of metres >= 0, got {lift}", field="lift")
-        if not (np.isfinite(duration) and duration > 0):
-            raise InputError(f"duration must be a positive number of seconds, got {duration}",
-                             field="duration")
+        road = drop_road(road, lift, duration)
         s = self.setup
         sine = (self.model.tyre.unloaded_radius + lift - s.hitch_height) / self.geometry.hitch_to_axle
         if abs(sine) >= 0.5:

@@ -133,22 +133,37 @@ def contact_geometry_table(model: TyreModel, road, x, y=0.0, z=None, axis=(0.0, 
         fields (``deflection`` [m], ``px, py, pz`` contact point, ``nx, ny,
         nz`` normal, ``curvature`` [1/m]).
     """
-    grid = road if isinstance(road, RoadGrid) else road_from_spec(road).grid()
     if model.has_state:
         raise TypeError(f"model '{model.contact}' has its own dynamics; use a rig "
                         "(tyrelab.rig.static_press, tyrelab.rig.rolling) instead")
+    grid, poses = wheel_positions(road, x, y, z, axis, model.tyre.unloaded_radius)
+    out = np.empty((poses.shape[0], N_GEOMETRY))
+    _geometry_many(model.contact_params(grid), grid.surface(), poses, out)
+    return positions_table(poses, out, ContactGeometry._fields)
+
+
+def wheel_positions(road, x, y=0.0, z=None, axis=(0.0, 1.0, 0.0), unloaded_radius=0.0):
+    """``(grid, poses)`` for evaluating a model at wheel centres ``(x, y, z)``.
+
+    ``road`` a name, Road or RoadGrid; ``x, y`` broadcast; ``z`` defaults to
+    ``unloaded_radius`` above the road straight below the centre. ``poses``
+    rows are ``(cx, cy, cz, ax, ay, az)``.
+    """
+    grid = road if isinstance(road, RoadGrid) else road_from_spec(road).grid()
     x, y = np.broadcast_arrays(np.asarray(x, float), np.asarray(y, float))
     x, y = x.ravel(), y.ravel()
     if z is None:
-        z = grid.height(x, y) + model.tyre.unloaded_radius
-    z = np.broadcast_to(np.asarray(z, float), x.shape)
+        z = grid.height(x, y) + float(unloaded_radius)
     poses = np.empty((x.size, 6))
-    poses[:, 0], poses[:, 1], poses[:, 2] = x, y, z
+    poses[:, 0], poses[:, 1] = x, y
+    poses[:, 2] = np.broadcast_to(np.asarray(z, float), x.shape)
     poses[:, 3:6] = np.asarray(axis, float)
-    out = np.empty((x.size, N_GEOMETRY))
-    _geometry_many(model.contact_params(grid), grid.surface(), poses, out)
-    table = pd.DataFrame(out, columns=list(ContactGeometry._fields))
-    table.insert(0, "z", z)
-    table.insert(0, "y", y)
-    table.insert(0, "x", x)
+    return grid, poses
+
+
+def positions_table(poses, values, columns) -> pd.DataFrame:
+    """A table of ``x, y, z`` (from ``poses``) and the named ``values`` columns."""
+    table = pd.DataFrame(values, columns=list(columns))
+    for k, name in ((2, "z"), (1, "y"), (0, "x")):
+        table.insert(0, name, poses[:, k])
     return table

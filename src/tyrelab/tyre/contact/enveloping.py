@@ -67,6 +67,7 @@ import numpy as np
 from ...core.vec3 import unit, wheel_axes
 from ...errors import InputError
 from ...road.grid import local_zmax, road_height
+from ..model import TyreModel, contact_geometry_table, positions_table, wheel_positions
 from ..registry import ContactModel, register_contact
 from ..wheel import ContactGeometry, WheelPose
 from .cams import (block_maxima, cam_height, cam_row, cam_tables, grid_row, half_length,
@@ -422,22 +423,6 @@ def _effective_many(params, road, poses, out):
             out[k, j] = e[j]
 
 
-def _wheel_positions(tyre, road, x, y, z, axis):
-    """(grid, poses (n, 6)) for the plain functions below."""
-    from ...road.grid import RoadGrid
-    from ...road.spec import road_from_spec
-    grid = road if isinstance(road, RoadGrid) else road_from_spec(road).grid()
-    x, y = np.broadcast_arrays(np.asarray(x, float), np.asarray(y, float))
-    x, y = x.ravel(), y.ravel()
-    if z is None:
-        z = grid.height(x, y) + float(tyre.unloaded_radius)
-    z = np.broadcast_to(np.asarray(z, float), x.shape)
-    poses = np.empty((x.size, 6))
-    poses[:, 0], poses[:, 1], poses[:, 2] = x, y, z
-    poses[:, 3:6] = np.asarray(axis, float)
-    return grid, poses
-
-
 def effective_road(tyre, road, x, y=0.0, z=None, axis=(0.0, 1.0, 0.0), **options):
     """The effective road of the enveloping model under wheel centres ``(x, y, z)``.
 
@@ -481,14 +466,10 @@ def effective_road(tyre, road, x, y=0.0, z=None, axis=(0.0, 1.0, 0.0), **options
         spread over (taken at the deflection of a single cam under the
         centre).
     """
-    import pandas as pd
-    grid, poses = _wheel_positions(tyre, road, x, y, z, axis)
+    grid, poses = wheel_positions(road, x, y, z, axis, tyre.unloaded_radius)
     out = np.empty((poses.shape[0], N_EFFECTIVE))
     _effective_many(enveloping_params(tyre, grid, **options), grid.surface(), poses, out)
-    table = pd.DataFrame(out, columns=list(EffectiveRoad._fields))
-    for k, name in ((2, "z"), (1, "y"), (0, "x")):
-        table.insert(0, name, poses[:, k])
-    return table
+    return positions_table(poses, out, EffectiveRoad._fields)
 
 
 def enveloping_geometry(tyre, road, x, y=0.0, z=None, axis=(0.0, 1.0, 0.0), **options):
@@ -498,7 +479,6 @@ def enveloping_geometry(tyre, road, x, y=0.0, z=None, axis=(0.0, 1.0, 0.0), **op
     See :func:`tyrelab.tyre.model.contact_geometry_table` for the arguments
     and the returned table; ``options`` are those of :func:`enveloping_params`.
     """
-    from ..model import TyreModel, contact_geometry_table
     return contact_geometry_table(TyreModel(tyre, "enveloping", options=dict(options)), road,
                                   x, y, z, axis)
 

@@ -29,6 +29,7 @@ import numba as nb
 
 from ...core.vec3 import unit, wheel_axes
 from ...road.grid import local_zmax, road_height
+from ..model import TyreModel, contact_geometry_table
 from ..registry import ContactModel, register_contact
 from ..wheel import ContactGeometry
 
@@ -226,7 +227,6 @@ def point_geometry(tyre, road, x, y=0.0, z=None, axis=(0.0, 1.0, 0.0)):
     See :func:`tyrelab.tyre.model.contact_geometry_table` for the arguments
     and the returned table.
     """
-    from ..model import TyreModel, contact_geometry_table
     return contact_geometry_table(TyreModel(tyre, "point"), road, x, y, z, axis)
 
 

@@ -50,6 +50,7 @@ import numpy as np
 from ...core.vec3 import unit, wheel_axes
 from ...errors import InputError
 from ...road.grid import local_zmax, road_height
+from ..model import TyreModel, contact_geometry_table
 from ..registry import ContactModel, register_contact
 from ..wheel import ContactGeometry
 from .shape import (carcass_discs, disc_intersection, profile_breaks,
@@ -300,7 +301,6 @@ def volume_geometry(tyre, road, x, y=0.0, z=None, axis=(0.0, 1.0, 0.0), discs=No
     tyrelab.tyre.model.contact_geometry_table
     tyrelab.tyre.contact.point.point_geometry
     """
-    from ..model import TyreModel, contact_geometry_table
     options = {} if discs is None else {"discs": discs}
     return contact_geometry_table(TyreModel(tyre, "volume", options=options), road, x, y, z, axis)
 
