@@ -73,6 +73,7 @@ def test_geometric_footprint_of_a_square_section_is_the_chord(xzl):
 
 
 def test_footprint_of_an_analytic_model_carries_the_plate_load(xzl):
+    """Pressed to the law's deflection for 40 kN, the volume model's plate carries 40 kN
+    (its equivalent-volume deflection equals the rigid disc's on a plate, thesis 2.3.2)."""
     fp = footprint(TyreModel(xzl, "volume"), 40e3)
-    assert fp["load"] == pytest.approx(40e3, rel=2e-3)  # the press at the law's deflection
-    assert fp["deflection"] == pytest.approx(xzl.static_deflection(40e3))
+    assert fp["load"] == pytest.approx(40e3, rel=2e-3)

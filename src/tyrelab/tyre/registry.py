@@ -140,10 +140,10 @@ def _load_builtins() -> None:
 
 def _ordered(registry, builtin):
     """Built-in models in the order of their modules' list, then the others as registered."""
-    order = {module: k for k, module in enumerate(builtin)}
-    names = list(registry)
-    return {name: registry[name] for name in sorted(
-        names, key=lambda n: (order.get(registry[n].build.__module__, len(order)), names.index(n)))}
+    rank = {module: k for k, module in enumerate(builtin)}
+    # sorted() is stable: models of one module, and all others, keep their registration order
+    return dict(sorted(registry.items(),
+                       key=lambda item: rank.get(item[1].build.__module__, len(rank))))
 
 
 def contact_models() -> dict[str, ContactModel]:
