@@ -91,8 +91,7 @@ class TyreModel:
         """The :class:`Wheel` record of this tyre on road ``grid`` at static ``load`` [N]."""
         params = self.contact_params(grid, static)
         return Wheel(self.tyre.vertical_law, params, self.handling_params(), grid.surface(),
-                     self.contact_model.initial_state(self.tyre, float(load), params,
-                                                      **self.options))
+                     self.initial_state(load, params))
 
 
 #: number of fields of a :class:`ContactGeometry`
