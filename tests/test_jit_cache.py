@@ -224,3 +224,50 @@ def test_two_processes_compile_into_one_cache_at_once(tmp_path):
     loads = [result(stdout, src)["load"] for stdout, _ in outputs]
     assert loads[0] == loads[1] > 0.0
     assert not list((tmp_path / "numba-cache").rglob("*.tmp.*"))  # every write was renamed into place
+
+
+GC_RUN = r"""
+import gc, json
+import numba
+from numba.core import event
+import tyrelab
+from tyrelab.road.grid import road_height
+
+seen = []  # gc.isenabled() at the end of every compile nested in another
+
+
+class Probe(event.Listener):
+    depth = 0
+
+    def on_start(self, ev):
+        self.depth += 1
+
+    def on_end(self, ev):
+        self.depth -= 1
+        if self.depth > 0:
+            seen.append(gc.isenabled())
+
+
+event.register("numba:compile", Probe())
+tyrelab.simulate(model="point", road="flat", duration=0.01)
+after_run = gc.isenabled()
+try:
+    road_height(1, 2, 3)  # a typing error inside a compile of ours
+except numba.TypingError:
+    pass
+print(json.dumps({"nested": len(seen), "paused": not any(seen), "after_run": after_run,
+                  "after_error": gc.isenabled()}))
+"""
+
+
+def test_collector_paused_while_compiling_and_resumed(tmp_path):
+    """The cyclic collector is off during a compile of the package's kernels and on again
+    afterwards, also when the compile fails (a user's process must keep its collector)."""
+    env = dict(os.environ, HOME=str(tmp_path), NUMBA_CACHE_DIR=str(tmp_path / "cache"))
+    env.pop("XDG_CACHE_HOME", None)
+    out = subprocess.run([sys.executable, "-c", GC_RUN], capture_output=True, text=True, env=env,
+                         check=True)
+    got = json.loads(out.stdout.strip().splitlines()[-1])
+    assert got["nested"] > 5  # the probe saw the kernels' nested compiles
+    assert got["paused"]
+    assert got["after_run"] and got["after_error"]

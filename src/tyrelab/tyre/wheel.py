@@ -205,14 +205,20 @@ def _wheel_step(wheel, pose, dt):
             return step(wheel, pose, dt)
         return impl
 
+    # the model's geometry is called directly, not through the contact_geometry overload:
+    # an inline overload is compiled on its own before it is inlined, a second full typing
+    # of the contact model (0.8 s of the enveloping trailer's cold compile)
+    geometry = model.geometry
+
     def impl(wheel, pose, dt):
-        return analytic_wheel_step(wheel, pose)
+        return analytic_wheel_step(wheel, pose, geometry(wheel.contact, wheel.road, pose))
     return impl
 
 
 @nb.njit(cache=True, inline="always")
-def analytic_wheel_step(wheel, pose):
-    """Loads of an analytic contact model: eq. 2.2 along the contact normal, plus handling.
+def analytic_wheel_step(wheel, pose, geo):
+    """Loads of an analytic contact model at contact geometry ``geo``: eq. 2.2 along the
+    contact normal, plus handling.
 
     The normal force is thesis eq. 2.2 with the deflection rate ``-v . n``
     (the road does not move; the contact point slides along the road
@@ -220,7 +226,6 @@ def analytic_wheel_step(wheel, pose):
     FXW, FYW and an aligning moment from the slip of the contact point
     (rigid-ring kinematics: the lever is the loaded radius).
     """
-    geo = contact_geometry(wheel.contact, wheel.road, pose)
     rho = geo.deflection
     nx, ny, nz = geo.nx, geo.ny, geo.nz
     px, py, pz = geo.px, geo.py, geo.pz

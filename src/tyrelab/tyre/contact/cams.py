@@ -135,7 +135,7 @@ def slope_support(params, m):
     return m * s - table_drop(params.cam_drop, params.cam_half_length, s)
 
 
-@nb.njit(cache=True, inline="always")
+@nb.njit(cache=True)
 def _cam_side(params, road, x0, y0, fx, fy, top, best, reach):
     """Walk from the cam's centre outwards along (fx, fy), sampling the road every
     ``params.step``; returns (best, reach).
@@ -321,7 +321,8 @@ def cam_height(params, road, x0, y0, fx, fy, zmax):
     if abs(fy) < 0.01:  # along grid x: one grid row (the small drift of y is ignored)
         j, wy = grid_row(road, y0)
         out = np.empty(1)
-        cam_row(params, road, j, wy, x0, 0.0, 1, zmax, out)
+        # one cam; np.int64, not the literal 1, so that cam_row compiles once for both callers
+        cam_row(params, road, j, wy, x0, 0.0, np.int64(1), zmax, out)
         return out[0]
     best = -1e300
     reach = params.cam_reach

@@ -264,7 +264,7 @@ def contact_patch(params: EnvelopingParams, deflection: float):
     return half_length(params, float(deflection)), half_width(params, float(deflection))
 
 
-@nb.njit(cache=True, inline="always")
+@nb.njit(cache=True, forceinline=True)
 def cam_plane(params, road, cx, cy, cz, fx, fy, dx, dy, cosg, zmax):
     """The cams' least-squares effective plane under a wheel centre (cx, cy, cz).
 
