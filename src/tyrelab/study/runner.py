@@ -1,0 +1,114 @@
+"""Running a study's simulations on Dask: one run per task, results into the store.
+
+A *task* is a plain dict: ``key`` (the run's store key), ``spec`` (the
+columns its record and the index carry) and ``simulate`` (the keyword
+arguments of :func:`tyrelab.simulate`, SI units). Workers compute the
+signal table and send it back; only this process writes the store, so a
+cluster whose workers do not share its disk works as well as a local one.
+
+Execution: a :class:`distributed.LocalCluster` of worker *processes*, one
+thread each (numba kernels hold the GIL-free core for themselves), as many
+as cores by default; or a running scheduler (``tcp://HOST:8786``). Each
+worker compiles (or loads from the disk cache, :mod:`tyrelab.core.jit_cache`)
+a model's kernels at its first run of that model and keeps them for the
+rest. A run that raises is recorded with its error; a worker that dies is
+recorded the same way (Dask's ``KilledWorker``); the other runs go on.
+Ctrl-C cancels the runs in flight and stops the cluster; finished runs
+stay in the store. The simulations are deterministic, so the results do
+not depend on the number of workers or the order in which runs finish.
+"""
+
+from __future__ import annotations
+
+import logging
+import os
+import time
+
+from .store import Store
+
+
+def execute(task: dict):
+    """Run one task in a worker; returns ``("done", signal, wall time)`` or
+    ``("failed", one-line error, wall time)``."""
+    from ..api import simulate
+    t0 = time.perf_counter()
+    try:
+        signal = simulate(**task["simulate"], progress=False)
+    except Exception as exc:  # recorded, not raised: the other runs go on
+        text = " ".join(str(exc).split()) or type(exc).__name__
+        return "failed", f"{type(exc).__name__}: {text}", time.perf_counter() - t0
+    return "done", signal, time.perf_counter() - t0
+
+
+def _client(scheduler: str | None, workers: int | None):
+    """A Dask client and the cluster it owns (None for an external scheduler)."""
+    from distributed import Client, LocalCluster
+    if scheduler:
+        return Client(scheduler), None
+    n = workers or os.cpu_count() or 1
+    cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True,
+                           dashboard_address=None, silence_logs=logging.ERROR)
+    return Client(cluster), cluster
+
+
+def run_tasks(tasks: list[dict], store: Store, workers: int | None = None,
+              scheduler: str | None = None, progress: bool = True) -> dict:
+    """Compute every task whose run is not finished in ``store``.
+
+    Parameters
+    ----------
+    tasks : list of dict
+        As in the module docstring; keys must be unique.
+    store : Store
+    workers : int, optional
+        Worker processes of the local cluster (default: one per core).
+    scheduler : str, optional
+        Address of a running Dask scheduler; ``workers`` is then ignored.
+    progress : bool
+        A progress bar over runs (on stderr), with the estimated time left.
+
+    Returns
+    -------
+    dict
+        ``{"computed": n, "skipped": n, "failed": n}``.
+    """
+    todo = [t for t in tasks if not store.is_finished(t["key"])]
+    counts = {"computed": 0, "skipped": len(tasks) - len(todo), "failed": 0}
+    if not todo:
+        return counts
+    from distributed import as_completed
+    from tqdm import tqdm
+    client, cluster = _client(scheduler, workers)
+    by_key = {t["key"]: t for t in todo}
+    futures = []
+    try:
+        # pure=False: a rerun of a study computes again what the store lacks
+        futures = [client.submit(execute, t, key=f"tyrelab-run-{t['key']}", pure=False) for t in todo]
+        bar = tqdm(total=len(todo), unit="run", disable=not progress, desc="study")
+        for future in as_completed(futures):
+            key = future.key.removeprefix("tyrelab-run-")
+            task = by_key[key]
+            try:
+                status, result, wall = future.result()
+            except Exception as exc:  # the worker died (KilledWorker) or the task was lost
+                status, result, wall = "failed", f"{type(exc).__name__}: {exc}", 0.0
+            if status == "done":
+                store.save(key, task["spec"], result, wall)
+                counts["computed"] += 1
+            else:
+                store.save_failure(key, task["spec"], result, wall)
+                counts["failed"] += 1
+            bar.update(1)
+            bar.set_postfix(failed=counts["failed"])
+            future.release()
+        bar.close()
+    except KeyboardInterrupt:
+        for f in futures:
+            f.cancel()
+        raise
+    finally:
+        client.close()
+        if cluster is not None:
+            cluster.close()
+        store.write_index()
+    return counts

@@ -1,0 +1,1103 @@
+"""The study spec: one TOML file describing a campaign of simulations (``tyrelab study``).
+
+A study is every tyre x model variant x test x speed x load case, each run
+compared with a reference (another model of the study, or measured files).
+This module reads and checks the file; it runs nothing. Everything is
+validated before any work starts: a bad spec raises :class:`InputError`
+with one line naming the file, the line, the key path and what was
+expected. The spec is data only -- no value is ever executed or evaluated.
+
+Schema (km/h, kPa, mm at this edge, as the command line; SI in the parsed objects)::
+
+    [study]
+    name = "xzl-thesis-campaign"        # required
+    output = "results"                  # folder, relative to the spec file's folder
+    dt = 0.001                          # [s] rig time step (optional, 0.001)
+    output_rate = 1000                  # [Hz] output sample rate (optional, 1000)
+
+    [[tyre]]                            # one or more
+    name = "xzl"                        # label
+    file = "xzl-16.00R20"               # built-in tyre name, or a .tir path (relative to the spec)
+    pressure_kpa = 300                  # optional, built-in tyres measured at several pressures only
+
+    [[model]]                           # one or more model variants
+    name = "OPC lk"                     # label used in every table
+    contact = "point"                   # a registered contact model
+    stiffness = "linear"                # "linear" | "table" (optional: the model's default)
+    handling = "none"                   # a registered handling model (optional: the tyre file's)
+
+    [[test]]                            # one or more
+    name = "cleat 50x50 perpendicular"  # obstacle/track label (the thesis's words)
+    group = "discrete obstacles"        # or "rough tracks" (optional: from the road)
+    road = "cleat:50x50"                # a road name (tyrelab.road.spec) or a .crg path [@offset]
+    speeds_kmh = [12, 18, 42]           # 0 < v <= 200 km/h
+    loads = ["LC1"]                     # "LC1".."LC3" (thesis Table 3-4) or a wheel load in N
+    rig = "trailer"                     # optional (tyrelab.api.RIGS)
+    duration = 6.0                      # [s] optional (default: the rig runs to the road's end)
+    reference = { model = "FTire TP" }  # optional: a model label of this spec, or
+    # reference = { files = ["field/c50_12.tdx", "field/c50_18.tdx", "field/c50_42.tdx"] }
+
+    [metrics.limits."discrete obstacles"]   # optional pass limits per group and metric
+    mRE_disturbance_pct = 20
+    mRE_response_pct = 20
+
+Rules beyond the types:
+
+* Labels (tyre, model names) are unique. A test name may appear in more
+  than one ``[[test]]`` (the thesis drives a track at 3 and 18 km/h in LC1
+  but 3 and 11 km/h in LC2) if the entries name the same road and group and
+  no (speed, load) pair repeats.
+* ``reference.files``: paths relative to the spec's folder, each existing.
+  Plain strings: with one speed and one load they are repeated measurements
+  of that condition; otherwise there must be one per (speed, load) pair,
+  in the order speeds then loads (``[12 LC1, 12 LC2, 18 LC1, ...]``). Or
+  tables ``{ file = "...", speed_kmh = 12, load = "LC1" }`` naming the
+  condition (several for one condition are repeats). Every condition of
+  the test needs at least one file.
+* ``[metrics] limits``: ``{group: {metric: limit}}`` with metrics of
+  :data:`tyrelab.validate.compare.METRICS`; a group given replaces that
+  group's default (:data:`tyrelab.validate.tables.DEFAULT_LIMITS`) whole.
+* In key paths of error messages, ``test[3]`` is the third ``[[test]]``
+  table and ``speeds_kmh[2]`` the second element (counted from 1).
+
+:meth:`StudySpec.runs` expands the matrix; :func:`run_key` names a run by
+everything that determines its result (see there).
+"""
+
+from __future__ import annotations
+
+import bisect
+import functools
+import hashlib
+import json
+import math
+import re
+import tomllib
+from dataclasses import dataclass, field
+from importlib import resources
+from pathlib import Path
+
+from .._version import __version__
+from ..errors import InputError
+
+#: the obstacle groups of the thesis (Table 5-15); the summary rules differ per group
+GROUPS = ("discrete obstacles", "rough tracks")
+#: speed range accepted [km/h]
+MAX_SPEED_KMH = 200.0
+DEFAULT_DT = 1e-3
+DEFAULT_OUTPUT_RATE = 1000.0
+#: the built-in thesis campaign (package data)
+BUILTIN_SPEC = "thesis_campaign.toml"
+
+_STUDY_KEYS = ("name", "output", "dt", "output_rate")
+_TYRE_KEYS = ("name", "file", "pressure_kpa")
+_MODEL_KEYS = ("name", "contact", "stiffness", "handling")
+_TEST_KEYS = ("name", "group", "road", "speeds_kmh", "loads", "rig", "duration", "reference")
+_REFERENCE_KEYS = ("model", "files")
+_REFERENCE_FILE_KEYS = ("file", "speed_kmh", "load")
+_TOP_KEYS = ("study", "tyre", "model", "test", "metrics")
+_METRICS_KEYS = ("limits",)
+_OBSTACLE_KINDS = ("cleat", "bump", "step", "pothole")
+_DISCRETE_TRACKS = ("trapezoidal-bump",)
+_BARE_KEY = re.compile(r"[A-Za-z0-9_-]+")
+
+
+# ---------------------------------------------------------------------------
+# the parsed spec (SI units)
+
+@dataclass(frozen=True)
+class TyreSpec:
+    """A tyre of the study.
+
+    Attributes
+    ----------
+    name : str
+        Label.
+    file : str
+        The built-in tyre's name (as :data:`tyrelab.tyre.library` spells it)
+        or the absolute path of a ``.tir`` file.
+    pressure : float or None
+        Inflation pressure [Pa] of a built-in tyre (None: its default).
+    builtin : bool
+        Whether ``file`` names a built-in tyre.
+    """
+
+    name: str
+    file: str
+    pressure: float | None = None
+    builtin: bool = True
+
+
+@dataclass(frozen=True)
+class ModelSpec:
+    """A model variant: contact model, vertical stiffness and handling model (None: default)."""
+
+    name: str
+    contact: str
+    stiffness: str | None = None
+    handling: str | None = None
+
+
+@dataclass(frozen=True)
+class ReferenceFile:
+    """A measured reference file for one condition of a test (``speed`` [m/s])."""
+
+    path: Path
+    speed: float
+    load: str | float
+
+
+@dataclass(frozen=True)
+class TestSpec:
+    """One ``[[test]]``: an obstacle or track driven at several speeds and loads.
+
+    ``road`` is what :func:`tyrelab.simulate` takes (a ``.crg`` path made
+    absolute); ``speeds`` [m/s]; ``loads`` load-case names or wheel loads
+    [N]; ``duration`` [s] or None (the rig's default); the reference is
+    ``reference_model`` (a model label) or ``reference_files`` or neither.
+    """
+
+    __test__ = False  # not a pytest class
+
+    name: str
+    group: str
+    road: str
+    speeds: tuple[float, ...]
+    loads: tuple[str | float, ...]
+    rig: str = "trailer"
+    duration: float | None = None
+    reference_model: str | None = None
+    reference_files: tuple[ReferenceFile, ...] = ()
+
+    @property
+    def speeds_kmh(self) -> tuple[float, ...]:
+        return tuple(v * 3.6 for v in self.speeds)
+
+
+@dataclass(frozen=True)
+class RunSpec:
+    """One simulation: everything :func:`tyrelab.simulate` needs, plus its labels.
+
+    ``speed`` [m/s], ``load`` a load-case name or a wheel load [N],
+    ``duration`` [s] or None, ``dt`` [s], ``output_rate`` [Hz].
+    """
+
+    tyre: TyreSpec
+    model: ModelSpec
+    test: str
+    group: str
+    road: str
+    speed: float
+    load: str | float
+    rig: str
+    duration: float | None
+    dt: float
+    output_rate: float
+
+    @property
+    def speed_kmh(self) -> float:
+        return self.speed * 3.6
+
+    def simulate_kwargs(self) -> dict:
+        """Keyword arguments of :func:`tyrelab.simulate` for this run."""
+        return {"tyre": self.tyre.file, "model": self.model.contact, "road": self.road,
+                "speed": self.speed, "load": self.load, "pressure": self.tyre.pressure,
+                "stiffness": self.model.stiffness, "handling": self.model.handling,
+                "rig": self.rig, "duration": self.duration, "dt": self.dt,
+                "output_rate": self.output_rate}
+
+
+@dataclass(frozen=True)
+class StudySpec:
+    """A parsed, validated study (SI units).
+
+    ``output`` is an absolute folder; ``limits`` ``{group: {metric: limit}}``
+    (defaults filled in); ``source`` the spec file.
+    """
+
+    name: str
+    output: Path
+    dt: float
+    output_rate: float
+    tyres: tuple[TyreSpec, ...]
+    models: tuple[ModelSpec, ...]
+    tests: tuple[TestSpec, ...]
+    limits: dict = field(hash=False)
+    source: Path | str = "<string>"
+
+    def runs(self) -> tuple[RunSpec, ...]:
+        """Every tyre x test x speed x load x model, in that nesting (outermost first).
+
+        Deterministic: the order of the spec's tables and lists. The runs of
+        one condition (test, speed, load) are adjacent, the models in spec
+        order; a reference model's runs appear once, as any model's.
+        """
+        out = []
+        for tyre in self.tyres:
+            for test in self.tests:
+                for speed in test.speeds:
+                    for load in test.loads:
+                        for model in self.models:
+                            out.append(RunSpec(tyre, model, test.name, test.group, test.road, speed, load,
+                                               test.rig, test.duration, self.dt, self.output_rate))
+        return tuple(out)
+
+    def model(self, name: str) -> ModelSpec:
+        """The model variant labelled ``name``."""
+        for m in self.models:
+            if m.name == name:
+                return m
+        raise KeyError(name)
+
+    def _test_of(self, run: RunSpec) -> TestSpec:
+        for test in self.tests:
+            if (test.name == run.test and run.speed in test.speeds and run.load in test.loads):
+                return test
+        raise KeyError(run.test)
+
+    def reference_run(self, run: RunSpec) -> RunSpec | None:
+        """The run ``run`` is compared with when its test's reference is a model.
+
+        None when the test has no model reference, or ``run`` is a run of
+        the reference model itself.
+        """
+        test = self._test_of(run)
+        if test.reference_model is None or test.reference_model == run.model.name:
+            return None
+        return RunSpec(run.tyre, self.model(test.reference_model), run.test, run.group, run.road,
+                       run.speed, run.load, run.rig, run.duration, run.dt, run.output_rate)
+
+    def reference_files(self, run: RunSpec) -> tuple[Path, ...]:
+        """The measured files ``run`` is compared with (repeats of its condition); () if none."""
+        test = self._test_of(run)
+        return tuple(f.path for f in test.reference_files
+                     if f.speed == run.speed and f.load == run.load)
+
+    def run_keys(self) -> dict[RunSpec, str]:
+        """:func:`run_key` of every run (each tyre's digest computed once)."""
+        digests = {tyre: tyre_digest(tyre) for tyre in self.tyres}
+        return {run: run_key(run, digests[run.tyre]) for run in self.runs()}
+
+
+# ---------------------------------------------------------------------------
+# run keys
+
+def _data_bytes(package: str, name: str) -> bytes:
+    return resources.files(package).joinpath("data", name).read_bytes()
+
+
+def _tyre_files(tyre: TyreSpec) -> list[tuple[str, bytes]]:
+    """The files whose content defines ``tyre`` (as the library and the ring model read them)."""
+    from ..tyre.library import BUILT_IN, DEFAULT_PRESSURE, SINGLE_FILE
+    from ..tyre.ring.parameters import BUILT_IN_RING
+    from ..tyre.ring.pattern import BUILT_IN_PATTERN
+
+    files = []
+    if tyre.builtin and tyre.file in SINGLE_FILE:
+        files.append((SINGLE_FILE[tyre.file], _data_bytes("tyrelab.tyre", SINGLE_FILE[tyre.file])))
+    elif tyre.builtin:
+        pressures = BUILT_IN[tyre.file]
+        p = DEFAULT_PRESSURE if tyre.pressure is None else tyre.pressure
+        exact = [q for q in pressures if abs(p - q) <= 1e-8 + 1e-5 * abs(q)]  # as load_tyre
+        if exact:
+            used = exact
+        else:  # interpolated between the two measured pressures around it
+            hi = bisect.bisect_left(pressures, p)
+            used = [pressures[hi - 1], pressures[hi]]
+        for q in used:
+            name = f"{tyre.file}_{q / 1e3:.0f}kPa.tir"
+            files.append((name, _data_bytes("tyrelab.tyre", name)))
+    else:
+        path = Path(tyre.file)
+        files.append((path.name, path.read_bytes()))
+    # the ring model reads a built-in tyre's ring parameters and tread pattern from
+    # companion files when the property file has none (matched by the tyre's name)
+    stem = tyre.file if tyre.builtin else Path(tyre.file).stem
+    for table in (BUILT_IN_RING, BUILT_IN_PATTERN):
+        match = {k.lower(): v for k, v in table.items()}.get(stem.lower())
+        if match is not None:
+            files.append((match, _data_bytes("tyrelab.tyre", match)))
+    return files
+
+
+def tyre_digest(tyre: TyreSpec) -> str:
+    """SHA-256 (hex) of a tyre's parameter content.
+
+    Built-in tyres: the property file(s) :func:`tyrelab.tyre.library.load_tyre`
+    reads at the tyre's pressure (the two measured ones around it when it
+    interpolates) and the pressure; ``.tir`` files: the file's bytes. Both
+    add the ring model's companion files (ring parameters, tread pattern)
+    the tyre's name selects. Labels do not enter it.
+    """
+    h = hashlib.sha256(b"tyrelab tyre digest 1\0")
+    h.update(json.dumps({"builtin": tyre.builtin, "name": tyre.file if tyre.builtin else None,
+                         "pressure": tyre.pressure}, sort_keys=True).encode())
+    for name, content in _tyre_files(tyre):
+        h.update(b"\0" + name.encode() + b"\0" + str(len(content)).encode() + b"\0")
+        h.update(content)
+    return h.hexdigest()
+
+
+def _file_digest(path: Path) -> str:
+    st = path.stat()
+    return _file_digest_of(str(path), st.st_mtime_ns, st.st_size)
+
+
+@functools.lru_cache(maxsize=64)
+def _file_digest_of(path: str, mtime_ns: int, size: int) -> str:
+    return hashlib.sha256(Path(path).read_bytes()).hexdigest()
+
+
+def _road_identity(road: str):
+    """The road as it enters a run key: its name, or a .crg file's content digest and offset."""
+    path_text, _, offset = road.partition("@")
+    if path_text.lower().endswith(".crg"):
+        return {"crg_sha256": _file_digest(Path(path_text)), "offset": offset or "0"}
+    return road
+
+
+@functools.lru_cache(maxsize=None)
+def _load_case(name: str) -> tuple[float, float]:
+    from ..tyre.library import load_cases
+    row = load_cases().loc[name]
+    return float(row["ballast_kg"]), float(row["wheel_load_kg"])
+
+
+def _load_identity(load):
+    if isinstance(load, str):
+        ballast, wheel = _load_case(load)
+        return {"case": load, "ballast_kg": ballast, "wheel_load_kg": wheel}
+    return float(load)
+
+
+def run_key(run: RunSpec, tyre_digest: str) -> str:
+    """A short stable key (16 hex digits) of everything that determines a run's result.
+
+    SHA-256 of a canonical JSON of: ``tyre_digest`` (pass
+    :func:`tyre_digest` of ``run.tyre``: the tyre's parameter content, not
+    its label) and pressure; the model's contact, stiffness and handling;
+    the road (its name, or a ``.crg`` file's content digest and offset);
+    the speed [m/s]; the load (a load case with its ballast and wheel mass
+    from Table 3-4, or the force [N]); the rig, duration, dt, output rate;
+    and ``tyrelab.__version__``. Labels (study, tyre, model and test names,
+    the group), references, limits and the output folder are left out:
+    they do not change what is simulated, so renaming a model keeps its
+    stored runs, and editing one model variant changes only its own runs'
+    keys. Two labels with identical settings share their runs' keys.
+    """
+    payload = {
+        "tyrelab": __version__,
+        "tyre": {"digest": tyre_digest, "pressure": run.tyre.pressure},
+        "model": {"contact": run.model.contact, "stiffness": run.model.stiffness,
+                  "handling": run.model.handling},
+        "road": _road_identity(run.road),
+        "speed": float(run.speed),
+        "load": _load_identity(run.load),
+        "rig": run.rig,
+        "duration": None if run.duration is None else float(run.duration),
+        "dt": float(run.dt),
+        "output_rate": float(run.output_rate),
+    }
+    text = json.dumps(payload, sort_keys=True, separators=(",", ":"), allow_nan=False)
+    return hashlib.sha256(text.encode()).hexdigest()[:16]
+
+
+# ---------------------------------------------------------------------------
+# where things are in the text: tomllib gives no line numbers
+
+class _Locator:
+    """The line of every table, key and array element of a (valid) TOML text.
+
+    Paths are tuples: keys as str, array-of-tables and array indices as int
+    (from 0). Inline tables and arrays are followed, so
+    ``("test", 2, "reference", "files", 1)`` is found too.
+    """
+
+    def __init__(self, text: str):
+        self.text = text
+        self.n = len(text)
+        self.pos = 0
+        self._newlines = [i for i, c in enumerate(text) if c == "\n"]
+        self.lines: dict[tuple, int] = {}
+        self._arrays_of_tables: dict[tuple, int] = {}
+        self._scan()
+
+    def line_at(self, pos: int) -> int:
+        return bisect.bisect_left(self._newlines, pos) + 1
+
+    def line(self, path) -> int | None:
+        """Line of ``path``, else of its nearest enclosing key or table found."""
+        path = tuple(path)
+        for k in range(len(path), 0, -1):
+            if path[:k] in self.lines:
+                return self.lines[path[:k]]
+        return None
+
+    # -- lexing -----------------------------------------------------------
+    def _peek(self, k: int = 0) -> str:
+        i = self.pos + k
+        return self.text[i] if i < self.n else ""
+
+    def _blank(self, newlines: bool = False):
+        """Skip spaces and tabs (and with ``newlines``, line ends and comments)."""
+        while self.pos < self.n:
+            c = self.text[self.pos]
+            if c in " \t" or (newlines and c in "\r\n"):
+                self.pos += 1
+            elif c == "#" and newlines:
+                self._comment()
+            else:
+                break
+
+    def _comment(self):
+        end = self.text.find("\n", self.pos)
+        self.pos = self.n if end < 0 else end
+
+    def _string(self):
+        """Skip a string at ``pos`` (any of TOML's four kinds)."""
+        q = self._peek()
+        triple = self.text.startswith(q * 3, self.pos)
+        self.pos += 3 if triple else 1
+        while self.pos < self.n:
+            c = self.text[self.pos]
+            if c == "\\" and q == '"':
+                self.pos += 2
+                continue
+            if triple and self.text.startswith(q * 3, self.pos):
+                self.pos += 3
+                while self._peek() == q:  # up to two quotes may end the content
+                    self.pos += 1
+                return
+            self.pos += 1
+            if not triple and c == q:
+                return
+
+    def _key(self) -> list[str]:
+        """A dotted key at ``pos``: its parts, decoded as TOML does."""
+        parts = []
+        while True:
+            self._blank()
+            start = self.pos
+            if self._peek() in "\"'":
+                self._string()
+                raw = self.text[start:self.pos]
+                parts.append(next(iter(tomllib.loads(f"{raw} = 0"))))
+            else:
+                m = _BARE_KEY.match(self.text, self.pos)
+                if m is None:  # not reached for valid TOML
+                    raise ValueError(f"cannot read a key at offset {self.pos}")
+                self.pos = m.end()
+                parts.append(m.group())
+            self._blank()
+            if self._peek() != ".":
+                return parts
+            self.pos += 1
+
+    def _value(self, path: tuple):
+        c = self._peek()
+        if c == "[":
+            self.pos += 1
+            i = 0
+            while True:
+                self._blank(newlines=True)
+                if self._peek() in ("]", ""):
+                    self.pos += 1
+                    return
+                self.lines[path + (i,)] = self.line_at(self.pos)
+                self._value(path + (i,))
+                self._blank(newlines=True)
+                if self._peek() == ",":
+                    self.pos += 1
+                i += 1
+        elif c == "{":
+            self.pos += 1
+            while True:
+                self._blank(newlines=True)
+                if self._peek() in ("}", ""):
+                    self.pos += 1
+                    return
+                self._assignment(path)
+                self._blank(newlines=True)
+                if self._peek() == ",":
+                    self.pos += 1
+        elif c in "\"'":
+            self._string()
+        else:  # number, boolean, date-time: up to a separator
+            while self.pos < self.n and self.text[self.pos] not in ",]}#\r\n":
+                self.pos += 1
+
+    def _assignment(self, table: tuple):
+        start = self.pos
+        path = table + tuple(self._key())
+        self.lines.setdefault(path, self.line_at(start))
+        self._blank()
+        if self._peek() == "=":
+            self.pos += 1
+        self._blank()
+        self._value(path)
+
+    def _resolve(self, names) -> tuple:
+        """A header's path: each array of tables on the way stands for its last element."""
+        path: tuple = ()
+        for name in names:
+            path += (name,)
+            if path in self._arrays_of_tables:
+                path += (self._arrays_of_tables[path] - 1,)
+        return path
+
+    def _scan(self):
+        table: tuple = ()
+        while True:
+            self._blank(newlines=True)
+            if self.pos >= self.n:
+                return
+            start = self.pos
+            if self._peek() == "[":
+                double = self._peek(1) == "["
+                self.pos += 2 if double else 1
+                names = self._key()
+                self.pos += 2 if double else 1
+                if double:
+                    parent = self._resolve(names[:-1]) + (names[-1],)
+                    count = self._arrays_of_tables.get(parent, 0) + 1
+                    self._arrays_of_tables[parent] = count
+                    table = parent + (count - 1,)
+                else:
+                    table = self._resolve(names)
+                self.lines.setdefault(table, self.line_at(start))
+            else:
+                self._assignment(table)
+            self._blank()
+            if self._peek() == "#":
+                self._comment()
+
+
+# ---------------------------------------------------------------------------
+# checking
+
+def _describe(value) -> str:
+    if isinstance(value, bool):
+        return f"the boolean {str(value).lower()}"
+    if isinstance(value, (int, float)):
+        return f"the number {value!r}"
+    if isinstance(value, str):
+        return f"the string {json.dumps(value)}"
+    if isinstance(value, list):
+        return "an array"
+    if isinstance(value, dict):
+        return "a table"
+    return f"a date/time ({value})"
+
+
+def _format_path(path) -> str:
+    out = ""
+    for part in path:
+        if isinstance(part, int):
+            out += f"[{part + 1}]"
+        else:
+            name = part if _BARE_KEY.fullmatch(part) else json.dumps(part)
+            out += ("." if out else "") + name
+    return out or "(top level)"
+
+
+def _is_number(value) -> bool:
+    return isinstance(value, (int, float)) and not isinstance(value, bool)
+
+
+class _Checker:
+    def __init__(self, text: str, source, base: Path):
+        self.text = text
+        self.source = str(source)
+        self.base = base
+        self._locator: _Locator | None = None
+
+    def fail(self, path, message: str):
+        line = None
+        try:  # the locator reads any valid TOML; should it not, the message still stands
+            if self._locator is None:
+                self._locator = _Locator(self.text)
+            line = self._locator.line(path)
+        except (ValueError, IndexError):
+            pass
+        raise InputError(message, source=self.source, line=line, field=_format_path(path))
+
+    # -- generic checks -------------------------------------------------------
+    def table(self, value, path, allowed, required=(), what="a table"):
+        if not isinstance(value, dict):
+            self.fail(path, f"expected {what}, got {_describe(value)}")
+        for key in value:
+            if key not in allowed:
+                self.fail(path + (key,), f"unknown key {json.dumps(key)}; allowed keys: {', '.join(allowed)}")
+        for key in required:
+            if key not in value:
+                self.fail(path, f"missing key '{key}' (required; keys: {', '.join(allowed)})")
+        return value
+
+    def array_of_tables(self, doc, key):
+        value = doc.get(key)
+        if value is None:
+            self.fail((key,), f"missing: the spec needs at least one [[{key}]] table")
+        if not isinstance(value, list) or not value:
+            self.fail((key,), f"expected one or more [[{key}]] tables, got {_describe(value)}")
+        return value
+
+    def string(self, value, path, what="a string"):
+        if not isinstance(value, str):
+            self.fail(path, f"expected {what}, got {_describe(value)}")
+        return value
+
+    def label(self, value, path):
+        self.string(value, path, "a non-empty label (string)")
+        if not value.strip() or any(ord(c) < 32 or ord(c) == 127 for c in value):
+            self.fail(path, f"expected a non-empty label without control characters, got {json.dumps(value)}")
+        return value
+
+    def number(self, value, path, what, low=None, high=None, low_open=True):
+        """A finite number in (low, high] (or [low, high] with ``low_open=False``)."""
+        if not _is_number(value):
+            self.fail(path, f"expected {what}, got {_describe(value)}")
+        v = float(value)
+        bad = (not math.isfinite(v) or (low is not None and (v <= low if low_open else v < low))
+               or (high is not None and v > high))
+        if bad:
+            self.fail(path, f"expected {what}, got {value!r}")
+        return v
+
+    def choice(self, value, path, known, what):
+        self.string(value, path, f"a {what} name")
+        if value not in known:
+            self.fail(path, f"unknown {what} {json.dumps(value)}; expected one of: {', '.join(known)}")
+        return value
+
+    def path(self, value, path, what) -> Path:
+        self.string(value, path, f"the path of {what}")
+        if not value.strip():
+            self.fail(path, f"expected the path of {what}, got an empty string")
+        p = Path(value).expanduser()
+        p = p if p.is_absolute() else self.base / p
+        if not p.is_file():
+            self.fail(path, f"no such {what}: {p}")
+        return p.resolve()
+
+
+# ---------------------------------------------------------------------------
+# the sections
+
+def _study(ck: _Checker, doc):
+    if "study" not in doc:
+        ck.fail(("study",), "missing: the spec needs a [study] table with at least 'name'")
+    t = ck.table(doc["study"], ("study",), _STUDY_KEYS, required=("name",), what="a table [study]")
+    name = ck.label(t["name"], ("study", "name"))
+    out_text = ck.string(t.get("output", "results"), ("study", "output"), "a folder path (string)")
+    if not out_text.strip():
+        ck.fail(("study", "output"), "expected a folder path, got an empty string")
+    out = Path(out_text).expanduser()
+    output = (out if out.is_absolute() else ck.base / out).resolve()
+    dt = ck.number(t.get("dt", DEFAULT_DT), ("study", "dt"), "a time step > 0 [s]", low=0.0)
+    rate = ck.number(t.get("output_rate", DEFAULT_OUTPUT_RATE), ("study", "output_rate"),
+                     "an output rate > 0 [Hz]", low=0.0)
+    if rate * dt > 1.0 + 1e-9:
+        ck.fail(("study", "output_rate") if "output_rate" in t else ("study", "dt"),
+                f"the output rate {rate:g} Hz is faster than the time step {dt:g} s allows "
+                f"(at most {1 / dt:g} Hz)")
+    return name, output, dt, rate
+
+
+def _tyres(ck: _Checker, doc) -> tuple[TyreSpec, ...]:
+    from ..tyre.library import BUILT_IN, SINGLE_FILE, load_tyre
+
+    builtins = {k.lower(): k for k in (*BUILT_IN, *SINGLE_FILE)}
+    tyres, seen = [], {}
+    for i, raw in enumerate(ck.array_of_tables(doc, "tyre")):
+        path = ("tyre", i)
+        t = ck.table(raw, path, _TYRE_KEYS, required=("name", "file"), what="a table [[tyre]]")
+        name = ck.label(t["name"], path + ("name",))
+        if name in seen:
+            ck.fail(path + ("name",),
+                    f"duplicate tyre label {json.dumps(name)} (also tyre[{seen[name] + 1}])")
+        seen[name] = i
+        file_text = ck.string(t["file"], path + ("file",), "a built-in tyre name or a .tir path")
+        builtin = builtins.get(file_text.strip().lower())
+        pressure = None
+        if builtin is not None:
+            file = builtin
+            if "pressure_kpa" in t:
+                if builtin not in BUILT_IN:
+                    ck.fail(path + ("pressure_kpa",),
+                            f"{builtin} is described at one pressure only; remove pressure_kpa")
+                lo, hi = BUILT_IN[builtin][0], BUILT_IN[builtin][-1]
+                pressure = 1e3 * ck.number(t["pressure_kpa"], path + ("pressure_kpa",),
+                                           f"a pressure in kPa within the measured "
+                                           f"{lo / 1e3:g}-{hi / 1e3:g} kPa of {builtin}",
+                                           low=lo / 1e3, high=hi / 1e3, low_open=False)
+        else:
+            if not file_text.strip().lower().endswith(".tir"):
+                ck.fail(path + ("file",), f"unknown tyre {json.dumps(file_text)}; expected a built-in tyre "
+                        f"({', '.join([*BUILT_IN, *SINGLE_FILE])}) or a .tir file")
+            file = str(ck.path(file_text, path + ("file",), "tyre property file"))
+            if "pressure_kpa" in t:
+                ck.fail(path + ("pressure_kpa",), "a .tir file describes one pressure; pressure_kpa is "
+                        "for built-in tyres only")
+        try:  # read it now: a broken property file stops the study before it starts
+            tyre = load_tyre(file, pressure)
+        except InputError as exc:
+            ck.fail(path + ("file",), f"cannot use this tyre: {exc}")
+        tyres.append((TyreSpec(name, file, pressure, builtin is not None), tyre))
+    return tuple(tyres)
+
+
+def _models(ck: _Checker, doc, tyres) -> tuple[ModelSpec, ...]:
+    from ..tyre.params import STIFFNESS_MODES
+    from ..tyre.registry import contact_models, handling_model, handling_models
+
+    contacts, handlings = list(contact_models()), list(handling_models())
+    models, seen = [], {}
+    for i, raw in enumerate(ck.array_of_tables(doc, "model")):
+        path = ("model", i)
+        t = ck.table(raw, path, _MODEL_KEYS, required=("name", "contact"), what="a table [[model]]")
+        name = ck.label(t["name"], path + ("name",))
+        if name in seen:
+            ck.fail(path + ("name",),
+                    f"duplicate model label {json.dumps(name)} (also model[{seen[name] + 1}])")
+        seen[name] = i
+        contact = ck.choice(t["contact"], path + ("contact",), contacts, "contact model")
+        stiffness = None
+        if "stiffness" in t:
+            stiffness = ck.choice(t["stiffness"], path + ("stiffness",), STIFFNESS_MODES, "stiffness")
+            if stiffness == "table":
+                for tyre_spec, tyre in tyres:
+                    if tyre.load_deflection is None:
+                        ck.fail(path + ("stiffness",), f"tyre '{tyre_spec.name}' has no "
+                                "[DEFLECTION_LOAD_CURVE] for a table stiffness; use \"linear\"")
+        handling = None
+        if "handling" in t:
+            handling = ck.choice(t["handling"], path + ("handling",), handlings, "handling model")
+            for tyre_spec, tyre in tyres:  # its coefficients must be in every tyre's file
+                try:
+                    handling_model(handling).build(tyre)
+                except InputError as exc:
+                    ck.fail(path + ("handling",), f"tyre '{tyre_spec.name}' has no {handling} "
+                            f"coefficients: {exc}")
+        models.append(ModelSpec(name, contact, stiffness, handling))
+    return tuple(models)
+
+
+def _road(ck: _Checker, value, path) -> tuple[str, str]:
+    """A road name checked without building it: ``(road for simulate, inferred group)``."""
+    from ..road.spec import _NUM, _tracks, road_from_spec, road_names
+
+    text = ck.string(value, path, "a road name").strip()
+    if not text:
+        ck.fail(path, f"expected a road name, got an empty string; one of: {', '.join(road_names())}")
+    lower = text.lower()
+    if lower in _tracks():  # built-in tracks are large: known by name, built when run
+        return lower, "discrete obstacles" if lower in _DISCRETE_TRACKS else "rough tracks"
+    path_text, _, offset = text.partition("@")
+    if path_text.lower().endswith(".crg"):
+        if offset and not re.fullmatch(_NUM, offset):
+            ck.fail(path, f"cannot read lateral offset '{offset}' in road '{text}'; expected metres")
+        file = ck.path(path_text, path, "OpenCRG file")
+        return f"{file}@{offset}" if offset else str(file), "rough tracks"
+    kind, _, args = text.partition(":")
+    kind = kind.lower()
+    if kind in ("iso8608", "powerlaw") and args:  # synthesised when built: checked here instead
+        body, _, seed = args.partition("@")
+        if seed and not seed.isdigit():
+            ck.fail(path, f"cannot read seed '{seed}' in road '{text}'; expected an integer")
+        if kind == "iso8608" and body.upper() not in tuple("ABCDEFGH"):
+            ck.fail(path, f"unknown ISO 8608 class '{body}' in road '{text}'; expected A to H")
+        if kind == "powerlaw":
+            parts = body.split(",")
+            if len(parts) != 2 or not all(re.fullmatch(_NUM, p) for p in parts) or float(parts[0]) <= 0:
+                ck.fail(path, f"cannot read '{body}' in road '{text}'; expected A,N with A > 0")
+        return text, "rough tracks"
+    try:  # what is left is flat or an obstacle: small objects, no grid is built
+        road_from_spec(text)
+    except ValueError as exc:  # InputError, or anything else a constructor refuses
+        reason = str(exc)
+        if isinstance(exc, InputError):
+            named = exc.field in (None, "road") or exc.field in exc.reason
+            reason = exc.reason if named else f"{exc.field}: {exc.reason}"
+        ck.fail(path, f"{reason} (road '{text}')" if text not in reason else reason)
+    return text, "discrete obstacles" if kind in _OBSTACLE_KINDS else "rough tracks"
+
+
+def _load(ck: _Checker, value, path, cases):
+    if isinstance(value, str):
+        key = value.strip().upper()
+        if key not in cases:
+            ck.fail(path, f"unknown load case {json.dumps(value)}; expected one of {', '.join(cases)} "
+                    "or a wheel load in N")
+        return key
+    return ck.number(value, path, f"a load case ({', '.join(cases)}) or a wheel load > 0 in N", low=0.0)
+
+
+def _speed(ck: _Checker, value, path):
+    kmh = ck.number(value, path, f"a speed in km/h, 0 < v <= {MAX_SPEED_KMH:g}", low=0.0,
+                    high=MAX_SPEED_KMH)
+    return kmh / 3.6
+
+
+def _nonempty_list(ck: _Checker, value, path, what):
+    if not isinstance(value, list):
+        ck.fail(path, f"expected an array of {what}, got {_describe(value)}")
+    if not value:
+        ck.fail(path, f"expected a non-empty array of {what}")
+    return value
+
+
+def _reference(ck: _Checker, raw, path, speeds, loads, models, cases):
+    t = ck.table(raw, path, _REFERENCE_KEYS, what="a table { model = ... } or { files = [...] }")
+    if ("model" in t) == ("files" in t):
+        ck.fail(path, "expected exactly one of 'model' (a model label) or 'files' (measured files)")
+    if "model" in t:
+        names = [m.name for m in models]
+        label = ck.string(t["model"], path + ("model",), "a model label")
+        if label not in names:
+            ck.fail(path + ("model",), f"no model labelled {json.dumps(label)} in this spec; "
+                    f"expected one of: {', '.join(json.dumps(n) for n in names)}")
+        return label, ()
+    entries = _nonempty_list(ck, t["files"], path + ("files",), "file paths")
+    pairs = [(v, c) for v in speeds for c in loads]
+    strings = all(isinstance(e, str) for e in entries)
+    if strings and len(pairs) > 1 and len(entries) != len(pairs):
+        ck.fail(path + ("files",), f"{len(entries)} file(s) for {len(pairs)} speed/load conditions; give one "
+                "per condition (speeds then loads) or tables { file, speed_kmh, load }")
+    out = []
+    for k, entry in enumerate(entries):
+        epath = path + ("files", k)
+        if isinstance(entry, str):
+            if len(pairs) > 1 and not strings:
+                ck.fail(epath, "with several speed/load conditions and tables in the list, name this "
+                        "file's condition too: { file = ..., speed_kmh = ..., load = ... }")
+            speed, load = pairs[0] if len(pairs) == 1 else pairs[k]
+            out.append(ReferenceFile(ck.path(entry, epath, "reference file"), speed, load))
+            continue
+        e = ck.table(entry, epath, _REFERENCE_FILE_KEYS, required=_REFERENCE_FILE_KEYS,
+                     what="a file path or a table { file, speed_kmh, load }")
+        speed = _speed(ck, e["speed_kmh"], epath + ("speed_kmh",))
+        if not any(math.isclose(speed, v, rel_tol=1e-12) for v in speeds):
+            ck.fail(epath + ("speed_kmh",), f"{e['speed_kmh']!r} km/h is not among this test's speeds_kmh")
+        speed = next(v for v in speeds if math.isclose(speed, v, rel_tol=1e-12))
+        load = _load(ck, e["load"], epath + ("load",), cases)
+        if load not in loads:
+            ck.fail(epath + ("load",), f"{e['load']!r} is not among this test's loads")
+        out.append(ReferenceFile(ck.path(e["file"], epath + ("file",), "reference file"), speed, load))
+    covered = {(f.speed, f.load) for f in out}
+    for v, c in pairs:
+        if (v, c) not in covered:
+            ck.fail(path + ("files",), f"no reference file for {v * 3.6:g} km/h, load {c}")
+    return None, tuple(out)
+
+
+def _tests(ck: _Checker, doc, models) -> tuple[TestSpec, ...]:
+    from ..api import RIGS
+    from ..tyre.library import load_cases
+
+    cases = list(load_cases().index)
+    tests, first = [], {}
+    conditions: dict[tuple, int] = {}
+    for i, raw in enumerate(ck.array_of_tables(doc, "test")):
+        path = ("test", i)
+        t = ck.table(raw, path, _TEST_KEYS, required=("name", "road", "speeds_kmh", "loads"),
+                     what="a table [[test]]")
+        name = ck.label(t["name"], path + ("name",))
+        road, group = _road(ck, t["road"], path + ("road",))
+        if "group" in t:
+            group = ck.choice(t["group"], path + ("group",), GROUPS, "group")
+        speeds = []
+        for k, v in enumerate(_nonempty_list(ck, t["speeds_kmh"], path + ("speeds_kmh",), "speeds in km/h")):
+            speed = _speed(ck, v, path + ("speeds_kmh", k))
+            if speed in speeds:
+                ck.fail(path + ("speeds_kmh", k), f"duplicate speed {v!r} km/h")
+            speeds.append(speed)
+        loads = []
+        for k, v in enumerate(_nonempty_list(ck, t["loads"], path + ("loads",), "load cases or loads in N")):
+            load = _load(ck, v, path + ("loads", k), cases)
+            if load in loads:
+                ck.fail(path + ("loads", k), f"duplicate load {v!r}")
+            loads.append(load)
+        rig = ck.choice(t.get("rig", "trailer"), path + ("rig",), RIGS, "rig")
+        duration = None
+        if "duration" in t:
+            duration = ck.number(t["duration"], path + ("duration",), "a duration > 0 [s]", low=0.0)
+        reference_model, reference_files = None, ()
+        if "reference" in t:
+            reference_model, reference_files = _reference(ck, t["reference"], path + ("reference",),
+                                                          speeds, loads, models, cases)
+        if name in first:  # the same obstacle again: other conditions of it
+            other = tests[first[name]]
+            if (other.road, other.group) != (road, group):
+                ck.fail(path + ("road",), f"test {json.dumps(name)} is also test[{first[name] + 1}] "
+                        f"with road '{other.road}' ({other.group}); one name, one road and group")
+        else:
+            first[name] = i
+        for k, v in enumerate(speeds):
+            for load in loads:
+                if (name, v, load) in conditions:
+                    ck.fail(path + ("speeds_kmh", k), f"test {json.dumps(name)} at {v * 3.6:g} km/h, load "
+                            f"{load} is also in test[{conditions[(name, v, load)] + 1}]")
+                conditions[(name, v, load)] = i
+        tests.append(TestSpec(name, group, road, tuple(speeds), tuple(loads), rig, duration,
+                              reference_model, reference_files))
+    return tuple(tests)
+
+
+def _limits(ck: _Checker, doc) -> dict:
+    from ..validate.compare import METRICS
+    from ..validate.tables import DEFAULT_LIMITS
+
+    limits = {g: dict(m) for g, m in DEFAULT_LIMITS.items()}
+    if "metrics" not in doc:
+        return limits
+    metrics = ck.table(doc["metrics"], ("metrics",), _METRICS_KEYS, what="a table [metrics]")
+    if "limits" not in metrics:
+        return limits
+    given = ck.table(metrics["limits"], ("metrics", "limits"), GROUPS,
+                     what="a table of groups, { \"discrete obstacles\" = {...}, \"rough tracks\" = {...} }")
+    for group, table in given.items():
+        path = ("metrics", "limits", group)
+        ck.table(table, path, tuple(METRICS), what="a table of metric limits")
+        if not table:
+            ck.fail(path, f"expected at least one metric limit; metrics: {', '.join(METRICS)}")
+        limits[group] = {m: ck.number(v, path + (m,), "a limit > 0 (|metric| <= limit passes)", low=0.0)
+                         for m, v in table.items()}
+    return limits
+
+
+# ---------------------------------------------------------------------------
+# the front doors
+
+def parse_spec(text: str, source: str | Path = "<string>", base: str | Path | None = None) -> StudySpec:
+    """Parse and validate a study spec given as text.
+
+    ``source`` names the text in messages and is the spec file: relative
+    paths in it (``output``, ``.tir``, ``.crg``, reference files) are taken
+    from its folder, or from ``base`` when given (the current folder for
+    ``"<string>"``). Raises :class:`InputError` naming file, line and key.
+    """
+    src = str(source)
+    if base is None:
+        base = Path(src).parent if src != "<string>" else Path.cwd()
+    ck = _Checker(text, src, Path(base).expanduser().absolute())
+    try:
+        doc = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        msg = str(exc)
+        m = re.search(r"\(at line (\d+), column (\d+)\)$", msg)
+        line = int(m.group(1)) if m else (text.count("\n") + 1 if "end of document" in msg else None)
+        reason = re.sub(r"\s*\(at (line \d+, column \d+|end of document)\)$", "", msg)
+        where = f" (column {m.group(2)})" if m else ""
+        raise InputError(f"invalid TOML: {reason}{where}", source=src, line=line) from None
+    ck.table(doc, (), _TOP_KEYS, what="a study spec")
+    name, output, dt, rate = _study(ck, doc)
+    tyres = _tyres(ck, doc)
+    models = _models(ck, doc, tyres)
+    tests = _tests(ck, doc, models)
+    limits = _limits(ck, doc)
+    return StudySpec(name, output, dt, rate, tuple(t for t, _ in tyres), models, tests, limits,
+                     Path(src) if src != "<string>" else src)
+
+
+def load_spec(path: str | Path) -> StudySpec:
+    """Read, parse and validate the study spec file at ``path``."""
+    p = Path(path)
+    try:
+        data = p.read_bytes()
+    except FileNotFoundError:
+        raise InputError("no such study spec file", source=str(p)) from None
+    except OSError as exc:
+        raise InputError(f"cannot read the study spec: {exc.strerror}", source=str(p)) from None
+    try:
+        text = data.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        line = data[:exc.start].count(b"\n") + 1
+        raise InputError("the study spec is not UTF-8 text", source=str(p), line=line) from None
+    return parse_spec(text, p)
+
+
+def builtin_spec_text() -> str:
+    """The text of the built-in thesis campaign (``study/data/thesis_campaign.toml``)."""
+    return resources.files("tyrelab.study").joinpath("data", BUILTIN_SPEC).read_text(encoding="utf-8")
+
+
+def builtin_spec(base: str | Path | None = None) -> StudySpec:
+    """The thesis campaign (chapter 5) as a parsed spec.
+
+    Its output folder is ``results`` under ``base`` (default: the current
+    folder), not inside the installed package.
+    """
+    source = resources.files("tyrelab.study").joinpath("data", BUILTIN_SPEC)
+    return parse_spec(builtin_spec_text(), str(source), base=Path.cwd() if base is None else base)
+
+
+def example_spec() -> str:
+    """A commented example spec (every key, with units) that :func:`parse_spec` accepts."""
+    return _EXAMPLE
+
+
+_EXAMPLE = '''\
+# A tyrelab study: every tyre x model x test x speed x load below is one simulation,
+# compared with the test's reference. Units at this edge: km/h, kPa, mm (in road
+# names), seconds, Hz, N. Run it with:  tyrelab study this-file.toml
+
+[study]
+name = "my-cleat-study"          # required: the study's name
+output = "results"               # result folder, relative to this file's folder (default "results")
+dt = 0.001                       # [s] rig time step (default 0.001)
+output_rate = 1000               # [Hz] output sample rate, at most 1/dt (default 1000)
+
+[[tyre]]                         # one table per tyre; at least one
+name = "xzl"                     # label in the results
+file = "xzl-16.00R20"            # a built-in tyre (xzl-16.00R20, hmmwv-pac89) or a .tir file,
+                                 # relative to this file's folder
+pressure_kpa = 300               # [kPa] optional, built-in tyres measured at several pressures
+                                 # only (xzl-16.00R20: 100-550 kPa, default 300)
+
+[[model]]                        # one table per model variant; at least one
+name = "OPC lk"                  # label used in every table
+contact = "point"                # contact model: point, volume, enveloping, ring, ring-tp
+stiffness = "linear"             # vertical stiffness: "linear" or "table" (optional)
+handling = "none"                # handling model: none, pac89, mf (optional: what the tyre
+                                 # file describes)
+
+[[model]]
+name = "3D ENV nlk"
+contact = "enveloping"
+stiffness = "table"
+
+[[test]]                         # one table per obstacle or track; at least one
+name = "cleat 50x50 perpendicular"   # obstacle label (join key with the thesis's tables)
+group = "discrete obstacles"     # "discrete obstacles" or "rough tracks" (optional: from the road)
+road = "cleat:50x50"             # a road name: flat, cleat:WxH[@ANGLE], bump:H[xRAMPxTOP], step:H,
+                                 # pothole:DxL[xW], iso8608:CLASS[@SEED], powerlaw:A,N[@SEED],
+                                 # belgian-paving, fatigue-track, corrugations, corrugations-angled,
+                                 # trapezoidal-bump, or a FILE.crg[@OFFSET] (relative to this file)
+speeds_kmh = [12, 18]            # [km/h] towing speeds, 0 < v <= 200
+loads = ["LC1"]                  # load cases LC1-LC3 (thesis Table 3-4) or wheel loads in N
+rig = "trailer"                  # trailer, quarter-vehicle, rolling, drop, wheel-drop (default trailer)
+duration = 6.0                   # [s] simulated time (optional: until the road's end)
+reference = { model = "3D ENV nlk" }   # compare with this model's runs; or measured files:
+# reference = { files = ["field/c50_12.tdx", "field/c50_18.tdx"] }   # one per speed x load
+# reference = { files = [{ file = "field/c50_12a.tdx", speed_kmh = 12, load = "LC1" },
+#                        { file = "field/c50_12b.tdx", speed_kmh = 12, load = "LC1" }] }  # repeats
+
+[[test]]
+name = "fatigue track"
+road = "fatigue-track"           # group inferred: rough tracks
+speeds_kmh = [18]
+loads = [38197]                  # [N] a wheel load (LC2 is 38197 N)
+
+# Optional pass limits per group: |metric| <= limit passes (tyrelab.validate.tables).
+# A group given here replaces that group's defaults; metrics: mRE_disturbance_pct,
+# RE80_disturbance_pct, rms_disturbance_N, mRE_response_pct, rms_response_N,
+# mean_error_pct, std_error_pct, SG_M, SG_P, SG_C, R_C, psd_rms_error_pct, psd_lsd_dB,
+# max_error_pct, damage_ratio_log10.
+[metrics.limits."discrete obstacles"]
+mRE_disturbance_pct = 20         # [%]
+mRE_response_pct = 20            # [%]
+
+[metrics.limits."rough tracks"]
+mean_error_pct = 10              # [%]
+std_error_pct = 50               # [%]
+'''

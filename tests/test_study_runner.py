@@ -1,0 +1,96 @@
+"""tyrelab.study runner and store on a real Dask LocalCluster with worker processes.
+
+Three short trailer runs (a few seconds each with a warm compile cache) are
+computed by 2 worker processes, resumed, and recomputed by 1 worker; the
+stored tables must equal an in-process run bit for bit (the simulations are
+deterministic, so neither the transport nor the number of workers may
+change a value).
+"""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pandas as pd
+import pytest
+
+import tyrelab
+from tyrelab.study.runner import run_tasks
+from tyrelab.study.store import Store
+
+pytest.importorskip("distributed")
+
+
+def _task(key, model, road, speed_kmh):
+    kwargs = dict(model=model, road=road, speed=speed_kmh / 3.6, load="LC1", duration=1.5)
+    return {"key": key, "spec": {"model": model, "road": road, "speed_kmh": speed_kmh},
+            "simulate": kwargs}
+
+
+TASKS = [_task("a1", "point", "cleat:50x50", 12), _task("b2", "point", "step:30", 18),
+         _task("c3", "volume", "cleat:50x50", 12)]
+
+
+def _same(a: pd.DataFrame, b: pd.DataFrame) -> bool:
+    return list(a.columns) == list(b.columns) and all(
+        np.array_equal(a[c].to_numpy(), b[c].to_numpy()) for c in a.columns)
+
+
+@pytest.fixture(scope="module")
+def two_workers(tmp_path_factory):
+    """The study computed by 2 workers in two goes: the first run, then the rest."""
+    store = Store(tmp_path_factory.mktemp("two") / "study")
+    first = run_tasks(TASKS[:1], store, workers=2, progress=False)
+    rest = run_tasks(TASKS, store, workers=2, progress=False)
+    return store, first, rest
+
+
+def test_resume_computes_only_the_rest(two_workers):
+    store, first, rest = two_workers
+    assert first == {"computed": 1, "skipped": 0, "failed": 0}
+    assert rest == {"computed": 2, "skipped": 1, "failed": 0}
+    index = pd.read_parquet(store.folder / "index.parquet")
+    assert sorted(index["key"]) == ["a1", "b2", "c3"]
+    assert set(index["status"]) == {"done"}
+    assert (index["simulated_s"] > 1.4).all()
+
+
+def test_stored_tables_equal_an_in_process_run(two_workers):
+    store, _, _ = two_workers
+    for task in TASKS:
+        direct = tyrelab.simulate(**task["simulate"], progress=False)
+        assert _same(store.signal(task["key"]), direct), task["key"]
+
+
+def test_one_worker_gives_identical_results(two_workers, tmp_path):
+    store2, _, _ = two_workers
+    store1 = Store(tmp_path / "one")
+    assert run_tasks(TASKS, store1, workers=1, progress=False)["computed"] == 3
+    for task in TASKS:
+        assert _same(store1.signal(task["key"]), store2.signal(task["key"])), task["key"]
+
+
+def test_failed_run_recorded_and_others_go_on(tmp_path):
+    store = Store(tmp_path / "s")
+    bad = _task("bad", "point", "cleat:50x50", 12)
+    bad["simulate"]["road"] = "no-such-road"
+    counts = run_tasks([bad, TASKS[1]], store, workers=2, progress=False)
+    assert counts == {"computed": 1, "skipped": 0, "failed": 1}
+    rec = store.record("bad")
+    assert rec["status"] == "failed" and "no-such-road" in rec["error"]
+    assert not store.signal_path("bad").exists()
+    # a failed run is tried again on the next run of the study (and fails again here)
+    assert run_tasks([bad, TASKS[1]], store, workers=1, progress=False) == \
+        {"computed": 0, "skipped": 1, "failed": 1}
+
+
+def test_a_record_without_its_table_is_not_finished(tmp_path):
+    """What a killed study can leave -- a record saying done whose table is gone, a stale
+    temporary file -- is not a result."""
+    store = Store(tmp_path / "s")
+    store.record_path("a1").write_text(json.dumps({"key": "a1", "status": "done"}))
+    (store.runs / ".tyrelab-abc.part").write_text("half a table")
+    assert not store.is_finished("a1")
+    store = Store(tmp_path / "s")  # reopening removes the stale temporary file
+    assert not list(store.runs.glob("*.part"))
