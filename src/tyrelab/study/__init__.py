@@ -13,11 +13,12 @@ what changed.
 
 from __future__ import annotations
 
+import json
 from pathlib import Path
 
 import pandas as pd
 
-from .spec import RunSpec, StudySpec, builtin_spec, example_spec, load_spec
+from .spec import RunSpec, StudySpec, builtin_spec, builtin_spec_text, example_spec, load_spec
 from .store import Store
 
 
@@ -30,14 +31,40 @@ def run_record(run: RunSpec) -> dict:
             "rig": run.rig, "dt": run.dt}
 
 
+#: rough wall time per simulated second of each contact model on the trailer (README
+#: benchmarks), only to start the longest runs first; results do not depend on it
+_COST = {"ring": 0.9, "ring-tp": 1.0, "volume": 0.015, "enveloping": 0.015}
+#: length assumed for a road run to its end (the thesis tracks are 100 m)
+_TRACK_LENGTH = 100.0
+
+
+def expected_cost(run: RunSpec) -> float:
+    """A rough estimate of a run's wall time [s]: simulated time x the model's cost."""
+    simulated = run.duration if run.duration is not None else _TRACK_LENGTH / run.speed
+    return simulated * _COST.get(run.model.contact, 0.002)
+
+
 def tasks(spec: StudySpec) -> list[dict]:
-    """The runner's tasks of ``spec``, one per distinct run key, in the spec's order."""
+    """The runner's tasks of ``spec``, one per distinct run key, in the spec's order, each
+    with its ``cost`` estimate (:func:`expected_cost`)."""
     out, seen = [], set()
     for run, key in spec.run_keys().items():
         if key not in seen:  # two labels with identical settings are one simulation
             seen.add(key)
-            out.append({"key": key, "spec": run_record(run), "simulate": run.simulate_kwargs()})
+            out.append({"key": key, "spec": run_record(run), "simulate": run.simulate_kwargs(),
+                        "cost": expected_cost(run)})
     return out
+
+
+def _keep_spec(spec: StudySpec, store: Store) -> None:
+    """Copy the spec's text into the study folder (``spec.toml``) with where its relative
+    paths point (``study.json``), so ``tyrelab.study.open`` can read the study alone."""
+    source = Path(str(spec.source))
+    text = source.read_text(encoding="utf-8") if source.is_file() else builtin_spec_text()
+    base = source.parent if source.is_file() else Path.cwd()
+    store.write_text("spec.toml", text)
+    store.write_text("study.json", json.dumps({"name": spec.name, "spec_source": str(source),
+                                               "base": str(base.absolute())}, indent=1))
 
 
 def run(spec: StudySpec | str | Path | None = None, workers: int | None = None,
@@ -54,6 +81,7 @@ def run(spec: StudySpec | str | Path | None = None, workers: int | None = None,
     elif not isinstance(spec, StudySpec):
         spec = load_spec(spec)
     store = Store(output if output is not None else spec.output)
+    _keep_spec(spec, store)
     run_tasks(tasks(spec), store, workers=workers, scheduler=scheduler, progress=progress)
     return store.index()
 

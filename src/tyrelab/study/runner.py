@@ -82,8 +82,12 @@ def run_tasks(tasks: list[dict], store: Store, workers: int | None = None,
     by_key = {t["key"]: t for t in todo}
     futures = []
     try:
-        # pure=False: a rerun of a study computes again what the store lacks
-        futures = [client.submit(execute, t, key=f"tyrelab-run-{t['key']}", pure=False) for t in todo]
+        # the longest runs first (Dask runs higher priorities first), so that no long run
+        # starts last and leaves the other workers idle; pure=False: a rerun of a study
+        # computes again what the store lacks
+        ranks = {t["key"]: r for r, t in enumerate(sorted(todo, key=lambda t: -t.get("cost", 0.0)))}
+        futures = [client.submit(execute, t, key=f"tyrelab-run-{t['key']}", pure=False,
+                                 priority=len(todo) - ranks[t["key"]]) for t in todo]
         bar = tqdm(total=len(todo), unit="run", disable=not progress, desc="study")
         for future in as_completed(futures):
             key = future.key.removeprefix("tyrelab-run-")

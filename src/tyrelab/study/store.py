@@ -95,6 +95,19 @@ class Store:
                                             "wall_time_s": float(wall_time), "simulated_s": 0.0,
                                             "error": str(error)})
 
+    def write_text(self, name: str, text: str) -> Path:
+        """Write a text file of the study folder atomically; returns its path."""
+        path = self.folder / name
+        tmp = _atomic_target(path)
+        try:
+            Path(tmp).write_text(text, encoding="utf-8")
+            os.replace(tmp, path)
+        except BaseException:
+            if os.path.exists(tmp):
+                os.remove(tmp)
+            raise
+        return path
+
     def signal(self, key: str) -> pd.DataFrame:
         """The signal table of a finished run."""
         if not self.is_finished(key):

@@ -1,0 +1,143 @@
+"""Run keys: a short stable hash of everything that decides a run's result.
+
+A run's key covers the content of the tyre files it reads, the model's
+settings, the road (a CRG file by its content), speed, load, rig, duration,
+time step, output rate and the package version -- and nothing else (labels,
+groups, references, limits and the output folder are left out), so a result
+is reused exactly when it would be computed again identically.
+"""
+
+from __future__ import annotations
+
+import bisect
+import functools
+import hashlib
+import json
+from importlib import resources
+from pathlib import Path
+from typing import TYPE_CHECKING
+
+from .._version import __version__
+
+if TYPE_CHECKING:
+    from .spec import RunSpec, TyreSpec
+
+
+def _data_bytes(package: str, name: str) -> bytes:
+    return resources.files(package).joinpath("data", name).read_bytes()
+
+
+def _tyre_files(tyre: TyreSpec) -> list[tuple[str, bytes]]:
+    """The files whose content defines ``tyre`` (as the library and the ring model read them)."""
+    from ..tyre.library import BUILT_IN, DEFAULT_PRESSURE, SINGLE_FILE
+    from ..tyre.ring.parameters import BUILT_IN_RING
+    from ..tyre.ring.pattern import BUILT_IN_PATTERN
+
+    files = []
+    if tyre.builtin and tyre.file in SINGLE_FILE:
+        files.append((SINGLE_FILE[tyre.file], _data_bytes("tyrelab.tyre", SINGLE_FILE[tyre.file])))
+    elif tyre.builtin:
+        pressures = BUILT_IN[tyre.file]
+        p = DEFAULT_PRESSURE if tyre.pressure is None else tyre.pressure
+        exact = [q for q in pressures if abs(p - q) <= 1e-8 + 1e-5 * abs(q)]  # as load_tyre
+        if exact:
+            used = exact
+        else:  # interpolated between the two measured pressures around it
+            hi = bisect.bisect_left(pressures, p)
+            used = [pressures[hi - 1], pressures[hi]]
+        for q in used:
+            name = f"{tyre.file}_{q / 1e3:.0f}kPa.tir"
+            files.append((name, _data_bytes("tyrelab.tyre", name)))
+    else:
+        path = Path(tyre.file)
+        files.append((path.name, path.read_bytes()))
+    # the ring model reads a built-in tyre's ring parameters and tread pattern from
+    # companion files when the property file has none (matched by the tyre's name)
+    stem = tyre.file if tyre.builtin else Path(tyre.file).stem
+    for table in (BUILT_IN_RING, BUILT_IN_PATTERN):
+        match = {k.lower(): v for k, v in table.items()}.get(stem.lower())
+        if match is not None:
+            files.append((match, _data_bytes("tyrelab.tyre", match)))
+    return files
+
+
+def tyre_digest(tyre: TyreSpec) -> str:
+    """SHA-256 (hex) of a tyre's parameter content.
+
+    Built-in tyres: the property file(s) :func:`tyrelab.tyre.library.load_tyre`
+    reads at the tyre's pressure (the two measured ones around it when it
+    interpolates) and the pressure; ``.tir`` files: the file's bytes. Both
+    add the ring model's companion files (ring parameters, tread pattern)
+    the tyre's name selects. Labels do not enter it.
+    """
+    h = hashlib.sha256(b"tyrelab tyre digest 1\0")
+    h.update(json.dumps({"builtin": tyre.builtin, "name": tyre.file if tyre.builtin else None,
+                         "pressure": tyre.pressure}, sort_keys=True).encode())
+    for name, content in _tyre_files(tyre):
+        h.update(b"\0" + name.encode() + b"\0" + str(len(content)).encode() + b"\0")
+        h.update(content)
+    return h.hexdigest()
+
+
+def _file_digest(path: Path) -> str:
+    st = path.stat()
+    return _file_digest_of(str(path), st.st_mtime_ns, st.st_size)
+
+
+@functools.lru_cache(maxsize=64)
+def _file_digest_of(path: str, mtime_ns: int, size: int) -> str:
+    return hashlib.sha256(Path(path).read_bytes()).hexdigest()
+
+
+def _road_identity(road: str):
+    """The road as it enters a run key: its name, or a .crg file's content digest and offset."""
+    path_text, _, offset = road.partition("@")
+    if path_text.lower().endswith(".crg"):
+        return {"crg_sha256": _file_digest(Path(path_text)), "offset": offset or "0"}
+    return road
+
+
+@functools.lru_cache(maxsize=None)
+def _load_case(name: str) -> tuple[float, float]:
+    from ..tyre.library import load_cases
+    row = load_cases().loc[name]
+    return float(row["ballast_kg"]), float(row["wheel_load_kg"])
+
+
+def _load_identity(load):
+    if isinstance(load, str):
+        ballast, wheel = _load_case(load)
+        return {"case": load, "ballast_kg": ballast, "wheel_load_kg": wheel}
+    return float(load)
+
+
+def run_key(run: RunSpec, tyre_digest: str) -> str:
+    """A short stable key (16 hex digits) of everything that determines a run's result.
+
+    SHA-256 of a canonical JSON of: ``tyre_digest`` (pass
+    :func:`tyre_digest` of ``run.tyre``: the tyre's parameter content, not
+    its label) and pressure; the model's contact, stiffness and handling;
+    the road (its name, or a ``.crg`` file's content digest and offset);
+    the speed [m/s]; the load (a load case with its ballast and wheel mass
+    from Table 3-4, or the force [N]); the rig, duration, dt, output rate;
+    and ``tyrelab.__version__``. Labels (study, tyre, model and test names,
+    the group), references, limits and the output folder are left out:
+    they do not change what is simulated, so renaming a model keeps its
+    stored runs, and editing one model variant changes only its own runs'
+    keys. Two labels with identical settings share their runs' keys.
+    """
+    payload = {
+        "tyrelab": __version__,
+        "tyre": {"digest": tyre_digest, "pressure": run.tyre.pressure},
+        "model": {"contact": run.model.contact, "stiffness": run.model.stiffness,
+                  "handling": run.model.handling},
+        "road": _road_identity(run.road),
+        "speed": float(run.speed),
+        "load": _load_identity(run.load),
+        "rig": run.rig,
+        "duration": None if run.duration is None else float(run.duration),
+        "dt": float(run.dt),
+        "output_rate": float(run.output_rate),
+    }
+    text = json.dumps(payload, sort_keys=True, separators=(",", ":"), allow_nan=False)
+    return hashlib.sha256(text.encode()).hexdigest()[:16]
