@@ -74,3 +74,63 @@ def test_bad_spec_one_line_exit_2(tmp_path, capsys, edit, line, words):
     assert len(err.splitlines()) == 1
     assert f"line {line}" in err and words in err and "bad.toml" in err
     assert not (tmp_path / "out").exists()  # refused before any work
+
+
+INTERRUPT_SPEC = """\
+[study]
+name = "interrupted"
+output = "out"
+
+[[tyre]]
+name = "xzl"
+file = "xzl-16.00R20"
+
+[[model]]
+name = "3D VC nlk"
+contact = "volume"
+
+[[model]]
+name = "OPC nlk"
+contact = "point"
+
+[[test]]
+name = "belgian paving"
+road = "belgian-paving"
+speeds_kmh = [3, 4, 5, 6]
+loads = ["LC1", "LC2"]
+reference = { model = "OPC nlk" }
+"""
+
+
+def test_ctrl_c_keeps_finished_runs_and_rerun_completes(tmp_path):
+    """Ctrl-C (SIGINT to the whole process group, as a terminal sends it) during a study:
+    exit 130 with one line, every run recorded as done has its table, no temporary file
+    is left, and a rerun computes exactly the runs that were missing."""
+    import os
+    import signal
+    import subprocess
+    import sys
+    import time
+
+    spec = tmp_path / "s.toml"
+    spec.write_text(INTERRUPT_SPEC)
+    runs = tmp_path / "out" / "runs"
+    proc = subprocess.Popen([sys.executable, "-m", "tyrelab.cli.main", "study", str(spec), "--workers", "2"],
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                            start_new_session=True)
+    deadline = time.monotonic() + 120
+    while time.monotonic() < deadline and len(list(runs.glob("*.json"))) < 2:
+        time.sleep(0.05)
+    os.killpg(proc.pid, signal.SIGINT)
+    _, err = proc.communicate(timeout=60)
+    assert proc.returncode == 130, err
+    assert err.strip().splitlines()[-1] == "tyrelab: interrupted"
+    records = list(runs.glob("*.json"))
+    assert 2 <= len(records) < 16  # some finished, not all
+    store = Store(tmp_path / "out")
+    finished = [p.stem for p in records if store.is_finished(p.stem)]
+    assert len(finished) == len(records)
+    assert not list(runs.glob(".tyrelab-*"))
+    assert main(["study", str(spec), "--workers", "2"]) == 0
+    index = open_study(tmp_path / "out")
+    assert len(index) == 16 and set(index["status"]) == {"done"}

@@ -22,6 +22,8 @@ from __future__ import annotations
 
 import logging
 import os
+import signal
+import threading
 import time
 
 from .store import Store
@@ -46,8 +48,18 @@ def _client(scheduler: str | None, workers: int | None):
     if scheduler:
         return Client(scheduler), None
     n = workers or os.cpu_count() or 1
-    cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True,
-                           dashboard_address=None, silence_logs=logging.ERROR)
+    # the worker processes start with SIGINT ignored (an ignored signal stays ignored across
+    # exec, and Python then installs no KeyboardInterrupt handler): Ctrl-C in a terminal
+    # reaches the whole process group, and only this process should answer it, by
+    # cancelling the runs and closing the cluster, not every worker with a traceback
+    main_thread = threading.current_thread() is threading.main_thread()
+    previous = signal.signal(signal.SIGINT, signal.SIG_IGN) if main_thread else None
+    try:
+        cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True,
+                               dashboard_address=":0", silence_logs=logging.ERROR)  # any free port
+    finally:
+        if main_thread:
+            signal.signal(signal.SIGINT, previous)
     return Client(cluster), cluster
 
 
@@ -81,6 +93,7 @@ def run_tasks(tasks: list[dict], store: Store, workers: int | None = None,
     client, cluster = _client(scheduler, workers)
     by_key = {t["key"]: t for t in todo}
     futures = []
+    bar = tqdm(total=len(todo), unit="run", disable=not progress, desc="study")
     try:
         # the longest runs first (Dask runs higher priorities first), so that no long run
         # starts last and leaves the other workers idle; pure=False: a rerun of a study
@@ -88,7 +101,6 @@ def run_tasks(tasks: list[dict], store: Store, workers: int | None = None,
         ranks = {t["key"]: r for r, t in enumerate(sorted(todo, key=lambda t: -t.get("cost", 0.0)))}
         futures = [client.submit(execute, t, key=f"tyrelab-run-{t['key']}", pure=False,
                                  priority=len(todo) - ranks[t["key"]]) for t in todo]
-        bar = tqdm(total=len(todo), unit="run", disable=not progress, desc="study")
         for future in as_completed(futures):
             key = future.key.removeprefix("tyrelab-run-")
             task = by_key[key]
@@ -105,12 +117,12 @@ def run_tasks(tasks: list[dict], store: Store, workers: int | None = None,
             bar.update(1)
             bar.set_postfix(failed=counts["failed"])
             future.release()
-        bar.close()
     except KeyboardInterrupt:
         for f in futures:
             f.cancel()
         raise
     finally:
+        bar.close()
         client.close()
         if cluster is not None:
             cluster.close()
