@@ -45,7 +45,7 @@ def test_small_study_end_to_end_and_rerun(tmp_path, capsys):
     spec = tmp_path / "small.toml"
     spec.write_text(SPEC)
     assert main(["study", str(spec), "--workers", "2"]) == 0
-    index = open_study(tmp_path / "out")
+    index = open_study(tmp_path / "out").index
     assert sorted(index["model"]) == ["3D VC nlk", "OPC lk"]
     assert set(index["status"]) == {"done"}
     # the stored point run is the run tyrelab.simulate makes from the same settings
@@ -132,5 +132,5 @@ def test_ctrl_c_keeps_finished_runs_and_rerun_completes(tmp_path):
     assert len(finished) == len(records)
     assert not list(runs.glob(".tyrelab-*"))
     assert main(["study", str(spec), "--workers", "2"]) == 0
-    index = open_study(tmp_path / "out")
+    index = open_study(tmp_path / "out").index
     assert len(index) == 16 and set(index["status"]) == {"done"}

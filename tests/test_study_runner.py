@@ -94,3 +94,37 @@ def test_a_record_without_its_table_is_not_finished(tmp_path):
     assert not store.is_finished("a1")
     store = Store(tmp_path / "s")  # reopening removes the stale temporary file
     assert not list(store.runs.glob("*.part"))
+
+
+def test_external_scheduler_gives_the_same_tables(two_workers, tmp_path):
+    """--scheduler: a separately started Dask scheduler and worker (the commands the README
+    gives for a cluster, here on the loopback address) compute the same tables."""
+    import json as _json
+    import subprocess
+    import sys
+    import time
+
+    info = tmp_path / "scheduler.json"
+    bindir = [sys.executable, "-m", "distributed.cli.dask_scheduler"]
+    sched = subprocess.Popen(bindir + ["--host", "127.0.0.1", "--port", "0", "--dashboard-address", ":0",
+                                       "--scheduler-file", str(info)],
+                             stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    worker = None
+    try:
+        deadline = time.monotonic() + 60
+        while not info.exists() and time.monotonic() < deadline:
+            time.sleep(0.1)
+        address = _json.loads(info.read_text())["address"]
+        worker = subprocess.Popen([sys.executable, "-m", "distributed.cli.dask_worker", address,
+                                   "--nworkers", "1", "--nthreads", "1", "--no-dashboard"],
+                                  stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        store = Store(tmp_path / "remote")
+        assert run_tasks(TASKS[:2], store, scheduler=address, progress=False)["computed"] == 2
+        reference, _, _ = two_workers
+        for task in TASKS[:2]:
+            assert _same(store.signal(task["key"]), reference.signal(task["key"])), task["key"]
+    finally:
+        for proc in (worker, sched):
+            if proc is not None:
+                proc.terminate()
+                proc.wait(timeout=30)

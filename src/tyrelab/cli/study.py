@@ -43,10 +43,15 @@ def run(args) -> int:
         return 0
     spec = study.builtin_spec() if args.spec is None else study.load_spec(args.spec)
     output = args.output if args.output is not None else spec.output
-    index = study.run(spec, workers=args.workers, scheduler=args.scheduler, output=output)
+    result = study.run(spec, workers=args.workers, scheduler=args.scheduler, output=output)
+    index = result.index
     done = int((index["status"] == "done").sum()) if len(index) else 0
     failed = index[index["status"] == "failed"] if len(index) else index
-    print(f"{output}: {done} runs finished, {len(failed)} failed (index.parquet)")
+    print(f"{output}: {done} runs finished, {len(failed)} failed; {result.reference_note}")
+    summary = result.summary
+    if len(summary):
+        print("verdict (thesis Table 5-15 rules):")
+        print(summary.to_string())
     for _, row in failed.iterrows():
         print(f"  failed: {row['model']} on {row['test']} at {row['speed_kmh']:g} km/h "
               f"{row['load']}: {row['error']}", file=sys.stderr)

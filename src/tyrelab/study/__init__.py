@@ -16,9 +16,10 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
-import pandas as pd
 
-from .spec import RunSpec, StudySpec, builtin_spec, builtin_spec_text, example_spec, load_spec
+from .evaluate import evaluate_study
+from .results import Study
+from .spec import BUILTIN_SPEC, RunSpec, StudySpec, builtin_spec, builtin_spec_text, example_spec, load_spec
 from .store import Store
 
 
@@ -60,8 +61,9 @@ def _keep_spec(spec: StudySpec, store: Store) -> None:
     """Copy the spec's text into the study folder (``spec.toml``) with where its relative
     paths point (``study.json``), so ``tyrelab.study.open`` can read the study alone."""
     source = Path(str(spec.source))
-    text = source.read_text(encoding="utf-8") if source.is_file() else builtin_spec_text()
-    base = source.parent if source.is_file() else Path.cwd()
+    builtin = source.name == BUILTIN_SPEC and source.parent.name == "data"
+    text = builtin_spec_text() if builtin else source.read_text(encoding="utf-8")
+    base = Path.cwd() if builtin else source.parent
     store.write_text("spec.toml", text)
     store.write_text("study.json", json.dumps({"name": spec.name, "spec_source": str(source),
                                                "base": str(base.absolute())}, indent=1))
@@ -69,8 +71,9 @@ def _keep_spec(spec: StudySpec, store: Store) -> None:
 
 def run(spec: StudySpec | str | Path | None = None, workers: int | None = None,
         scheduler: str | None = None, output: str | Path | None = None,
-        progress: bool = True) -> pd.DataFrame:
-    """Run a study (the built-in thesis campaign when ``spec`` is None); returns its index.
+        progress: bool = True) -> Study:
+    """Run a study (the built-in thesis campaign when ``spec`` is None) and evaluate it
+    against its references; returns the :class:`Study` (index, metrics, summary, ...).
 
     ``output`` overrides the spec's results folder; ``workers`` and
     ``scheduler`` as in :func:`tyrelab.study.runner.run_tasks`.
@@ -83,13 +86,15 @@ def run(spec: StudySpec | str | Path | None = None, workers: int | None = None,
     store = Store(output if output is not None else spec.output)
     _keep_spec(spec, store)
     run_tasks(tasks(spec), store, workers=workers, scheduler=scheduler, progress=progress)
-    return store.index()
+    evaluate_study(spec, store, progress=progress)  # metrics.parquet, rewritten every time
+    return Study(store.folder)
 
 
-def open(folder: str | Path) -> pd.DataFrame:  # noqa: A001 - the name the issue asks for
-    """The index of a study folder: one row per run (spec columns, status, wall time, error)."""
-    return Store(folder).index()
+def open(folder: str | Path) -> Study:  # noqa: A001 - the name the issue asks for
+    """A finished (or partly finished) study folder as a :class:`Study`: ``.index``,
+    ``.metrics``, ``.summary``, ``.thesis``, ``.rank_agreement``, ``.cost``, ``.signal(key)``."""
+    return Study(folder)
 
 
 __all__ = ["run", "open", "tasks", "run_record", "load_spec", "builtin_spec", "example_spec",
-           "StudySpec", "RunSpec", "Store"]
+           "evaluate_study", "Study", "StudySpec", "RunSpec", "Store"]

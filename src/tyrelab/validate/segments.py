@@ -28,6 +28,23 @@ baseline, and ends where the signal, after its first threshold crossing, first
 returns through the baseline. This follows the main contact pulse of a
 cleat (rise while the tyre climbs on it, return when it rolls off); the
 oscillation after that is the response.
+
+From the reference's own contact with the obstacle
+--------------------------------------------------
+Thesis 5.2 defines the disturbance as the time "the tyre is in contact with
+the obstacle". A run that records its contact point (``X_CP``, ``Z_CP``: the
+normal-force-weighted mean of the touching points for the flexible ring)
+says directly when the obstacle carries part of the load: its contact point
+is raised above the road's base level. :func:`segments_from_contact` takes
+the first to the last sample whose contact point lies more than
+``fraction`` of the obstacle's height above the base (with a force-weighted
+contact point: the obstacle carries more than that fraction of the load).
+Without contact channels, :func:`segments_from_contour` uses the run's own
+wheel-centre path ``(x(t), z(t))`` -- the wheel rises over the obstacle and
+bounces off it, which the static centre height of
+:func:`segments_from_geometry` ignores -- and the tyre's contour about it: the
+tyre touches the obstacle while the distance from the centre to the
+obstacle's profile is below the contour radius.
 """
 
 from __future__ import annotations
@@ -155,3 +172,89 @@ def _crossing_time(t, dev, i) -> float:
     if a == b:
         return float(t[i])
     return float(t[i - 1] + (t[i] - t[i - 1]) * a / (a - b))
+
+
+def _span(t, on, method: str, response_seconds: float | None, what: str) -> Segments:
+    """Disturbance from the first to the last sample flagged ``on``; response to the end."""
+    idx = np.flatnonzero(on)
+    if idx.size < 2:
+        raise InputError(f"the run is in contact with the obstacle in fewer than two samples "
+                         f"({what})", field="obstacle")
+    t0, t1 = float(t[idx[0]]), float(t[idx[-1]])
+    end = t[-1] if response_seconds is None else min(t[-1], t1 + response_seconds)
+    return Segments((t0, t1), (t1, float(end)), method)
+
+
+def segments_from_contact(t, z_cp, obstacle_height: float, base: float = 0.0,
+                          fraction: float = 0.01, x_cp=None, x_range=None,
+                          response_seconds: float | None = None) -> Segments:
+    """Disturbance: the samples whose contact point lies on the obstacle (module notes).
+
+    Parameters
+    ----------
+    t, z_cp : array_like
+        Time [s] and contact-point height (``Z_CP``) [m] of the run.
+    obstacle_height : float
+        Height of the obstacle above ``base`` [m] (negative: a hole).
+    base : float
+        Height of the road away from the obstacle [m].
+    fraction : float
+        A sample is in contact when ``(z_cp - base) / obstacle_height > fraction``.
+    x_cp, x_range : array_like and (float, float), optional
+        Contact-point x (``X_CP``) and the road interval the obstacle's
+        contact can lie in; samples outside it are ignored.
+    response_seconds : float, optional
+        Length of the response; default to the end of the record.
+    """
+    t = np.asarray(t, dtype=float)
+    z = np.asarray(z_cp, dtype=float)
+    if t.shape != z.shape or t.size < 2 or not np.all(np.isfinite(z)):
+        raise InputError("contact-point heights must be finite, one per sample", field="Z_CP")
+    if not (np.isfinite(obstacle_height) and obstacle_height != 0.0 and 0.0 < fraction < 1.0):
+        raise InputError("obstacle height must be non-zero and 0 < fraction < 1",
+                         field="obstacle_height")
+    on = (z - base) / obstacle_height > fraction
+    if x_cp is not None and x_range is not None:
+        x = np.asarray(x_cp, dtype=float)
+        on &= (x >= x_range[0]) & (x <= x_range[1])
+    return _span(t, on, "contact", response_seconds, "contact point")
+
+
+def segments_from_contour(t, x, z, profile_x, profile_z, radius: float,
+                          response_seconds: float | None = None) -> Segments:
+    """Disturbance: the samples where the tyre contour about the run's own wheel centre
+    reaches the obstacle (module notes).
+
+    Parameters
+    ----------
+    t, x, z : array_like
+        Time [s] and wheel-centre position along the road and height [m].
+    profile_x, profile_z : array_like
+        The obstacle's profile: points (x, height) [m] (e.g. the highest
+        road point across the tyre's width at each x); a polyline.
+    radius : float
+        Contour radius [m] (the free radius: the undeformed part of the tyre).
+    """
+    t = np.asarray(t, dtype=float)
+    x = np.asarray(x, dtype=float)
+    z = np.asarray(z, dtype=float)
+    px = np.asarray(profile_x, dtype=float)
+    pz = np.asarray(profile_z, dtype=float)
+    if not (t.shape == x.shape == z.shape) or t.size < 2:
+        raise InputError("time, x and z of the wheel centre need one value per sample",
+                         field="X_WC")
+    if px.shape != pz.shape or px.size < 1 or not radius > 0:
+        raise InputError("the obstacle profile needs points and the radius must be positive",
+                         field="profile")
+    if px.size == 1:
+        d2 = (x - px[0]) ** 2 + (z - pz[0]) ** 2
+    else:  # distance to each segment of the polyline
+        ax, az, bx, bz = px[:-1], pz[:-1], px[1:], pz[1:]
+        ex, ez = bx - ax, bz - az
+        ll = np.maximum(ex * ex + ez * ez, 1e-30)
+        d2 = np.full(t.size, np.inf)
+        for i in range(0, t.size, 4096):  # chunks keep the (samples x segments) arrays small
+            cx, cz = x[i:i + 4096, None], z[i:i + 4096, None]
+            s = np.clip(((cx - ax) * ex + (cz - az) * ez) / ll, 0.0, 1.0)
+            d2[i:i + 4096] = np.min((ax + s * ex - cx) ** 2 + (az + s * ez - cz) ** 2, axis=1)
+    return _span(t, d2 < radius * radius, "contour", response_seconds, "tyre contour")
