@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import argparse
 import sys
+from pathlib import Path
 
 
 def _workers(text: str) -> int:
@@ -48,6 +49,7 @@ def run(args) -> int:
     done = int((index["status"] == "done").sum()) if len(index) else 0
     failed = index[index["status"] == "failed"] if len(index) else index
     print(f"{output}: {done} runs finished, {len(failed)} failed; {result.reference_note}")
+    print(f"report: {Path(output) / study.REPORT}")
     summary = result.summary
     if len(summary):
         print("verdict (thesis Table 5-15 rules):")

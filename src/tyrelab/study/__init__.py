@@ -23,6 +23,10 @@ from .spec import BUILTIN_SPEC, RunSpec, StudySpec, builtin_spec, builtin_spec_t
 from .store import Store
 
 
+#: the HTML report's name in a study folder
+REPORT = "report.html"
+
+
 def run_record(run: RunSpec) -> dict:
     """The columns a run's record and the study index carry (labels in the spec's words,
     speed in km/h as the thesis tables give it, the rest SI)."""
@@ -72,8 +76,9 @@ def _keep_spec(spec: StudySpec, store: Store) -> None:
 def run(spec: StudySpec | str | Path | None = None, workers: int | None = None,
         scheduler: str | None = None, output: str | Path | None = None,
         progress: bool = True) -> Study:
-    """Run a study (the built-in thesis campaign when ``spec`` is None) and evaluate it
-    against its references; returns the :class:`Study` (index, metrics, summary, ...).
+    """Run a study (the built-in thesis campaign when ``spec`` is None), evaluate it
+    against its references and write its HTML report (``report.html`` in the results
+    folder); returns the :class:`Study` (index, metrics, summary, ...).
 
     ``output`` overrides the spec's results folder; ``workers`` and
     ``scheduler`` as in :func:`tyrelab.study.runner.run_tasks`.
@@ -87,7 +92,10 @@ def run(spec: StudySpec | str | Path | None = None, workers: int | None = None,
     _keep_spec(spec, store)
     run_tasks(tasks(spec), store, workers=workers, scheduler=scheduler, progress=progress)
     evaluate_study(spec, store, progress=progress)  # metrics.parquet, rewritten every time
-    return Study(store.folder)
+    result = Study(store.folder)
+    from ..report.study_report import write_study_report
+    write_study_report(result, store.folder / REPORT)
+    return result
 
 
 def open(folder: str | Path) -> Study:  # noqa: A001 - the name the issue asks for

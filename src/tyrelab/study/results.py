@@ -145,7 +145,10 @@ class Study:
         theirs = pd.concat([thesis_metrics(models=None), thesis_repeatability()],
                            ignore_index=True)
         theirs = theirs[["test", "speed_kmh", "load_case", "model", "table", *THESIS_METRICS]].copy()
-        ours = self.metrics.rename(columns={"load": "load_case"})
+        m = self.metrics
+        # the models and the measured scatter; not the reference compared with itself (all zeros)
+        keep = ~m["is_reference"].astype(bool) if "is_reference" in m else m["key"] != m["reference"]
+        ours = m[keep].rename(columns={"load": "load_case"})
         ours = ours[["key", "tyre", "test", "speed_kmh", "load_case", "model", *THESIS_METRICS]].copy()
         for df in (ours, theirs):
             df["speed_kmh"] = df["speed_kmh"].astype(float).round(6)

@@ -63,6 +63,12 @@ def _client(scheduler: str | None, workers: int | None):
     return Client(cluster), cluster
 
 
+def _minutes(seconds: float) -> str:
+    if not seconds == seconds:  # NaN: nothing finished yet
+        return "?"
+    return f"{seconds / 60:.0f} min" if seconds >= 90 else f"{seconds:.0f} s"
+
+
 def run_tasks(tasks: list[dict], store: Store, workers: int | None = None,
               scheduler: str | None = None, progress: bool = True) -> dict:
     """Compute every task whose run is not finished in ``store``.
@@ -93,7 +99,14 @@ def run_tasks(tasks: list[dict], store: Store, workers: int | None = None,
     client, cluster = _client(scheduler, workers)
     by_key = {t["key"]: t for t in todo}
     futures = []
-    bar = tqdm(total=len(todo), unit="run", disable=not progress, desc="study")
+    # the time left is estimated from the runs' expected costs, not from their count: the
+    # longest runs go first, so a count-based estimate would start far too high
+    total_cost = sum(t.get("cost", 0.0) for t in todo) or 1.0
+    done_cost = 0.0
+    t_start = time.perf_counter()
+    bar = tqdm(total=len(todo), unit="run", disable=not progress, desc="study",
+               bar_format="{desc}: {percentage:3.0f}%|{bar}| {n_fmt}/{total_fmt} runs "
+                          "[{elapsed}{postfix}]")
     try:
         # the longest runs first (Dask runs higher priorities first), so that no long run
         # starts last and leaves the other workers idle; pure=False: a rerun of a study
@@ -114,8 +127,11 @@ def run_tasks(tasks: list[dict], store: Store, workers: int | None = None,
             else:
                 store.save_failure(key, task["spec"], result, wall)
                 counts["failed"] += 1
+            done_cost += task.get("cost", 0.0)
+            elapsed = time.perf_counter() - t_start
+            left = elapsed * (total_cost - done_cost) / done_cost if done_cost > 0 else float("nan")
+            bar.set_postfix_str(f"about {_minutes(left)} left, {counts['failed']} failed", refresh=False)
             bar.update(1)
-            bar.set_postfix(failed=counts["failed"])
             future.release()
     except KeyboardInterrupt:
         for f in futures:
