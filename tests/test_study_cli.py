@@ -58,6 +58,15 @@ def test_small_study_end_to_end_and_rerun(tmp_path, capsys):
     mtime = (tmp_path / "out" / "runs" / f"{key}.parquet").stat().st_mtime_ns
     assert main(["study", str(spec), "--workers", "1"]) == 0
     assert (tmp_path / "out" / "runs" / f"{key}.parquet").stat().st_mtime_ns == mtime
+    # one model's parameter changed: only that model's run is computed again
+    vc_key = index.loc[index["model"] == "3D VC nlk", "key"].item()
+    vc_mtime = (tmp_path / "out" / "runs" / f"{vc_key}.parquet").stat().st_mtime_ns
+    spec.write_text(SPEC.replace('stiffness = "linear"', 'stiffness = "table"'))
+    assert main(["study", str(spec), "--workers", "1"]) == 0
+    after = open_study(tmp_path / "out").index
+    assert len(after) == 2 and vc_key in set(after["key"]) and key not in set(after["key"])
+    assert len(list((tmp_path / "out" / "runs").glob("*.parquet"))) == 3  # the old OPC run kept
+    assert (tmp_path / "out" / "runs" / f"{vc_key}.parquet").stat().st_mtime_ns == vc_mtime
 
 
 @pytest.mark.parametrize("edit,line,words", [

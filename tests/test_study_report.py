@@ -329,3 +329,15 @@ def test_a_study_where_every_run_failed_still_reports(study, tmp_path):
     assert doc.find("meta", name="tyrelab-figures").attrs["content"] == "0"
     assert len(doc.find("table", cls="failed-runs").find_all("tr")) == len(index) + 1
     assert "No run was compared" in doc.find("section", id="conditions").text()
+
+
+def test_report_argues_the_table_5_15_cells_the_rules_miss(tmp_path):
+    """The verdict rules' own check on the thesis's numbers is in every report: the count of
+    matched cells and, for each miss, its argument."""
+    from tyrelab.report.study_report import _rules_on_thesis
+    from tyrelab.validate.thesis import rules_on_thesis
+    cells = rules_on_thesis()
+    html = _rules_on_thesis()
+    assert f"give {int(cells['match'].sum())} of the {len(cells)} cells" in html
+    for why in cells.loc[~cells["match"], "why"]:
+        assert why[:60].replace("'", "&#x27;") in html

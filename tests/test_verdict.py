@@ -11,8 +11,8 @@ import pytest
 from tyrelab.errors import InputError
 from tyrelab.validate import thesis as thesis_module
 from tyrelab.validate.tables import rank_agreement, summary_table
-from tyrelab.validate.thesis import (TABLE_5_15_COLUMNS, thesis_metrics, thesis_repeatability,
-                                     thesis_table_5_15)
+from tyrelab.validate.thesis import (TABLE_5_15_COLUMNS, TABLE_5_15_EXCEPTIONS, rules_on_thesis,
+                                     thesis_metrics, thesis_repeatability, thesis_table_5_15)
 
 DATA = Path(__file__).parent / "data" / "tydex"
 
@@ -92,28 +92,6 @@ def test_rules_reject_bad_input():
         summary_table(results, scatter=scatter.drop(columns="speed_kmh"))
 
 
-# Table 5-15 cells the rules do not reproduce from the thesis's own metrics:
-# (group, obstacle, model) -> (our verdict, the thesis's, why).
-EXCEPTIONS = {
-    ("discrete obstacles", "trapezoidal bump", "3D ENV"): (
-        C, NR,
-        "one run (Table 5-10): 3D ENV's disturbance errors, m%RE 8 %, 80%RE 14 %, 2307 N, lie "
-        "inside the range of its cleat errors (6-21 %, 11-35 %, 2023-4150 N) where the thesis "
-        "calls it comparable, and every model misses the response (26-38 %). A limit that "
-        "failed it here (< 8 %) would fail it on 5 of 7 cleat runs too; only a rule relative "
-        "to the best model (8 % is twice FTire's and 3D VC's 4 %) separates them, and that "
-        "judges a model against its competitors rather than the measurement. The thesis "
-        "judged this run from Figure 5-10 (5.2.5: FTire most accurate, 3D VC acceptable)."),
-    ("rough tracks", "fatigue track", "3D VC"): (
-        NR, C,
-        "3D VC passes 1 of the 3 runs kept (Tables 5-13, 5-14: σ%err -65 % at LC1 18 km/h, "
-        "-26 % at LC2 3 km/h, -6 % at LC2 11 km/h; LC1 3 km/h set aside as unexplained) "
-        "against the 25 % limit. The thesis's verdict is qualitative (5.3.2: it 'filtered the "
-        "road input in such a way that the statistical behaviour was similar to the measured "
-        "results'); the miss at 3 km/h is one point on a value published as an integer. A "
-        "limit of 26-27 % would match this cell as well, but nothing measured ties such a "
-        "number, so the limit stays at Table 5-1's largest scatter (25.1 %)."),
-}
 MATCHED = 14      # of the 16 cells published metrics cover
 
 
@@ -138,8 +116,8 @@ def test_rules_reproduce_thesis_table_5_15():
     missed = {k: v for k, v in cells.items() if v[0] != v[1]}
     assert len(matched) >= MATCHED, missed
     for cell, (got, want) in missed.items():
-        assert cell in EXCEPTIONS, f"{cell}: rules say '{got}', thesis '{want}'"
-        assert (got, want) == EXCEPTIONS[cell][:2]
+        assert cell in TABLE_5_15_EXCEPTIONS, f"{cell}: rules say '{got}', thesis '{want}'"
+        assert (got, want) == TABLE_5_15_EXCEPTIONS[cell][:2]
     # the runs the rules set aside, and why
     aside = {(a["obstacle"], a["run"]["speed_kmh"], a["run"]["load_case"], a["metric"])
              for a in ours.attrs["set_aside"]}
@@ -201,3 +179,11 @@ def test_package_data_loads_without_shared(monkeypatch, tmp_path):
     assert len(thesis_repeatability()) == 6
     t = thesis_table_5_15()
     assert t.shape == (6, 4) and set(t.to_numpy().ravel()) == {C + ", best", C, CC, NR}
+
+
+def test_rules_on_thesis_table_lists_every_cell_and_argues_each_miss():
+    cells = rules_on_thesis()
+    assert len(cells) == 16 and int(cells["match"].sum()) >= MATCHED
+    misses = cells[~cells["match"]]
+    assert (misses["why"].str.len() > 100).all()  # an argument, not a placeholder
+    assert set(zip(misses["group"], misses["obstacle"], misses["model"])) <= set(TABLE_5_15_EXCEPTIONS)

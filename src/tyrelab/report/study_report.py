@@ -323,7 +323,26 @@ def _summary(study) -> str:
         out.append("<h3>Set aside by the rules</h3><ul>" + "".join(
             f"<li>{_e(a.get('obstacle'))} ({_e(_run_text(a.get('run')))}): {_e(a.get('reason'))}</li>"
             for a in aside) + "</ul>")
+    out.append(_rules_on_thesis())
     return "\n".join(out) + "</section>\n"
+
+
+def _rules_on_thesis() -> str:
+    """The same rules applied to the thesis's own published metrics, cell by cell, with
+    each cell they do not reproduce argued (:func:`tyrelab.validate.thesis.rules_on_thesis`)."""
+    from ..validate.thesis import rules_on_thesis
+    cells = rules_on_thesis()
+    rows = "".join(
+        f"<tr><td class='text'>{_e(r.group)}</td><td class='text'>{_e(r.obstacle)}</td>"
+        f"<td class='text'>{_e(r.model)}</td><td class='text'>{_e(r.rules)}</td>"
+        f"<td class='text'>{_e(r.thesis)}</td><td class='text'>{'yes' if r.match else 'no: ' + _e(r.why)}"
+        "</td></tr>" for r in cells.itertuples())
+    return (f"<h3>These rules on the thesis's own metrics</h3><p>Applied to the metrics the "
+            f"thesis published (Tables 5-2 to 5-14), the rules above give {int(cells['match'].sum())} "
+            f"of the {len(cells)} cells of its Table 5-15 that those metrics cover; each other "
+            "cell is argued below.</p><table class='rules-on-thesis'><tr><th>group</th>"
+            "<th>obstacle</th><th>model</th><th>these rules</th><th>thesis Table 5-15</th>"
+            f"<th>same?</th></tr>{rows}</table>")
 
 
 def _thesis(study) -> str:

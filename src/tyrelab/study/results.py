@@ -75,8 +75,13 @@ class Study:
 
     @property
     def index(self) -> pd.DataFrame:
-        """The store index: one row per run record (spec columns, status, wall time, error)."""
-        return self.store.index()
+        """One row per run record (spec columns, status, wall time, error): the runs of the
+        study's spec (records of runs an earlier version of the spec made stay in the folder,
+        reused if the spec comes back to them, but are not this study's)."""
+        index = self.store.index()
+        if self.spec is not None and len(index):
+            index = index[index["key"].isin(set(self.spec.run_keys().values()))]
+        return index.reset_index(drop=True)
 
     @functools.cached_property
     def metrics(self) -> pd.DataFrame:

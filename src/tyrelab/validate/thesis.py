@@ -152,3 +152,48 @@ def thesis_table_5_15() -> pd.DataFrame:
     out = out.loc[order, TABLE_5_15_COLUMNS]
     out.columns.name = None
     return out
+
+_C, _NR = "comparable", "not representative"
+
+#: The Table 5-15 cells the rules of :func:`tyrelab.validate.tables.summary_table` do not
+#: reproduce from the thesis's own metrics, each argued:
+#: (group, obstacle, model) -> (the rules' verdict, the thesis's, why).
+TABLE_5_15_EXCEPTIONS = {
+    ("discrete obstacles", "trapezoidal bump", "3D ENV"): (
+        _C, _NR,
+        "one run (Table 5-10): 3D ENV's disturbance errors, m%RE 8 %, 80%RE 14 %, 2307 N, lie "
+        "inside the range of its cleat errors (6-21 %, 11-35 %, 2023-4150 N) where the thesis "
+        "calls it comparable, and every model misses the response (26-38 %). A limit that "
+        "failed it here (< 8 %) would fail it on 5 of 7 cleat runs too; only a rule relative "
+        "to the best model (8 % is twice FTire's and 3D VC's 4 %) separates them, and that "
+        "judges a model against its competitors rather than the measurement. The thesis "
+        "judged this run from Figure 5-10 (5.2.5: FTire most accurate, 3D VC acceptable)."),
+    ("rough tracks", "fatigue track", "3D VC"): (
+        _NR, _C,
+        "3D VC passes 1 of the 3 runs kept (Tables 5-13, 5-14: σ%err -65 % at LC1 18 km/h, "
+        "-26 % at LC2 3 km/h, -6 % at LC2 11 km/h; LC1 3 km/h set aside as unexplained) "
+        "against the 25 % limit. The thesis's verdict is qualitative (5.3.2: it 'filtered the "
+        "road input in such a way that the statistical behaviour was similar to the measured "
+        "results'); the miss at 3 km/h is one point on a value published as an integer. A "
+        "limit of 26-27 % would match this cell as well, but nothing measured ties such a "
+        "number, so the limit stays at Table 5-1's largest scatter (25.1 %)."),
+}
+
+
+def rules_on_thesis() -> pd.DataFrame:
+    """The Table 5-15 rules applied to the thesis's own published metrics, cell by cell.
+
+    One row per cell that published metrics cover: ``group, obstacle, model``,
+    ``rules`` (our verdict), ``thesis`` (Table 5-15's), ``match`` and ``why``
+    (the argument, :data:`TABLE_5_15_EXCEPTIONS`, where they differ).
+    """
+    from .tables import summary_table
+    ours, theirs = summary_table(thesis_metrics()), thesis_table_5_15()
+    rows = []
+    for group, obstacle in ours.index:
+        for model in TABLE_5_15_COLUMNS:
+            a, b = ours.at[(group, obstacle), model], theirs.at[(group, obstacle), model]
+            why = "" if a == b else TABLE_5_15_EXCEPTIONS.get((group, obstacle, model), ("", "", "?"))[2]
+            rows.append({"group": group, "obstacle": obstacle, "model": model, "rules": a,
+                         "thesis": b, "match": a == b, "why": why})
+    return pd.DataFrame(rows)
