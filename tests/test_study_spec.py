@@ -161,7 +161,7 @@ def test_base_spec_parses(tmp_path):
     assert runs[0].simulate_kwargs() == {
         "tyre": "xzl-16.00R20", "model": "point", "road": "cleat:50x50", "speed": 12 / 3.6, "load": "LC1",
         "pressure": 300e3, "stiffness": "linear", "handling": None, "rig": "trailer", "duration": 6.0,
-        "dt": 1e-3, "output_rate": 1000.0}
+        "dt": 1e-3, "output_rate": 1000.0, "left_wheel": None}
     assert spec.reference_run(runs[0]) == runs[1]
     assert spec.output == (tmp_path / "results").resolve()
 
@@ -441,3 +441,19 @@ def test_locator_follows_toml_syntax():
     assert loc.line(("test", 1, "name")) == 16
     assert loc.line(("test", 1, "missing")) == 15
     assert loc.line(("nowhere",)) is None
+
+
+def test_left_wheel_of_the_trailer(tmp_path):
+    """[study] left_wheel: a contact model name (checked), used by trailer runs whose test
+    wheel is another model, and part of those runs' keys only."""
+    plain = parse(BASE, tmp_path)
+    spec = parse(edit(4, 'output_rate = 1000\nleft_wheel = "point"'), tmp_path)
+    assert spec.left_wheel == "point"
+    runs = {r.model.name: r for r in spec.runs()}
+    assert runs["A"].left_contact is None           # the point model's left wheel is its own
+    assert runs["B"].simulate_kwargs()["left_wheel"] == "point"
+    old = {r.model.name: k for r, k in plain.run_keys().items() if r.speed * 3.6 < 15}
+    new = {r.model.name: k for r, k in spec.run_keys().items() if r.speed * 3.6 < 15}
+    assert old["A"] == new["A"] and old["B"] != new["B"]
+    fails(edit(4, 'output_rate = 1000\nleft_wheel = "ring-x"'), tmp_path, 5, "study.left_wheel",
+          "ring-x", "point")

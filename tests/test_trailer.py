@@ -57,3 +57,28 @@ def test_results_are_deterministic(xzl):
     a = Trailer(TyreModel(xzl), "LC2").run("bump:150", 8 / 3.6)
     b = Trailer(TyreModel(xzl), "LC2").run("bump:150", 8 / 3.6)
     np.testing.assert_array_equal(a.to_numpy(), b.to_numpy())
+
+
+def test_left_wheel_model_is_the_one_given(xzl):
+    """A left wheel of another contact model (volume, for a point test wheel) starts in the
+    same static equilibrium -- every channel identical until the test wheel meets the cleat
+    -- and then really is another tyre: the trailer's roll after the cleat differs."""
+    import tyrelab
+    from tyrelab.errors import InputError
+    same = tyrelab.simulate(model="point", road="cleat:50x50", duration=2.5, progress=False)
+    other = tyrelab.simulate(model="point", road="cleat:50x50", duration=2.5, progress=False,
+                             left_wheel="volume")
+    assert other.attrs["metadata"]["left_wheel"] == "volume"
+    assert same.attrs["metadata"]["left_wheel"] == "point"
+    t = same["RUNTIME"].to_numpy()
+    before = t < 1.0  # the tyre touches the cleat (x = 5 m - 0.34 m) at about 1.4 s
+    for channel in ("FZ_HUB", "FX_HUB", "FY_HUB", "MX"):
+        a, b = same[channel].to_numpy(), other[channel].to_numpy()
+        assert np.max(np.abs(a[before] - b[before])) <= 1e-9 * max(np.max(np.abs(a)), 1.0), channel
+    # the left tyre matters after the cleat (the trailer rolls; a cambered wide tyre sits on
+    # its shoulder, a disc does not): on the test wheel's load, over 1 kN
+    assert np.max(np.abs(same["FZ_HUB"] - other["FZ_HUB"])) > 1000.0
+    with pytest.raises(InputError, match="left"):
+        Trailer(TyreModel(xzl, "point"), left=TyreModel(xzl.with_stiffness("linear"), "point"))
+    with pytest.raises(InputError, match="trailer"):
+        tyrelab.simulate(rig="rolling", left_wheel="point", duration=0.1)

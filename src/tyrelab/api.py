@@ -57,7 +57,8 @@ def simulate(tyre: str | Tyre = DEFAULT_TYRE, model: str = "point", road="cleat:
              speed: float = 12 / 3.6, load="LC1", pressure: float | None = None,
              stiffness: str | None = None, handling: str | None = None,
              rig: str = "trailer", duration: float | None = None,
-             dt: float = 1e-3, output_rate: float = 1000.0, progress: bool | None = None):
+             dt: float = 1e-3, output_rate: float = 1000.0, progress: bool | None = None,
+             left_wheel: str | None = None):
     """Run a tyre model on a rig over a road; returns the signal table.
 
     Parameters
@@ -87,13 +88,22 @@ def simulate(tyre: str | Tyre = DEFAULT_TYRE, model: str = "point", road="cleat:
     duration, dt, output_rate : float
         Simulated time [s] (default: until the road ends; 3 s for a drop),
         time step [s], output sample rate [Hz].
+    left_wheel : str, optional
+        Trailer rigs: contact model of the left wheel, which runs on flat
+        ground (default: ``model``), e.g. ``"point"`` -- the same tyre and
+        vertical law at a fraction of the ring's cost.
     """
     if rig not in RIGS:
         raise InputError(f"unknown rig '{rig}', expected one of {', '.join(RIGS)}", field="rig")
     tm = make_tyre_model(tyre, model, pressure, stiffness, handling)
+    if left_wheel is not None and rig not in ("trailer", "drop"):
+        raise InputError(f"left_wheel applies to the trailer rigs, not to '{rig}'", field="left_wheel")
     if rig in ("trailer", "drop"):
         from .rig.trailer import Trailer
-        trailer = Trailer(tm, load)
+        left = None
+        if left_wheel is not None and left_wheel != tm.contact:
+            left = TyreModel(tm.tyre, contact=left_wheel, handling=tm.handling)
+        trailer = Trailer(tm, load, left=left)
         if rig == "drop":
             return trailer.drop(duration=duration or 3.0, dt=dt, output_rate=output_rate,
                                 progress=progress)

@@ -23,6 +23,7 @@ y to the left, z up. Time is in seconds.
 from __future__ import annotations
 
 import json
+from contextlib import contextmanager
 import os
 import tempfile
 from pathlib import Path
@@ -118,6 +119,21 @@ def _atomic_target(path):
     return tmp
 
 
+@contextmanager
+def atomic_output(path):
+    """Write ``path`` whole or not at all: yields a temporary sibling name to write to,
+    renamed over ``path`` when the block ends normally, removed when it raises (also on
+    KeyboardInterrupt), so no reader ever sees a partial file under the final name."""
+    tmp = _atomic_target(path)
+    try:
+        yield tmp
+        os.replace(tmp, path)
+    except BaseException:
+        if os.path.exists(tmp):
+            os.remove(tmp)
+        raise
+
+
 def write_signal(df: pd.DataFrame, path) -> None:
     """Write a signal table as Parquet (``.parquet``) or CSV (``.csv``).
 
@@ -134,8 +150,7 @@ def write_signal(df: pd.DataFrame, path) -> None:
                          source=str(path))
     meta = {"units": df.attrs.get("units", units(df.columns)),
             "metadata": df.attrs.get("metadata", {})}
-    tmp = _atomic_target(path)
-    try:
+    with atomic_output(path) as tmp:
         if suffix == ".parquet":
             import pyarrow as pa
             import pyarrow.parquet as pq
@@ -147,11 +162,6 @@ def write_signal(df: pd.DataFrame, path) -> None:
             with open(tmp, "w", encoding="utf-8", newline="") as fh:
                 fh.write("# tyrelab " + json.dumps(meta) + "\n")
                 df.to_csv(fh, index=False, float_format="%.9g")
-        os.replace(tmp, path)
-    except BaseException:
-        if os.path.exists(tmp):
-            os.remove(tmp)
-        raise
 
 
 def read_signal(path) -> pd.DataFrame:

@@ -32,6 +32,9 @@ def register(sub):
                    default="trailer",
                    help="trailer (default), quarter-vehicle, rolling (axle at fixed height), "
                         "drop (the trailer's drop test, thesis 3.4.1), wheel-drop")
+    p.add_argument("--left-wheel", default=None, metavar="MODEL",
+                   help="trailer rigs: contact model of the left wheel on flat ground (default: --model), "
+                        "e.g. point: the same tyre and vertical law at a fraction of a ring's cost")
     p.add_argument("--duration", type=positive_float("duration"), default=None, metavar="S",
                    help="simulated time in s (default: until the road ends)")
     p.add_argument("--dt", type=positive_float("time step"), default=1e-3, metavar="S",
@@ -50,7 +53,7 @@ def run(args) -> int:
     output_path(args.output)
     table = simulate(tyre=args.tyre, model=args.model, road=args.road, speed=args.speed,
                      load=args.load, pressure=args.pressure, stiffness=args.stiffness,
-                     handling=args.handling, rig=args.rig,
+                     handling=args.handling, rig=args.rig, left_wheel=args.left_wheel,
                      duration=args.duration, dt=args.dt, output_rate=args.rate)
     write_signal(table, args.output)
     fz = table["FZW"]

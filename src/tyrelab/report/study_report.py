@@ -59,7 +59,7 @@ import numpy as np
 import pandas as pd
 
 from .._version import __version__
-from ..signal import _atomic_target
+from ..signal import atomic_output
 from ..validate.compare import METRICS, THESIS_CLEAT, THESIS_TRACK
 from ..validate.tables import _fmt, summary_html, table_html
 from .study_figures import (ERRORS_SCRIPT, MAX_POINTS, PALETTE, RENDERED_SCRIPT, FigureSink,
@@ -447,14 +447,8 @@ def write_study_report(study, path, *, max_points: int = MAX_POINTS) -> Path:
     """
     path = Path(path)
     text = study_report_html(study, name=path.resolve().parent.name, max_points=max_points)
-    tmp = _atomic_target(path)
-    try:
+    with atomic_output(path) as tmp:
         with open(tmp, "w", encoding="utf-8") as fh:
             fh.write(text)
         os.chmod(tmp, 0o644)            # a page to share (the temporary file is private)
-        os.replace(tmp, path)
-    except BaseException:
-        if os.path.exists(tmp):
-            os.remove(tmp)
-        raise
     return path

@@ -172,15 +172,25 @@ class Trailer:
     Parameters
     ----------
     model : TyreModel
-        Tyre and contact model of both wheels.
+        Tyre and contact model of the test (right) wheel, and of the left wheel unless
+        ``left`` is given.
     geometry : TrailerGeometry, optional
         Assumed frame geometry (defaults documented in ARCHITECTURE.md).
     load_case : str or float
         ``"LC1"``, ``"LC2"``, ``"LC3"`` (thesis Table 3-4) or a wheel load [N].
+    left : TyreModel, optional
+        Model of the left wheel, which runs on flat ground (e.g. the point model of the
+        same tyre: the same vertical law and damping at a fraction of a ring's cost). Its
+        tyre must be the test wheel's.
     """
 
-    def __init__(self, model: TyreModel, load_case="LC1", geometry: TrailerGeometry | None = None):
+    def __init__(self, model: TyreModel, load_case="LC1", geometry: TrailerGeometry | None = None,
+                 left: TyreModel | None = None):
+        if left is not None and left.tyre is not model.tyre:
+            raise InputError("the left wheel must use the test wheel's tyre (same property file "
+                             "and pressure)", field="left")
         self.model = model
+        self.left = left if left is not None else model
         self.geometry = geometry or TrailerGeometry()
         reference = float(load_cases().loc["LC1", "wheel_load_N"])
         self.setup = trailer_setup(model.tyre, self.geometry, load_case, reference)
@@ -255,7 +265,7 @@ class Trailer:
         out_every = max(1, int(round(1.0 / (output_rate * dt))))
 
         right = self.model.wheel(grid, wheel_load)
-        left = self.model.wheel(Flat().grid(), wheel_load)
+        left = self.left.wheel(Flat().grid(), wheel_load)
 
         def advance(n, out, row):
             return K.trailer_steps(right, left, tp, state, n, dt, out_every, out, row, x_start)
@@ -264,6 +274,7 @@ class Trailer:
         data[:, K.CHANNELS.index("DISTANCE")] = data[:, K.CHANNELS.index("X_WC")] - x0_road
         s = self.setup
         meta = {"rig": rig, "tyre": self.model.tyre.name, "model": self.model.contact,
+                "left_wheel": self.left.contact,
                 "handling": self.model.handling,
                 "stiffness": self.model.tyre.stiffness, "road": road.name, "speed_m_s": speed,
                 "load_case": str(self.load_case), "static_wheel_load_N": s.wheel_load,

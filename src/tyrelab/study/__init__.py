@@ -33,7 +33,8 @@ def run_record(run: RunSpec) -> dict:
     return {"tyre": run.tyre.name, "model": run.model.name, "contact": run.model.contact,
             "stiffness": run.model.stiffness or "", "test": run.test, "group": run.group,
             "road": run.road, "speed_kmh": round(run.speed_kmh, 9), "load": str(run.load),
-            "rig": run.rig, "dt": run.dt}
+            "rig": run.rig, "left_wheel": run.left_contact or run.model.contact
+            if run.rig in ("trailer", "drop") else "", "dt": run.dt}
 
 
 #: rough wall time per simulated second of each contact model on the trailer (README

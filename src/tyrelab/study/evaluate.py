@@ -96,7 +96,6 @@ model the cams' effective contact), so the window is its contact.
 
 from __future__ import annotations
 
-import os
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -104,7 +103,7 @@ import numpy as np
 import pandas as pd
 
 from ..errors import InputError
-from ..signal import _atomic_target
+from ..signal import atomic_output
 from ..validate.align import align
 from ..validate.compare import METRICS, THESIS_CLEAT, THESIS_TRACK, compare_aligned
 from ..validate.distributions import fit_normal
@@ -382,12 +381,5 @@ def evaluate_study(spec: StudySpec, store: Store, progress: bool = True) -> pd.D
 
 def write_metrics(df: pd.DataFrame, path) -> None:
     """Write a metrics table to ``path`` (Parquet) atomically."""
-    path = Path(path)
-    tmp = _atomic_target(path)
-    try:
+    with atomic_output(Path(path)) as tmp:
         df.to_parquet(tmp, index=False)
-        os.replace(tmp, path)
-    except BaseException:
-        if os.path.exists(tmp):
-            os.remove(tmp)
-        raise

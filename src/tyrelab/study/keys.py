@@ -119,7 +119,8 @@ def run_key(run: RunSpec, tyre_digest: str) -> str:
     its label) and pressure; the model's contact, stiffness and handling;
     the road (its name, or a ``.crg`` file's content digest and offset);
     the speed [m/s]; the load (a load case with its ballast and wheel mass
-    from Table 3-4, or the force [N]); the rig, duration, dt, output rate;
+    from Table 3-4, or the force [N]); the rig (and the trailer's left-wheel model when
+    it differs from the test wheel's), duration, dt, output rate;
     and ``tyrelab.__version__``. Labels (study, tyre, model and test names,
     the group), references, limits and the output folder are left out:
     they do not change what is simulated, so renaming a model keeps its
@@ -139,5 +140,7 @@ def run_key(run: RunSpec, tyre_digest: str) -> str:
         "dt": float(run.dt),
         "output_rate": float(run.output_rate),
     }
+    if run.left_contact is not None:  # only when set: keys of runs without it stay as they were
+        payload["left_wheel"] = run.left_contact
     text = json.dumps(payload, sort_keys=True, separators=(",", ":"), allow_nan=False)
     return hashlib.sha256(text.encode()).hexdigest()[:16]

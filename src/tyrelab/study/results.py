@@ -80,7 +80,9 @@ class Study:
         reused if the spec comes back to them, but are not this study's)."""
         index = self.store.index()
         if self.spec is not None and len(index):
-            index = index[index["key"].isin(set(self.spec.run_keys().values()))]
+            order = {key: i for i, key in enumerate(dict.fromkeys(self.spec.run_keys().values()))}
+            index = index[index["key"].isin(order.keys())]  # in the spec's order
+            index = index.sort_values("key", key=lambda k: k.map(order), kind="stable")
         return index.reset_index(drop=True)
 
     @functools.cached_property

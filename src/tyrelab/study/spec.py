@@ -87,7 +87,9 @@ DEFAULT_OUTPUT_RATE = 1000.0
 #: the built-in thesis campaign (package data)
 BUILTIN_SPEC = "thesis_campaign.toml"
 
-_STUDY_KEYS = ("name", "output", "dt", "output_rate")
+_STUDY_KEYS = ("name", "output", "dt", "output_rate", "left_wheel")
+#: rigs with a left wheel (the towed trailer and its drop test)
+TRAILER_RIGS = ("trailer", "drop")
 _TYRE_KEYS = ("name", "file", "pressure_kpa")
 _MODEL_KEYS = ("name", "contact", "stiffness", "handling")
 _TEST_KEYS = ("name", "group", "road", "speeds_kmh", "loads", "rig", "duration", "reference")
@@ -190,10 +192,19 @@ class RunSpec:
     duration: float | None
     dt: float
     output_rate: float
+    left_wheel: str | None = None
 
     @property
     def speed_kmh(self) -> float:
         return self.speed * 3.6
+
+    @property
+    def left_contact(self) -> str | None:
+        """The trailer's left-wheel contact model when it differs from the test wheel's
+        (None: the same model, or a rig without a left wheel)."""
+        if self.rig not in TRAILER_RIGS or self.left_wheel in (None, self.model.contact):
+            return None
+        return self.left_wheel
 
     def simulate_kwargs(self) -> dict:
         """Keyword arguments of :func:`tyrelab.simulate` for this run."""
@@ -201,7 +212,7 @@ class RunSpec:
                 "speed": self.speed, "load": self.load, "pressure": self.tyre.pressure,
                 "stiffness": self.model.stiffness, "handling": self.model.handling,
                 "rig": self.rig, "duration": self.duration, "dt": self.dt,
-                "output_rate": self.output_rate}
+                "output_rate": self.output_rate, "left_wheel": self.left_contact}
 
 
 @dataclass(frozen=True)
@@ -221,6 +232,7 @@ class StudySpec:
     tests: tuple[TestSpec, ...]
     limits: dict = field(hash=False)
     source: Path | str = "<string>"
+    left_wheel: str | None = None
 
     def runs(self) -> tuple[RunSpec, ...]:
         """Every tyre x test x speed x load x model, in that nesting (outermost first).
@@ -236,7 +248,8 @@ class StudySpec:
                     for load in test.loads:
                         for model in self.models:
                             out.append(RunSpec(tyre, model, test.name, test.group, test.road, speed, load,
-                                               test.rig, test.duration, self.dt, self.output_rate))
+                                               test.rig, test.duration, self.dt, self.output_rate,
+                                               self.left_wheel))
         return tuple(out)
 
     def model(self, name: str) -> ModelSpec:
@@ -262,7 +275,8 @@ class StudySpec:
         if test.reference_model is None or test.reference_model == run.model.name:
             return None
         return RunSpec(run.tyre, self.model(test.reference_model), run.test, run.group, run.road,
-                       run.speed, run.load, run.rig, run.duration, run.dt, run.output_rate)
+                       run.speed, run.load, run.rig, run.duration, run.dt, run.output_rate,
+                       run.left_wheel)
 
     def reference_files(self, run: RunSpec) -> tuple[Path, ...]:
         """The measured files ``run`` is compared with (repeats of its condition); () if none."""
@@ -405,7 +419,12 @@ def _study(ck: _Checker, doc):
         ck.fail(("study", "output_rate") if "output_rate" in t else ("study", "dt"),
                 f"the output rate {rate:g} Hz is faster than the time step {dt:g} s allows "
                 f"(at most {1 / dt:g} Hz)")
-    return name, output, dt, rate
+    left = None
+    if "left_wheel" in t:
+        from ..tyre.registry import contact_models
+        left = ck.choice(t["left_wheel"], ("study", "left_wheel"), tuple(contact_models()),
+                         "the trailer's left-wheel contact model")
+    return name, output, dt, rate, left
 
 
 def _tyres(ck: _Checker, doc) -> tuple[TyreSpec, ...]:
@@ -695,13 +714,13 @@ def parse_spec(text: str, source: str | Path = "<string>", base: str | Path | No
         where = f" (column {m.group(2)})" if m else ""
         raise InputError(f"invalid TOML: {reason}{where}", source=src, line=line) from None
     ck.table(doc, (), _TOP_KEYS, what="a study spec")
-    name, output, dt, rate = _study(ck, doc)
+    name, output, dt, rate, left = _study(ck, doc)
     tyres = _tyres(ck, doc)
     models = _models(ck, doc, tyres)
     tests = _tests(ck, doc, models)
     limits = _limits(ck, doc)
     return StudySpec(name, output, dt, rate, tuple(t for t, _ in tyres), models, tests, limits,
-                     Path(src) if src != "<string>" else src)
+                     Path(src) if src != "<string>" else src, left)
 
 
 def load_spec(path: str | Path) -> StudySpec:
@@ -751,6 +770,8 @@ name = "my-cleat-study"          # required: the study's name
 output = "results"               # result folder, relative to this file's folder (default "results")
 dt = 0.001                       # [s] rig time step (default 0.001)
 output_rate = 1000               # [Hz] output sample rate, at most 1/dt (default 1000)
+# left_wheel = "point"           # trailer rigs: contact model of the left wheel, on flat
+                                 # ground (default: each variant's own model)
 
 [[tyre]]                         # one table per tyre; at least one
 name = "xzl"                     # label in the results

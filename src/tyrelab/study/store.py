@@ -23,13 +23,12 @@ line) is kept for the report and retried on the next run of the study.
 from __future__ import annotations
 
 import json
-import os
 from pathlib import Path
 
 import pandas as pd
 
 from ..errors import InputError
-from ..signal import _atomic_target, read_signal, write_signal
+from ..signal import atomic_output, read_signal, write_signal
 
 #: status of a run's record
 DONE, FAILED = "done", "failed"
@@ -37,15 +36,8 @@ DONE, FAILED = "done", "failed"
 
 def _write_json(path: Path, record: dict) -> None:
     """Write ``record`` as JSON to ``path`` atomically (temporary name, then rename)."""
-    tmp = _atomic_target(path)
-    try:
-        with open(tmp, "w", encoding="utf-8") as fh:
-            json.dump(record, fh, sort_keys=True, allow_nan=False)
-        os.replace(tmp, path)
-    except BaseException:
-        if os.path.exists(tmp):
-            os.remove(tmp)
-        raise
+    with atomic_output(path) as tmp, open(tmp, "w", encoding="utf-8") as fh:
+        json.dump(record, fh, sort_keys=True, allow_nan=False)
 
 
 class Store:
@@ -98,14 +90,8 @@ class Store:
     def write_text(self, name: str, text: str) -> Path:
         """Write a text file of the study folder atomically; returns its path."""
         path = self.folder / name
-        tmp = _atomic_target(path)
-        try:
+        with atomic_output(path) as tmp:
             Path(tmp).write_text(text, encoding="utf-8")
-            os.replace(tmp, path)
-        except BaseException:
-            if os.path.exists(tmp):
-                os.remove(tmp)
-            raise
         return path
 
     def signal(self, key: str) -> pd.DataFrame:
@@ -122,13 +108,6 @@ class Store:
     def write_index(self) -> pd.DataFrame:
         """Rebuild ``index.parquet`` from the records (atomically); returns the index."""
         index = self.index()
-        path = self.folder / "index.parquet"
-        tmp = _atomic_target(path)
-        try:
+        with atomic_output(self.folder / "index.parquet") as tmp:
             index.to_parquet(tmp, index=False)
-            os.replace(tmp, path)
-        except BaseException:
-            if os.path.exists(tmp):
-                os.remove(tmp)
-            raise
         return index
