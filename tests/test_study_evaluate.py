@@ -245,6 +245,9 @@ def test_measured_reference_files_and_their_repeatability(tiny, tmp_path):
     assert env["shift_s"] == pytest.approx(0.0, abs=1e-9)
     assert env["mRE_disturbance_pct"] == pytest.approx(0.0, abs=1e-9)
     assert study.reference_note == "reference: measured files m1.parquet, m2.parquet"
+    # the report's overlays read the measured reference through Study.signal
+    got = study.signal("m1.parquet")
+    assert np.array_equal(got["FZ_HUB"].to_numpy(), meas["FZ_HUB"].to_numpy())
 
 
 def test_study_opens_the_folder(tiny):

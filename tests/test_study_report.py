@@ -341,3 +341,32 @@ def test_report_argues_the_table_5_15_cells_the_rules_miss(tmp_path):
     assert f"give {int(cells['match'].sum())} of the {len(cells)} cells" in html
     for why in cells.loc[~cells["match"], "why"]:
         assert why[:60].replace("'", "&#x27;") in html
+
+
+def test_overlay_on_a_measured_reference(tmp_path):
+    """A study whose reference is a measured file: the report draws the models over the
+    measurement (read through Study.signal), not a 'no figure' note."""
+
+    from tyrelab.report.study_report import study_report_html
+    from tyrelab.signal import write_signal
+    from tyrelab.study import Study, tasks
+    from tyrelab.study.spec import parse_spec
+    from tyrelab.study.store import Store
+    text_models = ('[[model]]\nname = "OPC nlk"\ncontact = "point"\n\n'
+                   '[[model]]\nname = "3D VC nlk"\ncontact = "volume"\n\n')
+    folder = tmp_path / "s"
+    store = Store(folder)
+    head = ('[study]\nname = "measured"\n\n[[tyre]]\nname = "xzl"\nfile = "xzl-16.00R20"\n\n'
+            + text_models + '[[test]]\nname = "cleat 50x50 perpendicular"\nroad = "cleat:50x50"\n'
+            'speeds_kmh = [18]\nloads = ["LC1"]\nduration = 2.5\n')
+    measured = tyrelab.simulate(model="enveloping", road="cleat:50x50", speed=5.0, load="LC1",
+                                duration=2.5, progress=False)
+    write_signal(measured, folder / "field.parquet")
+    text = head + 'reference = { files = [{ file = "field.parquet", speed_kmh = 18, load = "LC1" }] }\n'
+    spec = parse_spec(text, folder / "spec.toml")
+    for task in tasks(spec):
+        store.save(task["key"], task["spec"], tyrelab.simulate(**task["simulate"], progress=False), 0.1)
+    store.write_text("spec.toml", text)
+    html = study_report_html(Study(folder))
+    assert "could not be read" not in html
+    assert "field.parquet" in html and "tyrelab-fig-1" in html

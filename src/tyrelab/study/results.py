@@ -97,7 +97,14 @@ class Study:
         return evaluate_study(self.spec, self.store, progress=False)
 
     def signal(self, key: str) -> pd.DataFrame:
-        """The signal table of the finished run ``key``."""
+        """The signal table of the finished run ``key``, or of the spec's measured
+        reference file of that name (the ``reference`` column of :attr:`metrics`)."""
+        if not self.store.is_finished(key) and self.spec is not None:
+            for test in self.spec.tests:
+                for f in test.reference_files:
+                    if f.path.name == key:
+                        from ..measure import read_run
+                        return read_run(f.path)
         return self.store.signal(key)
 
     # -- rows -----------------------------------------------------------------------
