@@ -17,6 +17,7 @@ import pandas as pd
 import pytest
 
 import tyrelab
+from tyrelab.errors import InputError
 from tyrelab.rig.trailer import load_case_wheel_load
 from tyrelab.signal import write_signal
 from tyrelab.study import tasks
@@ -315,3 +316,27 @@ def test_summary_of_a_hand_made_metrics_table(tmp_path):
         "P": "not representative", "V": "comparable", "E": "comparable, best"}
     assert summary.attrs["set_aside"] == [] and summary.attrs["left_out"] == []
     assert study.reference_note == "reference: R (point model), not a measurement"
+
+
+def test_measured_csv_reference_with_a_column_map(tiny, tmp_path):
+    """A logger's CSV (its own column names, ms and kN) as the reference, read through the
+    spec's column_map: the enveloping run compared with its own signal so exported gives
+    errors at the CSV's rounding (9 significant digits), i.e. zero to 1e-4 %."""
+    spec, store, keys, _ = tiny
+    folder = tmp_path / "csv"
+    shutil.copytree(store.folder, folder)
+    (folder / "metrics.parquet").unlink()
+    meas = store.signal(keys[REF])
+    pd.DataFrame({"time [ms]": meas["RUNTIME"] * 1e3, "hub load (kN)": meas["FZ_HUB"] / 1e3}).to_csv(
+        folder / "logger.csv", index=False, float_format="%.9g")
+    (folder / "map.csv").write_text("source,channel,unit\ntime [ms],RUNTIME,ms\nhub load (kN),FZ_HUB,kN\n")
+    text = spec_text('{ files = ["logger.csv"], column_map = "map.csv" }')
+    keep_spec(folder, text)
+    m = Study(folder).metrics
+    env = row(m, REF)
+    assert env["error"] == "" and env["channel"] == "FZ_HUB"
+    assert env["mRE_disturbance_pct"] == pytest.approx(0.0, abs=1e-4)
+    assert row(m, "OPC nlk")["mRE_disturbance_pct"] > 1.0  # another model is not the reference
+    # a column map without files is refused with its key
+    with pytest.raises(InputError, match="column_map"):
+        parse_spec(spec_text('{ model = "3D ENV nlk", column_map = "map.csv" }'), base=folder)

@@ -282,7 +282,7 @@ class _Evaluator:
                 self._signals.pop(next(iter(self._signals)))
             if isinstance(source, Path):
                 from ..measure.io import read_run
-                self._signals[source] = read_run(source)
+                self._signals[source] = read_run(source, column_map=self.spec.column_map(source))
             else:
                 self._signals[source] = self.store.signal(source)
         return self._signals[source]

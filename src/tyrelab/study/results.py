@@ -104,7 +104,7 @@ class Study:
                 for f in test.reference_files:
                     if f.path.name == key:
                         from ..measure import read_run
-                        return read_run(f.path)
+                        return read_run(f.path, column_map=f.column_map)
         return self.store.signal(key)
 
     # -- rows -----------------------------------------------------------------------

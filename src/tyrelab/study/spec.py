@@ -93,7 +93,7 @@ TRAILER_RIGS = ("trailer", "drop")
 _TYRE_KEYS = ("name", "file", "pressure_kpa")
 _MODEL_KEYS = ("name", "contact", "stiffness", "handling")
 _TEST_KEYS = ("name", "group", "road", "speeds_kmh", "loads", "rig", "duration", "reference")
-_REFERENCE_KEYS = ("model", "files")
+_REFERENCE_KEYS = ("model", "files", "column_map")
 _REFERENCE_FILE_KEYS = ("file", "speed_kmh", "load")
 _TOP_KEYS = ("study", "tyre", "model", "test", "metrics")
 _METRICS_KEYS = ("limits",)
@@ -144,6 +144,7 @@ class ReferenceFile:
     path: Path
     speed: float
     load: str | float
+    column_map: Path | None = None  # a CSV's column map (tyrelab.measure.read_mapped_csv)
 
 
 @dataclass(frozen=True)
@@ -283,6 +284,15 @@ class StudySpec:
         test = self._test_of(run)
         return tuple(f.path for f in test.reference_files
                      if f.speed == run.speed and f.load == run.load)
+
+    def column_map(self, path: Path) -> Path | None:
+        """The column map of the measured reference file ``path`` (None: TYDEX, or a file
+        tyrelab wrote)."""
+        for test in self.tests:
+            for f in test.reference_files:
+                if f.path == path:
+                    return f.column_map
+        return None
 
     def run_keys(self) -> dict[RunSpec, str]:
         """:func:`run_key` of every run (each tyre's digest computed once)."""
@@ -574,6 +584,10 @@ def _reference(ck: _Checker, raw, path, speeds, loads, models, cases):
     t = ck.table(raw, path, _REFERENCE_KEYS, what="a table { model = ... } or { files = [...] }")
     if ("model" in t) == ("files" in t):
         ck.fail(path, "expected exactly one of 'model' (a model label) or 'files' (measured files)")
+    if "column_map" in t and "files" not in t:
+        ck.fail(path + ("column_map",), "a column map belongs to measured 'files'")
+    cmap = (ck.path(t["column_map"], path + ("column_map",), "column map file")
+            if "column_map" in t else None)
     if "model" in t:
         names = [m.name for m in models]
         label = ck.string(t["model"], path + ("model",), "a model label")
@@ -595,7 +609,7 @@ def _reference(ck: _Checker, raw, path, speeds, loads, models, cases):
                 ck.fail(epath, "with several speed/load conditions and tables in the list, name this "
                         "file's condition too: { file = ..., speed_kmh = ..., load = ... }")
             speed, load = pairs[0] if len(pairs) == 1 else pairs[k]
-            out.append(ReferenceFile(ck.path(entry, epath, "reference file"), speed, load))
+            out.append(ReferenceFile(ck.path(entry, epath, "reference file"), speed, load, cmap))
             continue
         e = ck.table(entry, epath, _REFERENCE_FILE_KEYS, required=_REFERENCE_FILE_KEYS,
                      what="a file path or a table { file, speed_kmh, load }")
@@ -606,7 +620,8 @@ def _reference(ck: _Checker, raw, path, speeds, loads, models, cases):
         load = _load(ck, e["load"], epath + ("load",), cases)
         if load not in loads:
             ck.fail(epath + ("load",), f"{e['load']!r} is not among this test's loads")
-        out.append(ReferenceFile(ck.path(e["file"], epath + ("file",), "reference file"), speed, load))
+        out.append(ReferenceFile(ck.path(e["file"], epath + ("file",), "reference file"), speed, load,
+                                 cmap))
     covered = {(f.speed, f.load) for f in out}
     for v, c in pairs:
         if (v, c) not in covered:
@@ -807,6 +822,8 @@ reference = { model = "3D ENV nlk" }   # compare with this model's runs; or meas
 # reference = { files = ["field/c50_12.tdx", "field/c50_18.tdx"] }   # one per speed x load
 # reference = { files = [{ file = "field/c50_12a.tdx", speed_kmh = 12, load = "LC1" },
 #                        { file = "field/c50_12b.tdx", speed_kmh = 12, load = "LC1" }] }  # repeats
+# reference = { files = ["field/c50_12.csv", "field/c50_18.csv"], column_map = "field/map.csv" }
+#   a logger's CSV: map lines "source,channel,unit", e.g. "Fz hub (kN),FZ_HUB,kN"
 
 [[test]]
 name = "fatigue track"
