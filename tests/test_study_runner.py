@@ -128,3 +128,14 @@ def test_external_scheduler_gives_the_same_tables(two_workers, tmp_path):
             if proc is not None:
                 proc.terminate()
                 proc.wait(timeout=30)
+
+
+def test_unreachable_scheduler_is_one_clear_error(tmp_path):
+    """--scheduler at an address where nothing listens: an InputError naming the address
+    and the option, within the connect timeout, and no run recorded."""
+    from tyrelab.errors import InputError
+    store = Store(tmp_path / "s")
+    with pytest.raises(InputError) as info:
+        run_tasks(TASKS[:1], store, scheduler="tcp://127.0.0.1:9", progress=False, connect_timeout=3)
+    assert "tcp://127.0.0.1:9" in str(info.value) and "--scheduler" in str(info.value)
+    assert not list(store.runs.glob("*.json"))

@@ -26,6 +26,7 @@ import signal
 import threading
 import time
 
+from ..errors import InputError
 from .store import Store
 
 
@@ -42,11 +43,17 @@ def execute(task: dict):
     return "done", signal, time.perf_counter() - t0
 
 
-def _client(scheduler: str | None, workers: int | None):
+def _client(scheduler: str | None, workers: int | None, connect_timeout: float = 30.0):
     """A Dask client and the cluster it owns (None for an external scheduler)."""
     from distributed import Client, LocalCluster
     if scheduler:
-        return Client(scheduler), None
+        try:
+            return Client(scheduler, timeout=connect_timeout), None
+        except (OSError, TimeoutError, ValueError) as exc:
+            raise InputError(f"cannot reach a Dask scheduler at '{scheduler}' within "
+                             f"{connect_timeout:g} s ({type(exc).__name__}); expected the address a "
+                             "running 'dask scheduler' prints, e.g. tcp://host:8786",
+                             field="--scheduler") from None
     n = workers or os.cpu_count() or 1
     # the worker processes start with SIGINT ignored (an ignored signal stays ignored across
     # exec, and Python then installs no KeyboardInterrupt handler): Ctrl-C in a terminal
@@ -70,7 +77,8 @@ def _minutes(seconds: float) -> str:
 
 
 def run_tasks(tasks: list[dict], store: Store, workers: int | None = None,
-              scheduler: str | None = None, progress: bool = True) -> dict:
+              scheduler: str | None = None, progress: bool = True,
+              connect_timeout: float = 30.0) -> dict:
     """Compute every task whose run is not finished in ``store``.
 
     Parameters
@@ -84,6 +92,8 @@ def run_tasks(tasks: list[dict], store: Store, workers: int | None = None,
         Address of a running Dask scheduler; ``workers`` is then ignored.
     progress : bool
         A progress bar over runs (on stderr), with the estimated time left.
+    connect_timeout : float
+        Seconds to wait for an external scheduler (InputError when it does not answer).
 
     Returns
     -------
@@ -96,7 +106,7 @@ def run_tasks(tasks: list[dict], store: Store, workers: int | None = None,
         return counts
     from distributed import as_completed
     from tqdm import tqdm
-    client, cluster = _client(scheduler, workers)
+    client, cluster = _client(scheduler, workers, connect_timeout)
     by_key = {t["key"]: t for t in todo}
     futures = []
     # the time left is estimated from the runs' expected costs, not from their count: the
