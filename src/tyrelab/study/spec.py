@@ -392,6 +392,15 @@ class _Checker:
             self.fail(path, f"expected {what}, got {value!r}")
         return v
 
+    def unique_label(self, value, path, seen: dict, what: str) -> str:
+        """A label not used before in ``seen`` (label -> index, updated); ``path`` is
+        (table, index, key)."""
+        name = self.label(value, path)
+        if name in seen:
+            self.fail(path, f"duplicate {what} label {json.dumps(name)} (also {what}[{seen[name] + 1}])")
+        seen[name] = path[1]
+        return name
+
     def choice(self, value, path, known, what):
         self.string(value, path, f"a {what} name")
         if value not in known:
@@ -445,11 +454,7 @@ def _tyres(ck: _Checker, doc) -> tuple[TyreSpec, ...]:
     for i, raw in enumerate(ck.array_of_tables(doc, "tyre")):
         path = ("tyre", i)
         t = ck.table(raw, path, _TYRE_KEYS, required=("name", "file"), what="a table [[tyre]]")
-        name = ck.label(t["name"], path + ("name",))
-        if name in seen:
-            ck.fail(path + ("name",),
-                    f"duplicate tyre label {json.dumps(name)} (also tyre[{seen[name] + 1}])")
-        seen[name] = i
+        name = ck.unique_label(t["name"], path + ("name",), seen, "tyre")
         file_text = ck.string(t["file"], path + ("file",), "a built-in tyre name or a .tir path")
         builtin = builtins.get(file_text.strip().lower())
         pressure = None
@@ -489,11 +494,7 @@ def _models(ck: _Checker, doc, tyres) -> tuple[ModelSpec, ...]:
     for i, raw in enumerate(ck.array_of_tables(doc, "model")):
         path = ("model", i)
         t = ck.table(raw, path, _MODEL_KEYS, required=("name", "contact"), what="a table [[model]]")
-        name = ck.label(t["name"], path + ("name",))
-        if name in seen:
-            ck.fail(path + ("name",),
-                    f"duplicate model label {json.dumps(name)} (also model[{seen[name] + 1}])")
-        seen[name] = i
+        name = ck.unique_label(t["name"], path + ("name",), seen, "model")
         contact = ck.choice(t["contact"], path + ("contact",), contacts, "contact model")
         stiffness = None
         if "stiffness" in t:
