@@ -139,3 +139,16 @@ def test_unreachable_scheduler_is_one_clear_error(tmp_path):
         run_tasks(TASKS[:1], store, scheduler="tcp://127.0.0.1:9", progress=False, connect_timeout=3)
     assert "tcp://127.0.0.1:9" in str(info.value) and "--scheduler" in str(info.value)
     assert not list(store.runs.glob("*.json"))
+
+
+def test_a_spec_given_as_text_is_kept_with_its_results(tmp_path):
+    """run() copies the spec into the results folder (spec.toml, study.json) also when it was
+    parsed from a string in Python, so Study(folder) reads the same spec back."""
+    from tyrelab.study import Study, _keep_spec
+    from tyrelab.study.spec import example_spec, parse_spec
+    spec = parse_spec(example_spec(), base=tmp_path)
+    store = Store(tmp_path / "out")
+    _keep_spec(spec, store)
+    assert (store.folder / "spec.toml").read_text() == example_spec()
+    again = Study(store.folder).spec
+    assert again.runs() == spec.runs() and again.run_keys() == spec.run_keys()

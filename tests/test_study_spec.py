@@ -9,7 +9,8 @@ from pathlib import Path
 import pytest
 
 from tyrelab.errors import InputError
-from tyrelab.study.spec import (GROUPS, ModelSpec, RunSpec, StudySpec, TyreSpec, _Locator, builtin_spec,
+from tyrelab.study.toml_lines import TomlLocator
+from tyrelab.study.spec import (GROUPS, ModelSpec, RunSpec, StudySpec, TyreSpec, builtin_spec,
                                 example_spec, load_spec, parse_spec, run_key, tyre_digest)
 
 # A small spec; the line numbers below refer to it (line 1 is "[study]").
@@ -430,7 +431,7 @@ def test_locator_follows_toml_syntax():
         '[[test]]  # second',                   # 15
         'name = "two"',                         # 16
     ]) + '\n'
-    loc = _Locator(text)
+    loc = TomlLocator(text)
     assert loc.line(("a", "doc")) == 2
     assert loc.line(("a", "lit")) == 5
     assert loc.line(("a", "list", 0)) == 7

@@ -163,14 +163,13 @@ def test_rank_agreement_identical_and_reversed():
         rank_agreement(ranking_table([1, 2, 3, 4]), ranking_table([1, 2, 3, 4]), by=("track",))
 
 
-def test_package_data_loads_without_shared(monkeypatch, tmp_path):
-    monkeypatch.chdir(tmp_path)                      # no relative path can reach ../shared
+def test_thesis_tables_are_package_data(monkeypatch, tmp_path):
+    monkeypatch.chdir(tmp_path)  # read through importlib.resources, not relative to the working folder
     folder = resources.files("tyrelab.validate").joinpath("data")
     for name in ("thesis_cleat_metrics.csv", "thesis_track_metrics.csv",
                  "thesis_table_5_15.csv", "README.md"):
         assert folder.joinpath(name).is_file()
     assert Path(str(folder)).parent == Path(thesis_module.__file__).parent
-    assert "shared" not in Path(thesis_module.__file__).read_text()
     # the copy is the reference set's, as the tests' own copy
     assert (folder.joinpath("thesis_cleat_metrics.csv").read_text()
             == (DATA / "thesis_cleat_metrics.csv").read_text())

@@ -19,7 +19,7 @@ from pathlib import Path
 
 from .evaluate import evaluate_study
 from .results import Study
-from .spec import BUILTIN_SPEC, RunSpec, StudySpec, builtin_spec, builtin_spec_text, example_spec, load_spec
+from .spec import RunSpec, StudySpec, builtin_spec, example_spec, load_spec
 from .store import Store
 
 
@@ -65,13 +65,9 @@ def tasks(spec: StudySpec) -> list[dict]:
 def _keep_spec(spec: StudySpec, store: Store) -> None:
     """Copy the spec's text into the study folder (``spec.toml``) with where its relative
     paths point (``study.json``), so ``tyrelab.study.open`` can read the study alone."""
-    source = Path(str(spec.source))
-    builtin = source.name == BUILTIN_SPEC and source.parent.name == "data"
-    text = builtin_spec_text() if builtin else source.read_text(encoding="utf-8")
-    base = Path.cwd() if builtin else source.parent
-    store.write_text("spec.toml", text)
-    store.write_text("study.json", json.dumps({"name": spec.name, "spec_source": str(source),
-                                               "base": str(base.absolute())}, indent=1))
+    store.write_text("spec.toml", spec.text)
+    store.write_text("study.json", json.dumps({"name": spec.name, "spec_source": str(spec.source),
+                                               "base": str(spec.base)}, indent=1))
 
 
 def run(spec: StudySpec | str | Path | None = None, workers: int | None = None,

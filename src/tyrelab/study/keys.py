@@ -20,7 +20,7 @@ from typing import TYPE_CHECKING
 from .._version import __version__
 
 if TYPE_CHECKING:
-    from .spec import RunSpec, TyreSpec
+    from .records import RunSpec, TyreSpec
 
 
 def _data_bytes(package: str, name: str) -> bytes:

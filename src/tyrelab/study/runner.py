@@ -107,8 +107,7 @@ def run_tasks(tasks: list[dict], store: Store, workers: int | None = None,
     from distributed import as_completed
     from tqdm import tqdm
     client, cluster = _client(scheduler, workers, connect_timeout)
-    by_key = {t["key"]: t for t in todo}
-    futures = []
+    futures = {}
     # the time left is estimated from the runs' expected costs, not from their count: the
     # longest runs go first, so a count-based estimate would start far too high
     total_cost = sum(t.get("cost", 0.0) for t in todo) or 1.0
@@ -121,12 +120,11 @@ def run_tasks(tasks: list[dict], store: Store, workers: int | None = None,
         # the longest runs first (Dask runs higher priorities first), so that no long run
         # starts last and leaves the other workers idle; pure=False: a rerun of a study
         # computes again what the store lacks
-        ranks = {t["key"]: r for r, t in enumerate(sorted(todo, key=lambda t: -t.get("cost", 0.0)))}
-        futures = [client.submit(execute, t, key=f"tyrelab-run-{t['key']}", pure=False,
-                                 priority=len(todo) - ranks[t["key"]]) for t in todo]
+        futures = {client.submit(execute, t, key=f"tyrelab-run-{t['key']}", pure=False,
+                                 priority=t.get("cost", 0.0)): t for t in todo}
         for future in as_completed(futures):
-            key = future.key.removeprefix("tyrelab-run-")
-            task = by_key[key]
+            task = futures[future]
+            key = task["key"]
             try:
                 status, result, wall = future.result()
             except Exception as exc:  # the worker died (KilledWorker) or the task was lost

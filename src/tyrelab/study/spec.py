@@ -70,13 +70,14 @@ import json
 import math
 import re
 import tomllib
-from dataclasses import dataclass, field
 from importlib import resources
 from pathlib import Path
 
 from ..errors import InputError
-from .keys import run_key, tyre_digest
-from .toml_lines import _BARE_KEY, _Locator
+from .checker import Checker, describe_value
+from .keys import run_key, tyre_digest  # noqa: F401 - part of this module's API
+from .records import (ModelSpec, ReferenceFile, RunSpec, StudySpec, TestSpec,  # noqa: F401
+                      TyreSpec, TRAILER_RIGS)
 
 #: the obstacle groups of the thesis (Table 5-15); the summary rules differ per group
 GROUPS = ("discrete obstacles", "rough tracks")
@@ -88,8 +89,6 @@ DEFAULT_OUTPUT_RATE = 1000.0
 BUILTIN_SPEC = "thesis_campaign.toml"
 
 _STUDY_KEYS = ("name", "output", "dt", "output_rate", "left_wheel")
-#: rigs with a left wheel (the towed trailer and its drop test)
-TRAILER_RIGS = ("trailer", "drop")
 _TYRE_KEYS = ("name", "file", "pressure_kpa")
 _MODEL_KEYS = ("name", "contact", "stiffness", "handling")
 _TEST_KEYS = ("name", "group", "road", "speeds_kmh", "loads", "rig", "duration", "reference")
@@ -102,326 +101,9 @@ _DISCRETE_TRACKS = ("trapezoidal-bump",)
 
 
 # ---------------------------------------------------------------------------
-# the parsed spec (SI units)
-
-@dataclass(frozen=True)
-class TyreSpec:
-    """A tyre of the study.
-
-    Attributes
-    ----------
-    name : str
-        Label.
-    file : str
-        The built-in tyre's name (as :data:`tyrelab.tyre.library` spells it)
-        or the absolute path of a ``.tir`` file.
-    pressure : float or None
-        Inflation pressure [Pa] of a built-in tyre (None: its default).
-    builtin : bool
-        Whether ``file`` names a built-in tyre.
-    """
-
-    name: str
-    file: str
-    pressure: float | None = None
-    builtin: bool = True
-
-
-@dataclass(frozen=True)
-class ModelSpec:
-    """A model variant: contact model, vertical stiffness and handling model (None: default)."""
-
-    name: str
-    contact: str
-    stiffness: str | None = None
-    handling: str | None = None
-
-
-@dataclass(frozen=True)
-class ReferenceFile:
-    """A measured reference file for one condition of a test (``speed`` [m/s])."""
-
-    path: Path
-    speed: float
-    load: str | float
-    column_map: Path | None = None  # a CSV's column map (tyrelab.measure.read_mapped_csv)
-
-
-@dataclass(frozen=True)
-class TestSpec:
-    """One ``[[test]]``: an obstacle or track driven at several speeds and loads.
-
-    ``road`` is what :func:`tyrelab.simulate` takes (a ``.crg`` path made
-    absolute); ``speeds`` [m/s]; ``loads`` load-case names or wheel loads
-    [N]; ``duration`` [s] or None (the rig's default); the reference is
-    ``reference_model`` (a model label) or ``reference_files`` or neither.
-    """
-
-    __test__ = False  # not a pytest class
-
-    name: str
-    group: str
-    road: str
-    speeds: tuple[float, ...]
-    loads: tuple[str | float, ...]
-    rig: str = "trailer"
-    duration: float | None = None
-    reference_model: str | None = None
-    reference_files: tuple[ReferenceFile, ...] = ()
-
-    @property
-    def speeds_kmh(self) -> tuple[float, ...]:
-        return tuple(v * 3.6 for v in self.speeds)
-
-
-@dataclass(frozen=True)
-class RunSpec:
-    """One simulation: everything :func:`tyrelab.simulate` needs, plus its labels.
-
-    ``speed`` [m/s], ``load`` a load-case name or a wheel load [N],
-    ``duration`` [s] or None, ``dt`` [s], ``output_rate`` [Hz].
-    """
-
-    tyre: TyreSpec
-    model: ModelSpec
-    test: str
-    group: str
-    road: str
-    speed: float
-    load: str | float
-    rig: str
-    duration: float | None
-    dt: float
-    output_rate: float
-    left_wheel: str | None = None
-
-    @property
-    def speed_kmh(self) -> float:
-        return self.speed * 3.6
-
-    @property
-    def left_contact(self) -> str | None:
-        """The trailer's left-wheel contact model when it differs from the test wheel's
-        (None: the same model, or a rig without a left wheel)."""
-        if self.rig not in TRAILER_RIGS or self.left_wheel in (None, self.model.contact):
-            return None
-        return self.left_wheel
-
-    def simulate_kwargs(self) -> dict:
-        """Keyword arguments of :func:`tyrelab.simulate` for this run."""
-        return {"tyre": self.tyre.file, "model": self.model.contact, "road": self.road,
-                "speed": self.speed, "load": self.load, "pressure": self.tyre.pressure,
-                "stiffness": self.model.stiffness, "handling": self.model.handling,
-                "rig": self.rig, "duration": self.duration, "dt": self.dt,
-                "output_rate": self.output_rate, "left_wheel": self.left_contact}
-
-
-@dataclass(frozen=True)
-class StudySpec:
-    """A parsed, validated study (SI units).
-
-    ``output`` is an absolute folder; ``limits`` ``{group: {metric: limit}}``
-    (defaults filled in); ``source`` the spec file.
-    """
-
-    name: str
-    output: Path
-    dt: float
-    output_rate: float
-    tyres: tuple[TyreSpec, ...]
-    models: tuple[ModelSpec, ...]
-    tests: tuple[TestSpec, ...]
-    limits: dict = field(hash=False)
-    source: Path | str = "<string>"
-    left_wheel: str | None = None
-
-    def runs(self) -> tuple[RunSpec, ...]:
-        """Every tyre x test x speed x load x model, in that nesting (outermost first).
-
-        Deterministic: the order of the spec's tables and lists. The runs of
-        one condition (test, speed, load) are adjacent, the models in spec
-        order; a reference model's runs appear once, as any model's.
-        """
-        out = []
-        for tyre in self.tyres:
-            for test in self.tests:
-                for speed in test.speeds:
-                    for load in test.loads:
-                        for model in self.models:
-                            out.append(RunSpec(tyre, model, test.name, test.group, test.road, speed, load,
-                                               test.rig, test.duration, self.dt, self.output_rate,
-                                               self.left_wheel))
-        return tuple(out)
-
-    def model(self, name: str) -> ModelSpec:
-        """The model variant labelled ``name``."""
-        for m in self.models:
-            if m.name == name:
-                return m
-        raise KeyError(name)
-
-    def _test_of(self, run: RunSpec) -> TestSpec:
-        for test in self.tests:
-            if (test.name == run.test and run.speed in test.speeds and run.load in test.loads):
-                return test
-        raise KeyError(run.test)
-
-    def reference_run(self, run: RunSpec) -> RunSpec | None:
-        """The run ``run`` is compared with when its test's reference is a model.
-
-        None when the test has no model reference, or ``run`` is a run of
-        the reference model itself.
-        """
-        test = self._test_of(run)
-        if test.reference_model is None or test.reference_model == run.model.name:
-            return None
-        return RunSpec(run.tyre, self.model(test.reference_model), run.test, run.group, run.road,
-                       run.speed, run.load, run.rig, run.duration, run.dt, run.output_rate,
-                       run.left_wheel)
-
-    def reference_files(self, run: RunSpec) -> tuple[Path, ...]:
-        """The measured files ``run`` is compared with (repeats of its condition); () if none."""
-        test = self._test_of(run)
-        return tuple(f.path for f in test.reference_files
-                     if f.speed == run.speed and f.load == run.load)
-
-    def column_map(self, path: Path) -> Path | None:
-        """The column map of the measured reference file ``path`` (None: TYDEX, or a file
-        tyrelab wrote)."""
-        for test in self.tests:
-            for f in test.reference_files:
-                if f.path == path:
-                    return f.column_map
-        return None
-
-    def run_keys(self) -> dict[RunSpec, str]:
-        """:func:`run_key` of every run (each tyre's digest computed once)."""
-        digests = {tyre: tyre_digest(tyre) for tyre in self.tyres}
-        return {run: run_key(run, digests[run.tyre]) for run in self.runs()}
-
-
-
-# ---------------------------------------------------------------------------
-# checking
-
-def _describe(value) -> str:
-    if isinstance(value, bool):
-        return f"the boolean {str(value).lower()}"
-    if isinstance(value, (int, float)):
-        return f"the number {value!r}"
-    if isinstance(value, str):
-        return f"the string {json.dumps(value)}"
-    if isinstance(value, list):
-        return "an array"
-    if isinstance(value, dict):
-        return "a table"
-    return f"a date/time ({value})"
-
-
-def _format_path(path) -> str:
-    out = ""
-    for part in path:
-        if isinstance(part, int):
-            out += f"[{part + 1}]"
-        else:
-            name = part if _BARE_KEY.fullmatch(part) else json.dumps(part)
-            out += ("." if out else "") + name
-    return out or "(top level)"
-
-
-def _is_number(value) -> bool:
-    return isinstance(value, (int, float)) and not isinstance(value, bool)
-
-
-class _Checker:
-    def __init__(self, text: str, source, base: Path):
-        self.text = text
-        self.source = str(source)
-        self.base = base
-        self._locator: _Locator | None = None
-
-    def fail(self, path, message: str):
-        line = None
-        try:  # the locator reads any valid TOML; should it not, the message still stands
-            if self._locator is None:
-                self._locator = _Locator(self.text)
-            line = self._locator.line(path)
-        except (ValueError, IndexError):
-            pass
-        raise InputError(message, source=self.source, line=line, field=_format_path(path))
-
-    # -- generic checks -------------------------------------------------------
-    def table(self, value, path, allowed, required=(), what="a table"):
-        if not isinstance(value, dict):
-            self.fail(path, f"expected {what}, got {_describe(value)}")
-        for key in value:
-            if key not in allowed:
-                self.fail(path + (key,), f"unknown key {json.dumps(key)}; allowed keys: {', '.join(allowed)}")
-        for key in required:
-            if key not in value:
-                self.fail(path, f"missing key '{key}' (required; keys: {', '.join(allowed)})")
-        return value
-
-    def array_of_tables(self, doc, key):
-        value = doc.get(key)
-        if value is None:
-            self.fail((key,), f"missing: the spec needs at least one [[{key}]] table")
-        if not isinstance(value, list) or not value:
-            self.fail((key,), f"expected one or more [[{key}]] tables, got {_describe(value)}")
-        return value
-
-    def string(self, value, path, what="a string"):
-        if not isinstance(value, str):
-            self.fail(path, f"expected {what}, got {_describe(value)}")
-        return value
-
-    def label(self, value, path):
-        self.string(value, path, "a non-empty label (string)")
-        if not value.strip() or any(ord(c) < 32 or ord(c) == 127 for c in value):
-            self.fail(path, f"expected a non-empty label without control characters, got {json.dumps(value)}")
-        return value
-
-    def number(self, value, path, what, low=None, high=None, low_open=True):
-        """A finite number in (low, high] (or [low, high] with ``low_open=False``)."""
-        if not _is_number(value):
-            self.fail(path, f"expected {what}, got {_describe(value)}")
-        v = float(value)
-        bad = (not math.isfinite(v) or (low is not None and (v <= low if low_open else v < low))
-               or (high is not None and v > high))
-        if bad:
-            self.fail(path, f"expected {what}, got {value!r}")
-        return v
-
-    def unique_label(self, value, path, seen: dict, what: str) -> str:
-        """A label not used before in ``seen`` (label -> index, updated); ``path`` is
-        (table, index, key)."""
-        name = self.label(value, path)
-        if name in seen:
-            self.fail(path, f"duplicate {what} label {json.dumps(name)} (also {what}[{seen[name] + 1}])")
-        seen[name] = path[1]
-        return name
-
-    def choice(self, value, path, known, what):
-        self.string(value, path, f"a {what} name")
-        if value not in known:
-            self.fail(path, f"unknown {what} {json.dumps(value)}; expected one of: {', '.join(known)}")
-        return value
-
-    def path(self, value, path, what) -> Path:
-        self.string(value, path, f"the path of {what}")
-        if not value.strip():
-            self.fail(path, f"expected the path of {what}, got an empty string")
-        p = Path(value).expanduser()
-        p = p if p.is_absolute() else self.base / p
-        if not p.is_file():
-            self.fail(path, f"no such {what}: {p}")
-        return p.resolve()
-
-
-# ---------------------------------------------------------------------------
 # the sections
 
-def _study(ck: _Checker, doc):
+def _study(ck: Checker, doc):
     if "study" not in doc:
         ck.fail(("study",), "missing: the spec needs a [study] table with at least 'name'")
     t = ck.table(doc["study"], ("study",), _STUDY_KEYS, required=("name",), what="a table [study]")
@@ -446,7 +128,7 @@ def _study(ck: _Checker, doc):
     return name, output, dt, rate, left
 
 
-def _tyres(ck: _Checker, doc) -> tuple[TyreSpec, ...]:
+def _tyres(ck: Checker, doc) -> tuple[TyreSpec, ...]:
     from ..tyre.library import BUILT_IN, SINGLE_FILE, load_tyre
 
     builtins = {k.lower(): k for k in (*BUILT_IN, *SINGLE_FILE)}
@@ -485,7 +167,7 @@ def _tyres(ck: _Checker, doc) -> tuple[TyreSpec, ...]:
     return tuple(tyres)
 
 
-def _models(ck: _Checker, doc, tyres) -> tuple[ModelSpec, ...]:
+def _models(ck: Checker, doc, tyres) -> tuple[ModelSpec, ...]:
     from ..tyre.params import STIFFNESS_MODES
     from ..tyre.registry import contact_models, handling_model, handling_models
 
@@ -517,7 +199,7 @@ def _models(ck: _Checker, doc, tyres) -> tuple[ModelSpec, ...]:
     return tuple(models)
 
 
-def _road(ck: _Checker, value, path) -> tuple[str, str]:
+def _road(ck: Checker, value, path) -> tuple[str, str]:
     """A road name checked without building it: ``(road for simulate, inferred group)``."""
     from ..road.spec import _NUM, _tracks, road_from_spec, road_names
 
@@ -557,7 +239,7 @@ def _road(ck: _Checker, value, path) -> tuple[str, str]:
     return text, "discrete obstacles" if kind in _OBSTACLE_KINDS else "rough tracks"
 
 
-def _load(ck: _Checker, value, path, cases):
+def _load(ck: Checker, value, path, cases):
     if isinstance(value, str):
         key = value.strip().upper()
         if key not in cases:
@@ -567,21 +249,21 @@ def _load(ck: _Checker, value, path, cases):
     return ck.number(value, path, f"a load case ({', '.join(cases)}) or a wheel load > 0 in N", low=0.0)
 
 
-def _speed(ck: _Checker, value, path):
+def _speed(ck: Checker, value, path):
     kmh = ck.number(value, path, f"a speed in km/h, 0 < v <= {MAX_SPEED_KMH:g}", low=0.0,
                     high=MAX_SPEED_KMH)
     return kmh / 3.6
 
 
-def _nonempty_list(ck: _Checker, value, path, what):
+def _nonempty_list(ck: Checker, value, path, what):
     if not isinstance(value, list):
-        ck.fail(path, f"expected an array of {what}, got {_describe(value)}")
+        ck.fail(path, f"expected an array of {what}, got {describe_value(value)}")
     if not value:
         ck.fail(path, f"expected a non-empty array of {what}")
     return value
 
 
-def _reference(ck: _Checker, raw, path, speeds, loads, models, cases):
+def _reference(ck: Checker, raw, path, speeds, loads, models, cases):
     t = ck.table(raw, path, _REFERENCE_KEYS, what="a table { model = ... } or { files = [...] }")
     if ("model" in t) == ("files" in t):
         ck.fail(path, "expected exactly one of 'model' (a model label) or 'files' (measured files)")
@@ -630,7 +312,7 @@ def _reference(ck: _Checker, raw, path, speeds, loads, models, cases):
     return None, tuple(out)
 
 
-def _tests(ck: _Checker, doc, models) -> tuple[TestSpec, ...]:
+def _tests(ck: Checker, doc, models) -> tuple[TestSpec, ...]:
     from ..api import RIGS
     from ..tyre.library import load_cases
 
@@ -683,7 +365,7 @@ def _tests(ck: _Checker, doc, models) -> tuple[TestSpec, ...]:
     return tuple(tests)
 
 
-def _limits(ck: _Checker, doc) -> dict:
+def _limits(ck: Checker, doc) -> dict:
     from ..validate.compare import METRICS
     from ..validate.tables import DEFAULT_LIMITS
 
@@ -719,7 +401,7 @@ def parse_spec(text: str, source: str | Path = "<string>", base: str | Path | No
     src = str(source)
     if base is None:
         base = Path(src).parent if src != "<string>" else Path.cwd()
-    ck = _Checker(text, src, Path(base).expanduser().absolute())
+    ck = Checker(text, src, Path(base).expanduser().absolute())
     try:
         doc = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
@@ -736,7 +418,7 @@ def parse_spec(text: str, source: str | Path = "<string>", base: str | Path | No
     tests = _tests(ck, doc, models)
     limits = _limits(ck, doc)
     return StudySpec(name, output, dt, rate, tuple(t for t, _ in tyres), models, tests, limits,
-                     Path(src) if src != "<string>" else src, left)
+                     Path(src) if src != "<string>" else src, left, text, ck.base)
 
 
 def load_spec(path: str | Path) -> StudySpec:
@@ -772,76 +454,6 @@ def builtin_spec(base: str | Path | None = None) -> StudySpec:
 
 
 def example_spec() -> str:
-    """A commented example spec (every key, with units) that :func:`parse_spec` accepts."""
-    return _EXAMPLE
-
-
-_EXAMPLE = '''\
-# A tyrelab study: every tyre x model x test x speed x load below is one simulation,
-# compared with the test's reference. Units at this edge: km/h, kPa, mm (in road
-# names), seconds, Hz, N. Run it with:  tyrelab study this-file.toml
-
-[study]
-name = "my-cleat-study"          # required: the study's name
-output = "results"               # result folder, relative to this file's folder (default "results")
-dt = 0.001                       # [s] rig time step (default 0.001)
-output_rate = 1000               # [Hz] output sample rate, at most 1/dt (default 1000)
-# left_wheel = "point"           # trailer rigs: contact model of the left wheel, on flat
-                                 # ground (default: each variant's own model)
-
-[[tyre]]                         # one table per tyre; at least one
-name = "xzl"                     # label in the results
-file = "xzl-16.00R20"            # a built-in tyre (xzl-16.00R20, hmmwv-pac89) or a .tir file,
-                                 # relative to this file's folder
-pressure_kpa = 300               # [kPa] optional, built-in tyres measured at several pressures
-                                 # only (xzl-16.00R20: 100-550 kPa, default 300)
-
-[[model]]                        # one table per model variant; at least one
-name = "OPC lk"                  # label used in every table
-contact = "point"                # contact model: point, volume, enveloping, ring, ring-tp
-stiffness = "linear"             # vertical stiffness: "linear" or "table" (optional)
-handling = "none"                # handling model: none, pac89, mf (optional: what the tyre
-                                 # file describes)
-
-[[model]]
-name = "3D ENV nlk"
-contact = "enveloping"
-stiffness = "table"
-
-[[test]]                         # one table per obstacle or track; at least one
-name = "cleat 50x50 perpendicular"   # obstacle label (join key with the thesis's tables)
-group = "discrete obstacles"     # "discrete obstacles" or "rough tracks" (optional: from the road)
-road = "cleat:50x50"             # a road name: flat, cleat:WxH[@ANGLE], bump:H[xRAMPxTOP], step:H,
-                                 # pothole:DxL[xW], iso8608:CLASS[@SEED], powerlaw:A,N[@SEED],
-                                 # belgian-paving, fatigue-track, corrugations, corrugations-angled,
-                                 # trapezoidal-bump, or a FILE.crg[@OFFSET] (relative to this file)
-speeds_kmh = [12, 18]            # [km/h] towing speeds, 0 < v <= 200
-loads = ["LC1"]                  # load cases LC1-LC3 (thesis Table 3-4) or wheel loads in N
-rig = "trailer"                  # trailer, quarter-vehicle, rolling, drop, wheel-drop (default trailer)
-duration = 6.0                   # [s] simulated time (optional: until the road's end)
-reference = { model = "3D ENV nlk" }   # compare with this model's runs; or measured files:
-# reference = { files = ["field/c50_12.tdx", "field/c50_18.tdx"] }   # one per speed x load
-# reference = { files = [{ file = "field/c50_12a.tdx", speed_kmh = 12, load = "LC1" },
-#                        { file = "field/c50_12b.tdx", speed_kmh = 12, load = "LC1" }] }  # repeats
-# reference = { files = ["field/c50_12.csv", "field/c50_18.csv"], column_map = "field/map.csv" }
-#   a logger's CSV: map lines "source,channel,unit", e.g. "Fz hub (kN),FZ_HUB,kN"
-
-[[test]]
-name = "fatigue track"
-road = "fatigue-track"           # group inferred: rough tracks
-speeds_kmh = [18]
-loads = [38197]                  # [N] a wheel load (LC2 is 38197 N)
-
-# Optional pass limits per group: |metric| <= limit passes (tyrelab.validate.tables).
-# A group given here replaces that group's defaults; metrics: mRE_disturbance_pct,
-# RE80_disturbance_pct, rms_disturbance_N, mRE_response_pct, rms_response_N,
-# mean_error_pct, std_error_pct, SG_M, SG_P, SG_C, R_C, psd_rms_error_pct, psd_lsd_dB,
-# max_error_pct, damage_ratio_log10.
-[metrics.limits."discrete obstacles"]
-mRE_disturbance_pct = 20         # [%]
-mRE_response_pct = 20            # [%]
-
-[metrics.limits."rough tracks"]
-mean_error_pct = 10              # [%]
-std_error_pct = 25               # [%] the largest repeat-measurement scatter published
-'''
+    """A commented example spec (every key, with units) that :func:`parse_spec` accepts
+    (``study/data/example_spec.toml``)."""
+    return resources.files("tyrelab.study").joinpath("data", "example_spec.toml").read_text(encoding="utf-8")

@@ -7,10 +7,10 @@ import re
 import tomllib
 
 #: a bare TOML key
-_BARE_KEY = re.compile(r"[A-Za-z0-9_-]+")
+BARE_KEY = re.compile(r"[A-Za-z0-9_-]+")
 
 
-class _Locator:
+class TomlLocator:
     """The line of every table, key and array element of a (valid) TOML text.
 
     Paths are tuples: keys as str, array-of-tables and array indices as int
@@ -88,7 +88,7 @@ class _Locator:
                 raw = self.text[start:self.pos]
                 parts.append(next(iter(tomllib.loads(f"{raw} = 0"))))
             else:
-                m = _BARE_KEY.match(self.text, self.pos)
+                m = BARE_KEY.match(self.text, self.pos)
                 if m is None:  # not reached for valid TOML
                     raise ValueError(f"cannot read a key at offset {self.pos}")
                 self.pos = m.end()

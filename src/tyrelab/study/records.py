@@ -1,0 +1,215 @@
+"""A parsed study spec: plain records in SI units (made by :mod:`tyrelab.study.spec`).
+
+:class:`StudySpec` expands into :class:`RunSpec` s (:meth:`StudySpec.runs`), one
+simulation each, which :func:`tyrelab.study.keys.run_key` names by everything
+that decides its result.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from .keys import run_key, tyre_digest
+
+#: rigs with a left wheel (the towed trailer and its drop test)
+TRAILER_RIGS = ("trailer", "drop")
+
+
+@dataclass(frozen=True)
+class TyreSpec:
+    """A tyre of the study.
+
+    Attributes
+    ----------
+    name : str
+        Label.
+    file : str
+        The built-in tyre's name (as :data:`tyrelab.tyre.library` spells it)
+        or the absolute path of a ``.tir`` file.
+    pressure : float or None
+        Inflation pressure [Pa] of a built-in tyre (None: its default).
+    builtin : bool
+        Whether ``file`` names a built-in tyre.
+    """
+
+    name: str
+    file: str
+    pressure: float | None = None
+    builtin: bool = True
+
+
+@dataclass(frozen=True)
+class ModelSpec:
+    """A model variant: contact model, vertical stiffness and handling model (None: default)."""
+
+    name: str
+    contact: str
+    stiffness: str | None = None
+    handling: str | None = None
+
+
+@dataclass(frozen=True)
+class ReferenceFile:
+    """A measured reference file for one condition of a test (``speed`` [m/s])."""
+
+    path: Path
+    speed: float
+    load: str | float
+    column_map: Path | None = None  # a CSV's column map (tyrelab.measure.read_mapped_csv)
+
+
+@dataclass(frozen=True)
+class TestSpec:
+    """One ``[[test]]``: an obstacle or track driven at several speeds and loads.
+
+    ``road`` is what :func:`tyrelab.simulate` takes (a ``.crg`` path made
+    absolute); ``speeds`` [m/s]; ``loads`` load-case names or wheel loads
+    [N]; ``duration`` [s] or None (the rig's default); the reference is
+    ``reference_model`` (a model label) or ``reference_files`` or neither.
+    """
+
+    __test__ = False  # not a pytest class
+
+    name: str
+    group: str
+    road: str
+    speeds: tuple[float, ...]
+    loads: tuple[str | float, ...]
+    rig: str = "trailer"
+    duration: float | None = None
+    reference_model: str | None = None
+    reference_files: tuple[ReferenceFile, ...] = ()
+
+    @property
+    def speeds_kmh(self) -> tuple[float, ...]:
+        return tuple(v * 3.6 for v in self.speeds)
+
+
+@dataclass(frozen=True)
+class RunSpec:
+    """One simulation: everything :func:`tyrelab.simulate` needs, plus its labels.
+
+    ``speed`` [m/s], ``load`` a load-case name or a wheel load [N],
+    ``duration`` [s] or None, ``dt`` [s], ``output_rate`` [Hz].
+    """
+
+    tyre: TyreSpec
+    model: ModelSpec
+    test: str
+    group: str
+    road: str
+    speed: float
+    load: str | float
+    rig: str
+    duration: float | None
+    dt: float
+    output_rate: float
+    left_wheel: str | None = None
+
+    @property
+    def speed_kmh(self) -> float:
+        return self.speed * 3.6
+
+    @property
+    def left_contact(self) -> str | None:
+        """The trailer's left-wheel contact model when it differs from the test wheel's
+        (None: the same model, or a rig without a left wheel)."""
+        if self.rig not in TRAILER_RIGS or self.left_wheel in (None, self.model.contact):
+            return None
+        return self.left_wheel
+
+    def simulate_kwargs(self) -> dict:
+        """Keyword arguments of :func:`tyrelab.simulate` for this run."""
+        return {"tyre": self.tyre.file, "model": self.model.contact, "road": self.road,
+                "speed": self.speed, "load": self.load, "pressure": self.tyre.pressure,
+                "stiffness": self.model.stiffness, "handling": self.model.handling,
+                "rig": self.rig, "duration": self.duration, "dt": self.dt,
+                "output_rate": self.output_rate, "left_wheel": self.left_contact}
+
+
+@dataclass(frozen=True)
+class StudySpec:
+    """A parsed, validated study (SI units).
+
+    ``output`` is an absolute folder; ``limits`` ``{group: {metric: limit}}``
+    (defaults filled in); ``source`` the spec file.
+    """
+
+    name: str
+    output: Path
+    dt: float
+    output_rate: float
+    tyres: tuple[TyreSpec, ...]
+    models: tuple[ModelSpec, ...]
+    tests: tuple[TestSpec, ...]
+    limits: dict = field(hash=False)
+    source: Path | str = "<string>"
+    left_wheel: str | None = None
+    #: the spec's text and the folder its relative paths start from (kept with the results)
+    text: str = field(default="", repr=False, compare=False)
+    base: Path | None = None
+
+    def runs(self) -> tuple[RunSpec, ...]:
+        """Every tyre x test x speed x load x model, in that nesting (outermost first).
+
+        Deterministic: the order of the spec's tables and lists. The runs of
+        one condition (test, speed, load) are adjacent, the models in spec
+        order; a reference model's runs appear once, as any model's.
+        """
+        out = []
+        for tyre in self.tyres:
+            for test in self.tests:
+                for speed in test.speeds:
+                    for load in test.loads:
+                        for model in self.models:
+                            out.append(RunSpec(tyre, model, test.name, test.group, test.road, speed, load,
+                                               test.rig, test.duration, self.dt, self.output_rate,
+                                               self.left_wheel))
+        return tuple(out)
+
+    def model(self, name: str) -> ModelSpec:
+        """The model variant labelled ``name``."""
+        for m in self.models:
+            if m.name == name:
+                return m
+        raise KeyError(name)
+
+    def _test_of(self, run: RunSpec) -> TestSpec:
+        for test in self.tests:
+            if (test.name == run.test and run.speed in test.speeds and run.load in test.loads):
+                return test
+        raise KeyError(run.test)
+
+    def reference_run(self, run: RunSpec) -> RunSpec | None:
+        """The run ``run`` is compared with when its test's reference is a model.
+
+        None when the test has no model reference, or ``run`` is a run of
+        the reference model itself.
+        """
+        test = self._test_of(run)
+        if test.reference_model is None or test.reference_model == run.model.name:
+            return None
+        return RunSpec(run.tyre, self.model(test.reference_model), run.test, run.group, run.road,
+                       run.speed, run.load, run.rig, run.duration, run.dt, run.output_rate,
+                       run.left_wheel)
+
+    def reference_files(self, run: RunSpec) -> tuple[Path, ...]:
+        """The measured files ``run`` is compared with (repeats of its condition); () if none."""
+        test = self._test_of(run)
+        return tuple(f.path for f in test.reference_files
+                     if f.speed == run.speed and f.load == run.load)
+
+    def column_map(self, path: Path) -> Path | None:
+        """The column map of the measured reference file ``path`` (None: TYDEX, or a file
+        tyrelab wrote)."""
+        for test in self.tests:
+            for f in test.reference_files:
+                if f.path == path:
+                    return f.column_map
+        return None
+
+    def run_keys(self) -> dict[RunSpec, str]:
+        """:func:`run_key` of every run (each tyre's digest computed once)."""
+        digests = {tyre: tyre_digest(tyre) for tyre in self.tyres}
+        return {run: run_key(run, digests[run.tyre]) for run in self.runs()}
