@@ -71,9 +71,11 @@ class QuarterVehicle:
         if duration is None:
             duration = max(road.extent()[1] - x0_road, 1.0) / speed
         tyre = self.model.tyre
-        zu = tyre.unloaded_radius - tyre.static_deflection(self.wheel_load)
-        return self._run(road, speed, zu, speed / zu, self.wheel_load, duration, dt, output_rate,
-                         progress, "quarter-vehicle")
+        # where the model carries the wheel load rolling at this speed
+        eq = self.model.equilibrium(self.wheel_load, speed)
+        return self._run(road, speed, tyre.unloaded_radius - eq.deflection, eq.spin,
+                         self.wheel_load, duration, dt, output_rate, progress, "quarter-vehicle",
+                         eq.state)
 
     def drop(self, road: Road | str = "flat", lift: float = 0.0, duration: float = 2.0,
              dt: float = 1e-3, output_rate: float = 1000.0, progress: bool | None = None):
@@ -83,8 +85,10 @@ class QuarterVehicle:
         return self._run(road, 0.0, self.model.tyre.unloaded_radius + lift, 0.0, 0.0, duration,
                          dt, output_rate, progress, "wheel-drop")
 
-    def _run(self, road, speed, zu, omega0, wheel_load, duration, dt, output_rate, progress, rig):
-        """Drive (or hold, at ``speed`` 0) from hub height ``zu``, suspension at its static length."""
+    def _run(self, road, speed, zu, omega0, wheel_load, duration, dt, output_rate, progress, rig,
+             model_state=None):
+        """Drive (or hold, at ``speed`` 0) from hub height ``zu``, suspension at its static
+        length, the tyre model in ``model_state`` (default: its static state)."""
         tyre = self.model.tyre
         x0_road = road.run_start
         ms, mu = self.sprung_mass, self.unsprung_mass
@@ -99,6 +103,8 @@ class QuarterVehicle:
         state[K.Q_ZS] = zu + self.spring_length
         state[K.Q_W] = omega0
         wheel = self.model.wheel(levelled_grid(road, x0_road), wheel_load)
+        if model_state is not None:
+            wheel = wheel._replace(state=model_state)
         n_steps = int(round(duration / dt))
         out_every = max(1, int(round(1.0 / (output_rate * dt))))
 

@@ -64,8 +64,9 @@ def roll(model: TyreModel, road="cleat:50x50", speed: float = 0.5, height: float
     speed : float
         Axle speed [m/s] (the classic test rolls slowly, well under 1 m/s).
     height : float, optional
-        Axle height [m] above the road's start; default: the static height
-        under ``load`` on a level road, ``R0 - static_deflection(load)``.
+        Axle height [m] above the road's start; default: where the model
+        carries ``load`` rolling freely at ``speed`` on a level road
+        (:meth:`~tyrelab.tyre.model.TyreModel.equilibrium`).
     load : str or float
         Static load [N] or a load case of thesis Table 3-4; sets the default
         height and the tyre's initial state.
@@ -80,15 +81,22 @@ def roll(model: TyreModel, road="cleat:50x50", speed: float = 0.5, height: float
         raise InputError(f"speed must be a positive number, got {speed}", field="speed")
     tyre = model.tyre
     wheel_load = load_case_wheel_load(load) if isinstance(load, str) else float(load)
-    if height is None:
-        height = tyre.unloaded_radius - tyre.static_deflection(wheel_load)
+    eq = None
+    if height is None:  # where the model carries the load rolling freely at this speed
+        eq = model.equilibrium(wheel_load, speed)
+        height = tyre.unloaded_radius - eq.deflection
     x0 = road.run_start if x_start is None else float(x_start)
     if duration is None:
         duration = max(road.extent()[1] - x0, 1.0) / speed
     grid = levelled_grid(road, road.run_start)
-    state_load = float(tyre.vertical_law.static_load(tyre.unloaded_radius - height))
-    wheel = model.wheel(grid, state_load)
-    state = np.array([x0, speed / height, 0.0])
+    if eq is None:
+        state_load = float(tyre.vertical_law.static_load(tyre.unloaded_radius - height))
+        wheel = model.wheel(grid, state_load)
+        state = np.array([x0, speed / height, 0.0])
+    else:
+        state_load = wheel_load
+        wheel = model.wheel(grid, wheel_load)._replace(state=eq.state)
+        state = np.array([x0, eq.spin, 0.0])
     inertia = max(tyre.wheel_spin_inertia, 1.0)
     n_steps = int(round(duration / dt))
     out_every = max(1, int(round(1.0 / (output_rate * dt))))

@@ -228,9 +228,19 @@ class Trailer:
             raise InputError(f"duration must be a positive number of seconds, got {duration}",
                              field="duration")
         s = self.setup
-        r_eff = self.model.tyre.unloaded_radius - self.model.tyre.static_deflection(s.wheel_load)
-        return self._run(road, speed, s.pitch0, speed / r_eff, s.wheel_load, duration, dt,
-                         output_rate, progress, "trailer")
+        # each wheel where its model carries the load rolling at this speed (the
+        # ring's own load-deflection and centrifugal growth; the vertical law's
+        # static deflection for the analytic models); the frame pitches and
+        # rolls to put the wheel centres there
+        right = self.model.equilibrium(s.wheel_load, speed)
+        left = self.left.equilibrium(s.wheel_load, speed)
+        r0 = self.model.tyre.unloaded_radius
+        z_right, z_left = r0 - right.deflection, r0 - left.deflection
+        pitch = math.asin((0.5 * (z_right + z_left) - s.hitch_height)
+                          / self.geometry.hitch_to_axle)
+        roll = math.asin((z_left - z_right) / (self.geometry.track * math.cos(pitch)))
+        return self._run(road, speed, pitch, (right.spin, left.spin), s.wheel_load, duration,
+                         dt, output_rate, progress, "trailer", roll, (right.state, left.state))
 
     def drop(self, road: Road | str = "flat", lift: float = 0.0, duration: float = 3.0,
              dt: float = 1e-3, output_rate: float = 1000.0, progress: bool | None = None):
@@ -247,25 +257,30 @@ class Trailer:
         sine = (self.model.tyre.unloaded_radius + lift - s.hitch_height) / self.geometry.hitch_to_axle
         if abs(sine) >= 0.5:
             raise InputError(f"a lift of {lift} m tilts the trailer too far", field="lift")
-        return self._run(road, 0.0, math.asin(sine), 0.0, 0.0, duration, dt, output_rate,
+        return self._run(road, 0.0, math.asin(sine), (0.0, 0.0), 0.0, duration, dt, output_rate,
                          progress, "trailer-drop")
 
-    def _run(self, road, speed, pitch0, omega0, wheel_load, duration, dt, output_rate, progress,
-             rig):
-        """Tow (or hold, at ``speed`` 0) the trailer from pitch ``pitch0`` at rest in roll."""
+    def _run(self, road, speed, pitch0, spins, wheel_load, duration, dt, output_rate, progress,
+             rig, roll0=0.0, states=None):
+        """Tow (or hold, at ``speed`` 0) the trailer from ``pitch0``, ``roll0`` [rad] at rest,
+        the wheels spinning at ``spins`` (right, left) [rad/s], in the models' ``states``."""
         x0_road = road.run_start
         grid = levelled_grid(road, x0_road)
         tp = self.params(speed)
         L = self.geometry.hitch_to_axle
         state = np.zeros(K.S_SIZE)
         state[K.S_THETA] = pitch0
-        state[K.S_WR] = state[K.S_WL] = omega0
+        state[K.S_PHI] = roll0
+        state[K.S_WR], state[K.S_WL] = spins
         x_start = x0_road + L * math.cos(pitch0)  # test wheel centre starts at run_start
         n_steps = int(round(duration / dt))
         out_every = max(1, int(round(1.0 / (output_rate * dt))))
 
         right = self.model.wheel(grid, wheel_load)
         left = self.left.wheel(Flat().grid(), wheel_load)
+        if states is not None:
+            right = right._replace(state=states[0])
+            left = left._replace(state=states[1])
 
         def advance(n, out, row):
             return K.trailer_steps(right, left, tp, state, n, dt, out_every, out, row, x_start)

@@ -11,6 +11,7 @@ deflection, contact point and normal at given wheel positions over a road.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from typing import NamedTuple
 
 import numba as nb
 import numpy as np
@@ -22,6 +23,17 @@ from ..road.spec import road_from_spec
 from .params import Tyre
 from .registry import ContactModel, HandlingModel, contact_model, handling_model
 from .wheel import ContactGeometry, Wheel, WheelPose, contact_geometry
+
+
+class Equilibrium(NamedTuple):
+    """A wheel in equilibrium on a flat road (:meth:`TyreModel.equilibrium`)."""
+
+    #: deflection R0 - centre height [m]
+    deflection: float
+    #: free-rolling spin [rad/s]
+    spin: float
+    #: the model's internal state (empty for analytic models)
+    state: object
 
 
 @dataclass
@@ -87,11 +99,38 @@ class TyreModel:
             params = self.contact_params(Flat().grid())
         return self.contact_model.initial_state(self.tyre, float(load), params, **self.options)
 
-    def wheel(self, grid, load: float = 0.0, static: bool = False) -> Wheel:
-        """The :class:`Wheel` record of this tyre on road ``grid`` at static ``load`` [N]."""
+    def equilibrium(self, load: float, speed: float = 0.0, params=None) -> Equilibrium:
+        """Where a rig starts this wheel: carrying ``load`` [N] while rolling freely
+        at ``speed`` [m/s] on a flat road (see :class:`Equilibrium`).
+
+        ``params`` the contact record the wheel will run with (default: built
+        for a flat road). Analytic models stand at the vertical law's static
+        deflection; a model with its own load-deflection (the ring) finds
+        its own (registry hook ``equilibrium``).
+        """
+        if params is None:
+            params = self.contact_params(Flat().grid())
+        load = float(load)
+        hook = self.contact_model.equilibrium
+        if hook is not None and load > 0:
+            deflection, spin, state = hook(self.tyre, load, float(speed), params, **self.options)
+            return Equilibrium(float(deflection), float(spin), state)
+        deflection = self.tyre.static_deflection(load) if load > 0 else 0.0
+        return Equilibrium(deflection, float(speed) / (self.tyre.unloaded_radius - deflection),
+                           self.initial_state(load, params))
+
+    def wheel(self, grid, load: float = 0.0, static: bool = False, speed: float | None = None
+              ) -> Wheel:
+        """The :class:`Wheel` record of this tyre on road ``grid`` at static ``load`` [N].
+
+        With ``speed`` [m/s] its state is the rolling equilibrium at that
+        speed (:meth:`equilibrium`), else the static one.
+        """
         params = self.contact_params(grid, static)
+        state = (self.initial_state(load, params) if speed is None
+                 else self.equilibrium(load, speed, params).state)
         return Wheel(self.tyre.vertical_law, params, self.handling_params(), grid.surface(),
-                     self.initial_state(load, params))
+                     state)
 
 
 #: number of fields of a :class:`ContactGeometry`

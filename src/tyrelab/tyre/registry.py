@@ -66,6 +66,13 @@ class ContactModel:
     initial_state : callable
         ``initial_state(tyre, load, params, **options) -> state`` in static
         equilibrium under ``load`` [N] on a flat road.
+    equilibrium : callable, optional
+        ``equilibrium(tyre, load, speed, params, **options) -> (deflection,
+        spin, state)``: where a rig starts the wheel carrying ``load`` [N]
+        while rolling freely at ``speed`` [m/s] on a flat road, for models
+        whose own load-deflection is not the tyre's vertical law (the
+        ring). Without it: the vertical law's static deflection,
+        ``speed / (R0 - deflection)`` and ``initial_state``.
     static_options : dict or callable
         Options added (unless the user gave them) when the model is built
         for a static test, e.g. the ring's relaxation damping; a callable
@@ -84,6 +91,7 @@ class ContactModel:
     geometry: Any = None
     step: Any = None
     initial_state: Callable[..., Any] = no_state
+    equilibrium: Callable[..., Any] | None = None
     static_options: Any = field(default_factory=dict)
     footprint: Callable[..., Any] | None = None
     summary: str = ""

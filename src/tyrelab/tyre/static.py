@@ -61,3 +61,38 @@ def press_path(wheel, z_start, heights, rate, hold, window, dt, res):
                 res[k, 5] += f.my / n_win
                 res[k, 6] += f.mz / n_win
     return zc
+
+
+#: channels of :func:`roll_in_place`'s result
+ROLL_COLUMNS = ("FX", "FZ", "SPIN", "MY")
+
+
+@nb.njit(cache=True)
+def roll_in_place(wheel, height, speed, inertia, state, n_steps, dt, res):
+    """Roll ``n_steps`` at a fixed centre ``height`` [m] over a level road; the wheel
+    spins freely (spin inertia ``inertia``, driven by the tyre's moment about the axle).
+
+    ``state = [x, omega]`` is advanced in place; ``res`` receives the means of
+    :data:`ROLL_COLUMNS` over the steps (MY the moment about the axle). An
+    infinite ``inertia`` holds the spin. A model's rolling equilibrium (the
+    ring's initial state at speed) is found with it.
+    """
+    fx = 0.0
+    fz = 0.0
+    spin = 0.0
+    my = 0.0
+    for s in range(n_steps):
+        x = state[0]
+        omega = state[1]
+        f = wheel_step(wheel, WheelPose(x, 0.0, height, 0.0, 1.0, 0.0, speed, 0.0, 0.0, omega),
+                       dt)
+        state[1] = omega + dt * f.my / (inertia - dt * min(f.dspin_domega, 0.0))
+        state[0] = x + speed * dt
+        fx += f.fx
+        fz += f.fz
+        spin += omega
+        my += f.my
+    res[0] = fx / n_steps
+    res[1] = fz / n_steps
+    res[2] = spin / n_steps
+    res[3] = my / n_steps

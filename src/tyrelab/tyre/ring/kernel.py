@@ -17,6 +17,9 @@ rim (rotating frame, angular velocity ``Omega = omega a``)::
 and spin between calls. The belt's weight is not applied: the rigs carry the
 whole wheel's weight.
 
+The damper of the radial foundation's Maxwell branch relaxes exactly over
+each internal step, ``q += (u_r - q)(1 - exp(-h/tau_h))``.
+
 Integrator: symplectic (semi-implicit) Euler with a fixed internal step
 ``h = dt / ceil(dt / h_max)``, ``h_max`` from the stiffest element (see
 :func:`tyrelab.tyre.ring.parameters.stable_step`); the Coriolis term is
@@ -183,6 +186,10 @@ def ring_substep(params, state, road, pose, arx, ary, arz, domega, h):
     sr = math.sin(2.0 * omega * h)
     hm = h / m
     hj = h / jt
+    # Maxwell branch: exact exponential relaxation of its damper over the step
+    relaxed = state.relaxed
+    rb = params.belt_radius
+    decay = 1.0 - math.exp(-h / params.hysteresis_time) if params.hysteresis_time > 0 else 1.0
     for i in range(n):
         # Boris splitting: half kick, rotation, half kick (no energy drift)
         v1 = v1s[i] + 0.5 * hm * f1[i]
@@ -199,6 +206,8 @@ def ring_substep(params, state, road, pose, arx, ary, arz, domega, h):
         vb = (vbs[i] + hj * fb[i]) * relax
         vbs[i] = vb
         bs[i] += h * vb
+        ur = p1s[i] * cos_t[i] + p2s[i] * sin_t[i] - rb
+        relaxed[i] += (ur - relaxed[i]) * decay
     kin[KIN_PSI] = psi + omega * h
     return rim_fx, rim_fy, rim_fz, rim_mx, rim_my, rim_mz
 

@@ -114,6 +114,9 @@ def ring_params(tyre, grid=None, tread_pattern=False, n_segments=N_SEGMENTS, n_b
         segment_mass=float(m), segment_twist_inertia=float(m * (2.0 * half) ** 2 / 12.0),
         radial_stiffness=float(ks["kr"] * seg), tangential_stiffness=float(ks["kt"] * seg),
         lateral_stiffness=float(ks["ky"] * seg), torsion_stiffness=float(ks["kb"] * seg),
+        # static builds (relaxation) are quasi-static: the Maxwell branch has relaxed
+        hysteresis_stiffness=float(rp.kh * seg) if relax == 0 else 0.0,
+        hysteresis_time=float(rp.tau_h),
         radial_damping=float(rp.cr * seg), tangential_damping=float(rp.ct * seg),
         lateral_damping=float(rp.cy * seg), torsion_damping=float(rp.cb * seg),
         # pre-tension in exact equilibrium with the pressure on the polygon
@@ -142,40 +145,135 @@ def nominal_state(params: RingParams) -> RingState:
 
 
 _CACHE: dict = {}
+#: static and rolling equilibria are found to this share of the load
+EQUILIBRIUM_TOLERANCE = 2e-4
+#: rolling equilibrium: settling time, then each correction rolls twice this window [s]
+ROLL_SETTLE = 0.6
+ROLL_WINDOW = 0.2
 
 
-def ring_initial_state(tyre, load, params=None, tread_pattern=False, **options) -> RingState:
-    """Belt state in static equilibrium on a flat road under ``load`` [N].
+def _cached(key, make):
+    if key not in _CACHE:
+        if len(_CACHE) > 32:
+            _CACHE.clear()
+        _CACHE[key] = make()
+    return _CACHE[key]
 
-    The rim is lowered onto a flat road to the centre height
-    ``R0 - tyre.static_deflection(load)`` (where the rigs start it) and the
-    belt relaxes there (:func:`tyrelab.tyre.ring.static.settle`, with its
-    own relaxed parameters built from ``options``). For ``load`` <= 0 the
-    state is the inflated belt as built (:func:`nominal_state`), which is
-    its equilibrium off the road. ``params`` (the record the state will run
-    with) is not needed; the states of equal ``(options, height)`` are cached.
+
+def ring_static_equilibrium(tyre, load, tread_pattern=False, **options):
+    """``(height, state)``: the rim centre height [m] at which the ring, relaxed
+    on a flat road, carries ``load`` [N], and that belt state.
+
+    The ring's own load-deflection, not the tyre's ``[DEFLECTION_LOAD_CURVE]``
+    (they differ by the identification's error, a few percent): secant
+    iterations on the height, each a relaxed press (:func:`.static.settle`)
+    from the last, until the force is within :data:`EQUILIBRIUM_TOLERANCE`.
     """
     from ...road.obstacles import Flat
     grid = Flat().grid()
     relaxed = dict(options)
     relaxed["relax"] = RELAX_RATE
     rp = ring_params(tyre, grid, tread_pattern=tread_pattern, **relaxed)
-    if not load > 0:
-        return nominal_state(rp)
-    height = tyre.unloaded_radius - tyre.static_deflection(float(load))
-    key = (params_key(rp), round(height, 9))
-    if key not in _CACHE:
+    load = float(load)
+
+    def make():
         state = nominal_state(rp)
-        settle(rp, state, grid.surface(), [height])
-        if len(_CACHE) > 16:
-            _CACHE.clear()
-        _CACHE[key] = state
-    state = copy_state(_CACHE[key])
+        road = grid.surface()
+        h0 = tyre.unloaded_radius - tyre.static_deflection(load)
+        f0 = float(settle(rp, state, road, [h0])[0, 2])
+        h1 = h0 - (load - f0) / max(tyre.vertical_stiffness, 1.0)
+        for _ in range(8):
+            f1 = float(settle(rp, state, road, [h1], start=h1)[0, 2])
+            if abs(f1 - load) < EQUILIBRIUM_TOLERANCE * load or f1 == f0:
+                break
+            h0, f0, h1 = h1, f1, h1 - (load - f1) * (h1 - h0) / (f0 - f1)
+        return h1, state
+
+    height, state = _cached(("static", params_key(rp), round(load, 6)), make)
+    return height, _at_rest(copy_state(state), rp)
+
+
+def _at_rest(state, rp):
     for velocity in (state.v1, state.v2, state.vy, state.vbeta):
         velocity[:] = 0.0
+    # at rest the foundation's Maxwell branch has relaxed: its spring carries nothing
+    state.relaxed[:] = (state.p1 * rp.cos_theta + state.p2 * rp.sin_theta - rp.belt_radius)
     state.initialised[0] = False
     state.kinematics[KIN_TIME] = 0.0
     return state
+
+
+def ring_initial_state(tyre, load, params=None, tread_pattern=False, **options) -> RingState:
+    """Belt state in static equilibrium on a flat road under ``load`` [N].
+
+    The rim stands at the ring's own static height for ``load``
+    (:func:`ring_static_equilibrium`). For ``load`` <= 0 the state is the
+    inflated belt as built (:func:`nominal_state`), which is its equilibrium
+    off the road. ``params`` (the record the state will run with) is not needed.
+    """
+    if not load > 0:
+        relaxed = dict(options)
+        relaxed["relax"] = RELAX_RATE
+        return nominal_state(ring_params(tyre, None, tread_pattern=tread_pattern, **relaxed))
+    return ring_static_equilibrium(tyre, load, tread_pattern, **options)[1]
+
+
+def ring_equilibrium(tyre, load, speed, params, tread_pattern=False, **options):
+    """``(deflection, spin, state)`` of the ring carrying ``load`` [N] while rolling
+    freely at ``speed`` [m/s] on a flat road: where the rigs start it.
+
+    From the static equilibrium the ring rolls at a fixed height, spinning
+    freely (:func:`tyrelab.tyre.static.roll_in_place`), until the belt and
+    the tread have reached their rolling state, then the height is
+    corrected (secant) until the mean vertical force over a window is within
+    :data:`EQUILIBRIUM_TOLERANCE` of ``load``. The centrifugal
+    growth of the belt and the rolling deformation change the force at a
+    given height (+8 % at 42 km/h). Settling and windows last at least
+    :data:`ROLL_SETTLE`, :data:`ROLL_WINDOW` seconds and a contact length
+    of travel, so the tread's stick deflections are renewed at low speed.
+    """
+    from ...road.obstacles import Flat
+    from ..handling.none import NoHandling
+    from ..static import roll_in_place
+    from ..vertical import VerticalLaw
+    from ..wheel import Wheel
+    height, state = ring_static_equilibrium(tyre, load, tread_pattern, **options)
+    r0 = tyre.unloaded_radius
+    if not speed > 0:
+        return r0 - height, 0.0, state
+    load = float(load)
+    road = Flat().grid().surface()
+
+    def make():
+        st = copy_state(state)
+        wheel = Wheel(VerticalLaw.linear(0.0, 0.0), params, NoHandling(), road, st)
+        dt = 1e-3
+        inertia = max(tyre.wheel_spin_inertia, 1e-3)
+        travel = 2.0 * math.sqrt(max(r0 ** 2 - height ** 2, 0.0))   # a contact length
+        n_settle = int(max(ROLL_SETTLE, 3.0 * travel / speed) / dt)
+        n = int(max(ROLL_WINDOW, travel / speed) / dt)
+        res = np.zeros(4)
+        # free spin from the usual effective rolling radius R0 - deflection / 3
+        motion = np.array([0.0, speed / (r0 - (r0 - height) / 3.0)])
+        h = height
+        roll_in_place(wheel, h, speed, inertia, motion, n_settle, dt, res)
+        roll_in_place(wheel, h, speed, inertia, motion, n, dt, res)
+        f0, h0 = float(res[1]), h
+        h = h - (load - f0) / max(tyre.vertical_stiffness, 1.0)
+        for _ in range(6):
+            roll_in_place(wheel, h, speed, inertia, motion, n, dt, res)  # settle after the move
+            roll_in_place(wheel, h, speed, inertia, motion, n, dt, res)
+            f1 = float(res[1])
+            if abs(f1 - load) < EQUILIBRIUM_TOLERANCE * load or f1 == f0:
+                break
+            h0, f0, h = h, f1, h - (load - f1) * (h - h0) / (f0 - f1)
+        return r0 - h, float(motion[1]), st
+
+    deflection, spin, st = _cached(("rolling", params_key(params), round(load, 6),
+                                    round(float(speed), 9)), make)
+    st = copy_state(st)
+    st.kinematics[KIN_TIME] = 0.0
+    return deflection, spin, st
 
 
 def ring_footprint_of(wheel, load, deflection, tyre) -> dict:
@@ -205,11 +303,20 @@ def _ring_tp_state(tyre, load, params=None, **options) -> RingState:
     return ring_initial_state(tyre, load, params, tread_pattern=True, **options)
 
 
+def _ring_equilibrium(tyre, load, speed, params, **options):
+    return ring_equilibrium(tyre, load, speed, params, tread_pattern=False, **options)
+
+
+def _ring_tp_equilibrium(tyre, load, speed, params, **options):
+    return ring_equilibrium(tyre, load, speed, params, tread_pattern=True, **options)
+
+
 register_contact(ContactModel("ring", RingParams, _ring_build, step=ring_step,
-                              initial_state=_ring_state, static_options={"relax": RELAX_RATE},
+                              initial_state=_ring_state, equilibrium=_ring_equilibrium,
+                              static_options={"relax": RELAX_RATE},
                               footprint=ring_footprint_of,
                               summary="flexible ring (FTire class), evenly spaced tread blocks"))
 register_contact(ContactModel("ring-tp", RingParams, _ring_tp_build, step=ring_step,
-                              initial_state=_ring_tp_state,
+                              initial_state=_ring_tp_state, equilibrium=_ring_tp_equilibrium,
                               static_options={"relax": RELAX_RATE}, footprint=ring_footprint_of,
                               summary="flexible ring with blocks on the tread pattern"))

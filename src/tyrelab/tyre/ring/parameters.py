@@ -17,6 +17,11 @@ FOUNDATION_TANGENTIAL(_P)      N/m^2     tangential foundation stiffness (per Pa
 FOUNDATION_LATERAL(_P)         N/m^2     lateral foundation stiffness (per Pa)
 FOUNDATION_TORSION(_P)         N        torsional foundation stiffness per length (per Pa)
 DAMPING_RADIAL ... _TORSION    N s/m^2   foundation dampers per length (torsion N s)
+HYSTERESIS_RADIAL              N/m^2     spring of the radial foundation's Maxwell branch
+                                         (in series with a damper of time constant
+                                         HYSTERESIS_TIME): the sidewall rubber's loss at
+                                         the trailer's 2-3 Hz (docs/ring.md, "Damping")
+HYSTERESIS_TIME                s         relaxation time of that branch
 PRESSURE_WIDTH                 m         b in T0 = p b Rb
 EXTENSION_STIFFNESS            N         EA of the belt
 EXTENSION_DAMPING              N s       damping of belt extension
@@ -73,6 +78,8 @@ KEYS = {
     "ct": ("DAMPING_TANGENTIAL", _d(F=1, T=1, L=-2)),
     "cy": ("DAMPING_LATERAL", _d(F=1, T=1, L=-2)),
     "cb": ("DAMPING_TORSION", _d(F=1, T=1)),
+    "kh": ("HYSTERESIS_RADIAL", _d(F=1, L=-2)),
+    "tau_h": ("HYSTERESIS_TIME", _d(T=1)),
     "pressure_width": ("PRESSURE_WIDTH", _d(L=1)),
     "ea": ("EXTENSION_STIFFNESS", _d(F=1)),
     "cea": ("EXTENSION_DAMPING", _d(F=1, T=1)),
@@ -107,6 +114,8 @@ class RingParameters:
     ct: float = 200.0
     cy: float = 120.0
     cb: float = 5.0
+    kh: float = 0.0
+    tau_h: float = 0.06
     pressure_width: float = 0.25
     ea: float = 5.0e6
     cea: float = 40.0
@@ -150,6 +159,9 @@ class RingParameters:
             if not math.isfinite(v):
                 raise InputError(f"{KEYS[f.name][0]} must be finite", source=source,
                                  field=KEYS[f.name][0])
+        if self.kh < 0 or not self.tau_h > 0:
+            raise InputError("HYSTERESIS_RADIAL must be >= 0 and HYSTERESIS_TIME > 0",
+                             source=source, field="HYSTERESIS_RADIAL")
         if self.friction < 0:
             raise InputError("FRICTION must be >= 0", source=source, field="FRICTION")
 
@@ -213,7 +225,7 @@ def stable_step(rp: RingParameters, tyre, n: int, nb: int, safety: float = 0.5) 
     area = l0 * 2.0 * half
     tread = area * (rp.tread_stiffness * (1.0 + 2.0 * rp.tread_progression)
                     + rp.tread_shear_stiffness)
-    k_in = (k["kr"] + k["kt"]) * l0 + 4.0 * (rp.ea + abs(t0)) / l0 + 16.0 * rp.ei / l0 ** 3 + tread
+    k_in = (k["kr"] + k["kt"] + rp.kh) * l0 + 4.0 * (rp.ea + abs(t0)) / l0 + 16.0 * rp.ei / l0 ** 3 + tread
     k_lat = (k["ky"] * l0 + 16.0 * rp.eio * l0 / (dth ** 4 * rb ** 4)
              + 4.0 * rp.gj * l0 / (rb * dth) ** 2 / rb ** 2 + 4.0 * abs(t0) / l0 + tread)
     jt = m * (2.0 * half) ** 2 / 12.0

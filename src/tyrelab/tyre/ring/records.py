@@ -67,6 +67,10 @@ class RingParams(NamedTuple):
     tangential_damping: float
     lateral_damping: float
     torsion_damping: float
+    #: Maxwell branch of the radial foundation: spring [N/m] per segment (0 in
+    #: static builds, where it has relaxed) and relaxation time [s]
+    hysteresis_stiffness: float
+    hysteresis_time: float
     #: belt pre-tension T0 [N] (in equilibrium with the pressure on the polygon)
     pretension: float
     #: EA [N] and its damping [N s]
@@ -114,7 +118,9 @@ class RingState(NamedTuple):
 
     Per segment (N): in-plane centre ``p1, p2`` [m] and velocity ``v1, v2``
     [m/s] in the rotating wheel-plane axes, lateral displacement ``y`` [m]
-    and velocity ``vy``, twist ``beta`` [rad] and its rate ``vbeta``.
+    and velocity ``vy``, twist ``beta`` [rad] and its rate ``vbeta``;
+    ``relaxed`` [m], the radial displacement at which the spring of the
+    foundation's Maxwell branch is relaxed (its damper's extension).
     Per block (N*NB): tangential tip deflections ``s1, s2`` [m] in the road
     plane, and ``block_force`` [N], each block's normal force at the end of
     the last step (footprints, pressure maps). ``kinematics`` holds the
@@ -135,6 +141,7 @@ class RingState(NamedTuple):
     vy: np.ndarray
     beta: np.ndarray
     vbeta: np.ndarray
+    relaxed: np.ndarray
     s1: np.ndarray
     s2: np.ndarray
     block_force: np.ndarray
@@ -154,7 +161,7 @@ VELOCITIES = ("v1", "v2", "vy", "vbeta")
 
 def empty_state(n: int, nb: int) -> RingState:
     """A zeroed :class:`RingState` for ``n`` segments of ``nb`` blocks."""
-    seg = [np.zeros(n) for _ in range(8)]
+    seg = [np.zeros(n) for _ in range(9)]
     return RingState(*seg, np.zeros(n * nb), np.zeros(n * nb), np.zeros(n * nb),
                      np.zeros(KIN_SIZE), np.zeros(1, np.bool_), np.ones(n, np.bool_),
                      np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(ACC_SIZE))

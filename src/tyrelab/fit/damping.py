@@ -1,0 +1,117 @@
+"""Tyre damping from the trailer drop test (thesis 3.4.1, eqs. 3.1-3.7).
+
+The trailer, lifted until its wheels just leave the ground, is dropped; the
+rim's vertical motion decays to static equilibrium. The thesis models the
+trailer as a pendulum pivoting about the (fixed) hitch, with the tyres as a
+spring and a damper at the axle, lever ``l`` (eq. 3.1)::
+
+    I0 theta'' + c l^2 theta' + k l^2 theta = 0
+
+so ``omega_n = sqrt(k l^2 / I0)`` (eq. 3.4) and ``xi = c l^2 / (2 omega_n I0)``
+(eq. 3.5); the damping ratio comes from the logarithmic decrement of
+consecutive oscillations, ``delta = ln(x1 / x2)`` (eq. 3.6),
+``xi = delta / sqrt(delta^2 + (2 pi)^2)`` (eq. 3.7). With the thesis's trace
+this gave 2.66 N s/mm for the XZL 16.00R20 at 300 kPa. (Eq. 3.1 prints the
+spring term as ``k l theta``; eq. 3.4 shows ``k l^2`` was meant.)
+"""
+
+from __future__ import annotations
+
+import math
+from typing import NamedTuple
+
+import numpy as np
+
+from ..errors import InputError
+
+
+class DropTestDamping(NamedTuple):
+    """Result of :func:`drop_test_damping` (SI; per tyre where it says so)."""
+
+    #: damping ratio xi of the trailer's pitch about the hitch (eq. 3.7), mean over the cycles
+    ratio: float
+    #: undamped natural frequency [Hz] (from the damped period and xi)
+    frequency: float
+    #: damping coefficient of one tyre [N s/m] (eq. 3.5 divided among the wheels)
+    damping: float
+    #: vertical stiffness of one tyre [N/m] (eq. 3.4 divided among the wheels)
+    stiffness: float
+    #: the logarithmic decrement of each cycle used (eq. 3.6)
+    decrements: np.ndarray
+
+
+def _extremes(x):
+    """Indices of the strict local extremes of ``x`` (plateaus count once)."""
+    d = np.sign(np.diff(x))
+    keep = d != 0
+    idx = np.flatnonzero(keep)
+    d = d[keep]
+    turns = np.flatnonzero(d[1:] != d[:-1])
+    return idx[turns] + 1
+
+
+def drop_test_damping(time, displacement, inertia, lever, wheels=2, cycles=3) -> DropTestDamping:
+    """Tyre damping from a drop-test trace by the thesis's pendulum procedure.
+
+    Parameters
+    ----------
+    time, displacement : array_like
+        Time [s] and the rim's (axle's) vertical position [m], from the
+        release on; the first extreme after the release (the first
+        compression) starts the cycles.
+    inertia : float
+        Moment of inertia of the trailer about the hitch's pitch axis [kg m^2].
+    lever : float
+        Hitch-to-axle distance l [m].
+    wheels : int
+        Tyres on the axle; c and k of eqs. 3.4-3.5 are their sum.
+    cycles : int
+        Whole oscillations to average the decrement over.
+
+    The decrement of each cycle is taken from the peak-to-peak heights of
+    successive half cycles, ``delta = 2 ln(h_k / h_{k+1})``, so the final
+    equilibrium need not be known.
+    """
+    t = np.asarray(time, float)
+    z = np.asarray(displacement, float)
+    if t.shape != z.shape or t.ndim != 1 or not (np.all(np.isfinite(t)) and np.all(np.isfinite(z))):
+        raise InputError("a drop-test trace needs finite time and displacement of equal length",
+                         field="drop test")
+    if not (inertia > 0 and lever > 0 and wheels >= 1):
+        raise InputError("inertia, lever and wheels of the drop test must be positive",
+                         field="drop test")
+    ext = _extremes(z)
+    need = 2 * cycles + 2
+    if ext.size < need:
+        raise InputError(f"the drop-test trace has {ext.size} extremes; {need} are needed for "
+                         f"{cycles} cycles (a longer record, or less damping)", field="drop test")
+    ext = ext[:need]
+    heights = np.abs(np.diff(z[ext]))
+    half = np.log(heights[:-1] / heights[1:])            # per half cycle
+    decrements = half[0::2] + half[1::2]                  # per cycle, eq. 3.6
+    decrements = decrements[:cycles]
+    delta = float(np.mean(decrements))
+    xi = delta / math.sqrt(delta * delta + 4.0 * math.pi ** 2)      # eq. 3.7
+    period = 2.0 * float(np.mean(np.diff(t[ext])))
+    omega_n = 2.0 * math.pi / period / math.sqrt(1.0 - xi * xi)
+    c_total = 2.0 * xi * omega_n * inertia / lever ** 2               # eq. 3.5
+    k_total = omega_n ** 2 * inertia / lever ** 2                     # eq. 3.4
+    return DropTestDamping(xi, omega_n / (2.0 * math.pi), c_total / wheels, k_total / wheels,
+                           decrements)
+
+
+def trailer_drop_damping(trailer, duration=3.0, cycles=3) -> DropTestDamping:
+    """The drop test of thesis 3.4.1 on ``trailer`` (:meth:`~tyrelab.rig.trailer.Trailer.drop`),
+    evaluated with :func:`drop_test_damping` (both wheels, lever hitch-to-axle)."""
+    signal = trailer.drop(duration=duration, progress=False)
+    return drop_test_damping(signal["RUNTIME"].to_numpy(), signal["Z_WC"].to_numpy(),
+                             float(trailer.setup.inertia[1, 1]),
+                             float(trailer.geometry.hitch_to_axle), 2, cycles)
+
+
+def ring_drop_test_damping(tyre, rp, load_case="LC1") -> DropTestDamping:
+    """The simulated drop test of the trailer on ring parameters ``rp`` (both wheels)."""
+    from ..rig.trailer import Trailer
+    from ..tyre.model import TyreModel
+    model = TyreModel(tyre, "ring", options={"parameters": rp})
+    return trailer_drop_damping(Trailer(model, load_case))
