@@ -15,7 +15,8 @@ lowest point at a distance s along the road; a cam at x rests at the height
 patch dimensions follow eqs. 2.3 and 2.4 (or the MF-Swift forms, or a
 measured deflection-to-half-width table, as the thesis asks for in 4.4).
 
-Python builds the cam tables and the road's block maxima once, into the
+Python reads the ``[CONTACT_PATCH]`` keys (:func:`patch_key`, :func:`length_law`,
+:func:`width_law`) and builds the cam tables and the road's block maxima once, into the
 model's record (:class:`tyrelab.tyre.contact.enveloping.EnvelopingParams`);
 the compiled functions here take that record (``params``) and the road
 (:class:`tyrelab.road.grid.RoadSurface`) and evaluate a row of cams along grid
@@ -29,8 +30,9 @@ import math
 import numba as nb
 import numpy as np
 
+from ...errors import InputError
 from ...road.grid import road_height
-from .shape import _x_height, section_walk
+from .shape import _x_height, grid_row, section_walk
 
 #: points in each cam table
 TABLE_POINTS = 1025
@@ -95,21 +97,6 @@ def table_window(window, ae, be, rise):
     x = math.sqrt(rise / be) * (n - 1)
     i = min(int(math.ceil(x)), n - 1)
     return window[i]
-
-
-def block_maxima(z: np.ndarray, per: int) -> np.ndarray:
-    """Maxima of the road over blocks of ``per`` x cells, for each pair of grid rows.
-
-    Block b spans x nodes ``b per .. (b+1) per`` (both ends: a cell between two
-    nodes lies in one block) and rows j, j+1, so it bounds the bilinear road
-    on any line between those rows. Shape ``(n_blocks, ny - 1)``.
-    """
-    nx = z.shape[0]
-    pair = np.maximum(z[:, :-1], z[:, 1:])
-    n_blocks = -(-(nx - 1) // per)
-    ends = np.minimum(np.arange(1, n_blocks + 1) * per, nx - 1)
-    out = np.maximum.reduceat(pair, np.arange(n_blocks) * per, axis=0)
-    return np.ascontiguousarray(np.maximum(out, pair[ends]), np.float64)
 
 
 @nb.njit(cache=True, inline="always")
@@ -208,9 +195,9 @@ def cam_row(params, road, j, wy, x_first, pitch, count, top, out):
       ``top - best`` can lift the cam (``top`` bounds the road of the row);
     * when ``params.row_block_max`` is not empty it holds the road's maxima
       over blocks of ``params.block_per`` x cells for each pair of grid rows
-      (:func:`block_maxima`): a block whose maximum minus the contour's rise
-      at its nearest point cannot beat the current height is stepped over
-      unread.
+      (:func:`~tyrelab.tyre.contact.shape.block_maxima`): a block whose
+      maximum minus the contour's rise at its nearest point cannot beat the
+      current height is stepped over unread.
 
     Each straight piece is searched exactly: the concave function
     ``h(x) - e(x - x_i)`` on it peaks where the contour's slope equals the
@@ -334,38 +321,51 @@ def cam_height(params, road, x0, y0, fx, fy, zmax):
     return best
 
 
-@nb.njit(cache=True, inline="always")
-def grid_row(road, y):
-    """``(j, wy)``: the road at y lies between grid rows j and j+1, weight wy (clamped)."""
-    jf = (y - road.y0) * road.inv_dy
-    ny = road.z.shape[1]
-    if jf >= ny - 1:
-        return ny - 2, 1.0
-    if jf > 0.0:
-        j = min(int(jf), ny - 2)
-        return j, jf - j
-    return 0, 0.0
+# --- the contact patch: property-file keys and the laws of eqs. 2.3 and 2.4 -------------
+
+#: values used when the property file has neither the ADAMS nor the MF-Swift key
+DEFAULTS = {"PA1": 0.15, "PA2": 7.06, "PAE": 0.72, "PBE": 1.0, "PCE": 2.0, "PLS": 0.9,
+            "N_WIDTH": 10, "N_LENGTH": 15}
+#: ADAMS key -> MF-Swift key for the same cam quantity
+SWIFT = {"PAE": "ELLIPS_LENGTH", "PBE": "ELLIPS_HEIGHT", "PCE": "ELLIPS_ORDER",
+         "PLS": "ELLIPS_SHIFT", "N_WIDTH": "ELLIPS_NWIDTH", "N_LENGTH": "ELLIPS_NLENGTH"}
 
 
-@nb.njit(cache=True, inline="always")
-def row_block_max(params, road, j, xa, xb):
-    """An upper bound of the road on grid row j between x = xa and xb: the largest
-    block maximum (:func:`block_maxima`) over the blocks that cover it.
+def patch_key(tir, name):
+    """The ADAMS key, else its MF-Swift twin, else the default."""
+    for k in (name, SWIFT.get(name)):
+        if k is not None and tir.has("CONTACT_PATCH", k):
+            return tir.number("CONTACT_PATCH", k)
+    return DEFAULTS[name]
 
-    Only for a record whose ``row_block_max`` is not empty.
-    """
-    nx = road.z.shape[0]
-    blocks = params.row_block_max
-    per = params.block_per
-    k_lo = min(max(int(math.floor((min(xa, xb) - road.x0) * road.inv_dx)), 0), nx - 1)
-    k_hi = min(max(int(math.ceil((max(xa, xb) - road.x0) * road.inv_dx)), 0), nx - 1)
-    n_blocks = blocks.shape[0]
-    top = -1e300
-    for b in range(max((k_lo - 1) // per, 0), min(k_hi // per, n_blocks - 1) + 1):
-        h = blocks[b, j]
-        if h > top:
-            top = h
-    return top
+
+def length_law(tir):
+    """(mode, (c1, c2)) of the half-length law: 0 eq. 2.3 (PA1, PA2), 1 MF-Swift (Q_RA1, Q_RA2)."""
+    if tir.has("CONTACT_PATCH", "PA1") or tir.has("CONTACT_PATCH", "PA2"):
+        return 0, (tir.number("CONTACT_PATCH", "PA1", DEFAULTS["PA1"]),
+                   tir.number("CONTACT_PATCH", "PA2", DEFAULTS["PA2"]))
+    if tir.has("CONTACT_PATCH", "Q_RA1") or tir.has("CONTACT_PATCH", "Q_RA2"):
+        return 1, (tir.number("CONTACT_PATCH", "Q_RA1", 0.0), tir.number("CONTACT_PATCH", "Q_RA2", 0.0))
+    return 0, (DEFAULTS["PA1"], DEFAULTS["PA2"])
+
+
+def width_law(tir, width_table, b_max):
+    """(mode, (c1, c2, c3), table rows) of the half-width law."""
+    table = tir.table("CONTACT_WIDTH_CURVE")
+    if width_table and table is None:
+        raise InputError("width_table=True needs a [CONTACT_WIDTH_CURVE] table (deflection, "
+                         "half width)", source=tir.source, field="CONTACT_WIDTH_CURVE")
+    if table is not None and width_table is not False:
+        if table.shape[1] != 2 or np.any(np.diff(table[:, 0]) <= 0) or np.any(table[:, 1] < 0):
+            raise InputError("[CONTACT_WIDTH_CURVE] needs rows of increasing deflection and "
+                             "non-negative half width", source=tir.source, field="CONTACT_WIDTH_CURVE")
+        return 2, (0.0, 0.0, 0.0), table
+    if tir.has("CONTACT_PATCH", "PB1"):
+        return 0, tuple(tir.number("CONTACT_PATCH", k, 0.0) for k in ("PB1", "PB2", "PB3")), None
+    if tir.has("CONTACT_PATCH", "Q_RB1") or tir.has("CONTACT_PATCH", "Q_RB2"):
+        return 1, (tir.number("CONTACT_PATCH", "Q_RB1", 0.0),
+                   tir.number("CONTACT_PATCH", "Q_RB2", 0.0), 0.0), None
+    return 2, (0.0, 0.0, 0.0), np.array([[0.0, b_max]])  # no law: the whole tread
 
 
 @nb.njit(cache=True)

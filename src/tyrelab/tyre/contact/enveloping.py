@@ -6,9 +6,10 @@ over the base length ``ls = 2 PLS a`` (eq. 2.6), and across it over the
 contact width ``2 b`` (outer cams on its edges), with the half length ``a``
 (eq. 2.3) and half width ``b`` (eq. 2.4, or a ``[CONTACT_WIDTH_CURVE]``
 table) taken at the deflection estimated from a single cam under the wheel
-centre (no state is kept between calls). Each cam rests on the road at a
-height ``w_ij`` (Schmeitz's basic function); a least-squares plane through
-the cam heights gives
+centre, but at no less than ``min_patch_deflection`` (no state is kept
+between calls; see *The shortest patch* below). Each cam rests on the road
+at a height ``w_ij`` (Schmeitz's basic function); a least-squares plane
+through the cam heights gives
 
 * the effective road height (the mean cam height, which is Schmeitz's
   tandem average when there are two cams), corrected for the offset of a cam
@@ -28,6 +29,17 @@ Because every cam envelops the road over about its own length, the
 effective height rises over about the contact length when the tyre meets a
 step (lengthening) and a short cleat lifts it less than it lifts a rigid disc
 (swallowing).
+
+*The shortest patch.* The one-cam estimate falls to zero while the tyre still
+rests, loaded, on an obstacle off its centre (riding onto or off a cleat, the
+wheel's bottom above the cam under its centre). Sized at zero, the cams met at
+the centre, their plane took one cam's slope through the corner it rests on
+(a rigid disc sinks deeper into that plane than into the corner), and at zero,
+with no slope, fell to that cam's height: the load was lost in one step. The
+patch is therefore sized at no less than ``min_patch_deflection`` (default
+:data:`MIN_PATCH_DEFLECTION` R0: 10 mm on the XZL, a quarter of its static
+deflection at the lightest thesis load), so the cams stay apart and the plane
+is as continuous in the wheel's position as every cam height is.
 
 Property-file keys, ``[CONTACT_PATCH]`` (ADAMS PAC2002 names first, then the
 MF-Swift names that mean the same thing on these cams):
@@ -70,18 +82,15 @@ from ...road.grid import local_zmax, road_height
 from ..model import TyreModel, contact_geometry_table, positions_table, wheel_positions
 from ..registry import ContactModel, register_contact
 from ..wheel import ContactGeometry, WheelPose
-from .cams import (block_maxima, cam_height, cam_row, cam_tables, grid_row, half_length,
-                   half_width, row_block_max, slope_support)
+from .cams import (cam_height, cam_row, cam_tables, half_length, half_width, length_law, patch_key,
+                   slope_support, width_law)
+from .shape import block_maxima, grid_row, row_block_max
 from .volume import DEFAULT_STEP, no_contact, plane_contact
 
 #: length of the road blocks whose maxima let cams skip road they cannot touch [m]
 BLOCK = 0.05
-#: values used when the property file has neither the ADAMS nor the MF-Swift key
-DEFAULTS = {"PA1": 0.15, "PA2": 7.06, "PAE": 0.72, "PBE": 1.0, "PCE": 2.0, "PLS": 0.9,
-            "N_WIDTH": 10, "N_LENGTH": 15}
-#: ADAMS key -> MF-Swift key for the same cam quantity
-SWIFT = {"PAE": "ELLIPS_LENGTH", "PBE": "ELLIPS_HEIGHT", "PCE": "ELLIPS_ORDER",
-         "PLS": "ELLIPS_SHIFT", "N_WIDTH": "ELLIPS_NWIDTH", "N_LENGTH": "ELLIPS_NLENGTH"}
+#: default floor of the deflection that sizes the patch, a fraction of R0 (module docstring)
+MIN_PATCH_DEFLECTION = 0.015
 _OTHER_OPTIONS = ("discs",)
 
 
@@ -98,7 +107,8 @@ class EnvelopingParams(NamedTuple):
       clipped to ``max_half_width`` (W / 2);
     * ``cam_half_length`` a_e = PAE R0, ``cam_half_height`` b_e = PBE R0,
       ``cam_exponent`` PCE (eq. 2.5); ``base_length_factor`` PLS (eq. 2.6);
-    * ``n_width`` x ``n_length`` cams;
+    * ``n_width`` x ``n_length`` cams; ``min_patch_deflection``: the patch
+      is sized at no less than this deflection;
     * ``cam_reach``: how far from its centre a cam looks (a_e, less with
       ELLIPS_MAX_STEP); ``step``: sampling step along cam lines not aligned
       with the grid;
@@ -110,12 +120,13 @@ class EnvelopingParams(NamedTuple):
       unless ``width_law`` is 2;
     * ``block_per``: x cells per road block, ``row_block_max``: the road's
       maxima per block and pair of grid rows, shape (blocks, ny - 1)
-      (:func:`tyrelab.tyre.contact.cams.block_maxima`), empty for a road of
+      (:func:`tyrelab.tyre.contact.shape.block_maxima`), empty for a road of
       two x nodes.
     """
 
     unloaded_radius: float
     width: float
+    min_patch_deflection: float
     length_law: int
     length_c1: float
     length_c2: float
@@ -145,12 +156,13 @@ class EffectiveRoad(NamedTuple):
     """The effective road the cams give under a wheel (:func:`effective_road`).
 
     ``height`` [m] of the effective plane at the patch centre (the wheel
-    plane's trace below the centre), ``slope`` its rise per metre along the
-    heading, ``camber`` its rise per metre across (to the wheel's left),
-    ``curvature`` [1/m] of the quadratic fit along the heading;
-    ``deflection`` [m] to the effective plane (the contact's; <= 0: no
-    contact); ``half_length`` and ``half_width`` [m] of the contact patch the
-    cams were spread over.
+    plane's trace below the centre: at the centre's x, y for an upright
+    wheel), ``slope`` its rise per metre along the heading, ``camber`` its rise
+    per metre across (to the wheel's left), ``curvature`` [1/m] of the
+    quadratic fit along the heading; ``deflection`` [m] to the effective plane
+    (the contact's; <= 0: no contact); ``half_length`` and ``half_width`` [m] of the contact patch the
+    cams were spread over (sized at the deflection of the one cam under the
+    centre, at least ``min_patch_deflection``).
     """
 
     height: float
@@ -162,44 +174,8 @@ class EffectiveRoad(NamedTuple):
     half_width: float
 
 
-def _key(tir, name):
-    """The ADAMS key, else its MF-Swift twin, else the default."""
-    for k in (name, SWIFT.get(name)):
-        if k is not None and tir.has("CONTACT_PATCH", k):
-            return tir.number("CONTACT_PATCH", k)
-    return DEFAULTS[name]
-
-
-def _length_law(tir):
-    if tir.has("CONTACT_PATCH", "PA1") or tir.has("CONTACT_PATCH", "PA2"):
-        return 0, (tir.number("CONTACT_PATCH", "PA1", DEFAULTS["PA1"]),
-                   tir.number("CONTACT_PATCH", "PA2", DEFAULTS["PA2"]))
-    if tir.has("CONTACT_PATCH", "Q_RA1") or tir.has("CONTACT_PATCH", "Q_RA2"):
-        return 1, (tir.number("CONTACT_PATCH", "Q_RA1", 0.0), tir.number("CONTACT_PATCH", "Q_RA2", 0.0))
-    return 0, (DEFAULTS["PA1"], DEFAULTS["PA2"])
-
-
-def _width_law(tir, width_table, b_max):
-    """(mode, (c1, c2, c3), table rows) of the half-width law."""
-    table = tir.table("CONTACT_WIDTH_CURVE")
-    if width_table and table is None:
-        raise InputError("width_table=True needs a [CONTACT_WIDTH_CURVE] table (deflection, "
-                         "half width)", source=tir.source, field="CONTACT_WIDTH_CURVE")
-    if table is not None and width_table is not False:
-        if table.shape[1] != 2 or np.any(np.diff(table[:, 0]) <= 0) or np.any(table[:, 1] < 0):
-            raise InputError("[CONTACT_WIDTH_CURVE] needs rows of increasing deflection and "
-                             "non-negative half width", source=tir.source, field="CONTACT_WIDTH_CURVE")
-        return 2, (0.0, 0.0, 0.0), table
-    if tir.has("CONTACT_PATCH", "PB1"):
-        return 0, tuple(tir.number("CONTACT_PATCH", k, 0.0) for k in ("PB1", "PB2", "PB3")), None
-    if tir.has("CONTACT_PATCH", "Q_RB1") or tir.has("CONTACT_PATCH", "Q_RB2"):
-        return 1, (tir.number("CONTACT_PATCH", "Q_RB1", 0.0),
-                   tir.number("CONTACT_PATCH", "Q_RB2", 0.0), 0.0), None
-    return 2, (0.0, 0.0, 0.0), np.array([[0.0, b_max]])  # no law: the whole tread
-
-
 def enveloping_params(tyre, grid, width_table=None, n_width=None, n_length=None,
-                      step=DEFAULT_STEP, **options) -> EnvelopingParams:
+                      step=DEFAULT_STEP, min_patch_deflection=None, **options) -> EnvelopingParams:
     """The enveloping model's record: contact-patch laws, cam tables, the road's block maxima.
 
     Parameters
@@ -214,20 +190,29 @@ def enveloping_params(tyre, grid, width_table=None, n_width=None, n_length=None,
         Override the number of cams.
     step : float
         Sampling step [m] along cam rows not aligned with the grid.
+    min_patch_deflection : float, optional
+        The patch is sized at no less than this deflection [m] (default
+        :data:`MIN_PATCH_DEFLECTION` R0; 0 lets it shrink to a point, see the
+        module docstring).
     """
     unknown = set(options) - set(_OTHER_OPTIONS)
     if unknown:
         raise InputError(f"unknown enveloping-model option(s) {', '.join(sorted(unknown))}; "
-                         "expected width_table, n_width, n_length, step", field="options")
+                         "expected width_table, n_width, n_length, step, min_patch_deflection",
+                         field="options")
     tir = tyre.tir
     r0, w0 = float(tyre.unloaded_radius), float(tyre.width)
+    rho_min = MIN_PATCH_DEFLECTION * r0 if min_patch_deflection is None else float(min_patch_deflection)
+    if not rho_min >= 0.0:
+        raise InputError(f"min_patch_deflection must be >= 0 m, got {min_patch_deflection}",
+                         field="min_patch_deflection")
     b_max = 0.5 * w0
-    lmode, (a1, a2) = _length_law(tir)
-    wmode, (b1, b2, b3), wtable = _width_law(tir, width_table, b_max)
-    ae, be, ce = (_key(tir, k) * f for k, f in (("PAE", r0), ("PBE", r0), ("PCE", 1.0)))
-    pls = _key(tir, "PLS")
-    nw = int(n_width if n_width is not None else _key(tir, "N_WIDTH"))
-    nl = int(n_length if n_length is not None else _key(tir, "N_LENGTH"))
+    lmode, (a1, a2) = length_law(tir)
+    wmode, (b1, b2, b3), wtable = width_law(tir, width_table, b_max)
+    ae, be, ce = (patch_key(tir, k) * f for k, f in (("PAE", r0), ("PBE", r0), ("PCE", 1.0)))
+    pls = patch_key(tir, "PLS")
+    nw = int(n_width if n_width is not None else patch_key(tir, "N_WIDTH"))
+    nl = int(n_length if n_length is not None else patch_key(tir, "N_LENGTH"))
     if not (ae > 0 and be > 0 and ce >= 1.0 and pls >= 0 and nw >= 1 and nl >= 1):
         raise InputError("cams need PAE, PBE > 0, PCE >= 1, PLS >= 0 and at least one cam "
                          f"each way (got {ae / r0:g}, {be / r0:g}, {ce:g}, {pls:g}, {nw}, {nl})",
@@ -248,9 +233,9 @@ def enveloping_params(tyre, grid, width_table=None, n_width=None, n_length=None,
     else:
         maxima = np.zeros((0, z.shape[1] - 1))
     return EnvelopingParams(
-        unloaded_radius=r0, width=w0, length_law=int(lmode), length_c1=float(a1),
-        length_c2=float(a2), width_law=int(wmode), width_c1=float(b1), width_c2=float(b2),
-        width_c3=float(b3), max_half_width=float(b_max), cam_half_length=float(ae),
+        unloaded_radius=r0, width=w0, min_patch_deflection=rho_min, length_law=int(lmode),
+        length_c1=float(a1), length_c2=float(a2), width_law=int(wmode), width_c1=float(b1),
+        width_c2=float(b2), width_c3=float(b3), max_half_width=float(b_max), cam_half_length=float(ae),
         cam_half_height=float(be), cam_exponent=float(ce), base_length_factor=float(pls),
         n_width=nw, n_length=nl, cam_reach=float(cap), step=float(step),
         # a 2D road: every row of cams sees the same road
@@ -260,7 +245,8 @@ def enveloping_params(tyre, grid, width_table=None, n_width=None, n_length=None,
 
 
 def contact_patch(params: EnvelopingParams, deflection: float):
-    """``(a, b)`` half length and half width [m] the model uses at ``deflection`` [m]."""
+    """``(a, b)`` half length and half width [m] by the patch laws at ``deflection`` [m] (the
+    model sizes its patch at no less than ``params.min_patch_deflection``)."""
     return half_length(params, float(deflection)), half_width(params, float(deflection))
 
 
@@ -291,9 +277,10 @@ def cam_plane(params, road, cx, cy, cz, fx, fy, dx, dy, cosg, zmax):
     same_rows = params.profile_road and aligned  # a 2D profile: every row sees the same road
     rows = 1 if same_rows else nw
     mult = float(nw) if same_rows else 1.0
-    # one cam under the centre: its height sizes the patch
+    # one cam under the centre: its height sizes the patch, never below the floor (a
+    # patch of no length has no slope: the plane would jump; module docstring)
     w = cam_height(params, road, px, py, fx, fy, zmax)
-    rho0 = max(r0 - (cz - w) / cosg, 0.0)
+    rho0 = max(r0 - (cz - w) / cosg, params.min_patch_deflection)
     a = half_length(params, rho0)
     b = half_width(params, rho0)
     ls = 2.0 * params.base_length_factor * a  # eq. 2.6
@@ -347,18 +334,10 @@ def cam_plane(params, road, cx, cy, cz, fx, fy, dx, dy, cosg, zmax):
 def enveloping_contact(params, road, pose):
     """Deflection, contact point and effective-plane normal from the cams.
 
-    Parameters
-    ----------
-    params : EnvelopingParams
-    road : RoadSurface
-    pose : WheelPose
-        Only the centre and the spin axis are used.
-
-    Returns
-    -------
-    ContactGeometry
-        As :func:`tyrelab.tyre.contact.point.point_contact`, on the cams'
-        effective plane, with the effective road curvature [1/m].
+    ``params`` an :class:`EnvelopingParams`, ``road`` a RoadSurface, ``pose`` a
+    WheelPose (only its centre and spin axis are used). Returns a
+    :class:`ContactGeometry` as :func:`tyrelab.tyre.contact.point.point_contact`,
+    on the cams' effective plane, with the effective road curvature [1/m].
     """
     r0 = params.unloaded_radius
     cx, cy, cz = pose.cx, pose.cy, pose.cz
@@ -387,9 +366,8 @@ def effective_road_at(params, road, pose):
 
     The plane is the one :func:`enveloping_contact` uses. It is found also
     when the tyre does not touch the road: the patch then has its size at
-    zero deflection (no length: each row of cams sits at the patch centre);
-    on a road level everywhere it is that level. A wheel lying (nearly)
-    flat has none: NaN.
+    ``params.min_patch_deflection``; on a road level everywhere it is that
+    level. A wheel lying (nearly) flat has none: NaN.
     """
     deflection = enveloping_contact(params, road, pose).deflection
     r0 = params.unloaded_radius
@@ -399,7 +377,7 @@ def effective_road_at(params, road, pose):
     if cosg < 1e-3:
         return EffectiveRoad(math.nan, math.nan, math.nan, math.nan, deflection, 0.0, 0.0)
     if road.zmax == road.zmin:
-        rho0 = max(r0 - (cz - road.zmin) / cosg, 0.0)
+        rho0 = max(r0 - (cz - road.zmin) / cosg, params.min_patch_deflection)
         return EffectiveRoad(road.zmin, 0.0, 0.0, 0.0, deflection, half_length(params, rho0),
                              half_width(params, rho0))
     reach = (r0 + params.cam_half_length) * abs(fx) + params.max_half_width * abs(fy) + 1e-9
@@ -426,45 +404,29 @@ def _effective_many(params, road, poses, out):
 def effective_road(tyre, road, x, y=0.0, z=None, axis=(0.0, 1.0, 0.0), **options):
     """The effective road of the enveloping model under wheel centres ``(x, y, z)``.
 
-    Schmeitz's cams (thesis 2.3.3, eq. 2.5) spread over the contact patch
-    (half length eq. 2.3, half width eq. 2.4 or their MF-Swift forms or the
-    ``[CONTACT_WIDTH_CURVE]`` table, base length eq. 2.6) rest on the road;
-    the least-squares plane through their heights is the effective road the
-    vertical law (eq. 2.2) acts on. The values come from a compiled helper
-    (:func:`effective_road_at`, record :class:`EffectiveRoad`) that runs the
-    very code of the contact model, so they are exact, not recovered from the
-    contact normal.
+    The least-squares plane through the heights of the cams (eq. 2.5) spread over
+    the contact patch (eqs. 2.3, 2.4, 2.6), which the vertical law (eq. 2.2) acts
+    on: :func:`effective_road_at` runs the contact model's own code, so the values
+    are exact, not recovered from the contact normal.
 
     Parameters
     ----------
     tyre : Tyre
         ``[CONTACT_PATCH]`` keys as in the module docstring.
-    road : str, Road or RoadGrid
-        A road name (:func:`tyrelab.road.spec.road_from_spec`), road or grid.
-    x, y : array_like
-        Wheel-centre positions [m] (broadcast).
-    z : array_like, optional
-        Wheel-centre heights [m]; default: the unloaded radius above the
-        road straight below the centre (the tyre just touching a level road).
-    axis : 3 floats
-        Unit spin axis (default level, heading +x).
+    road, x, y, z, axis
+        As :func:`tyrelab.tyre.model.contact_geometry_table`: road name, road or
+        grid; wheel centres [m] (broadcast; ``z`` by default the unloaded radius
+        above the road below the centre); unit spin axis (default heading +x).
     **options
         Options of :func:`enveloping_params` (``n_width``, ``n_length``,
-        ``width_table``, ``step``).
+        ``width_table``, ``step``, ``min_patch_deflection``).
 
     Returns
     -------
     pandas.DataFrame
-        One row per position: ``x, y, z`` and the :class:`EffectiveRoad`
-        fields -- ``height`` [m] of the effective plane at the patch centre
-        (the wheel plane's trace below the centre; ``x, y`` for an upright
-        wheel), ``slope`` along the heading and ``camber`` across (rise per
-        metre to the wheel's left), ``curvature`` [1/m] along the heading,
-        ``deflection`` [m] to the effective plane (<= 0: no contact; the
-        plane is then that of a patch of zero deflection, of no length) and
-        the ``half_length`` and ``half_width`` [m] of the patch the cams were
-        spread over (taken at the deflection of a single cam under the
-        centre).
+        One row per position: ``x, y, z`` and the :class:`EffectiveRoad` fields
+        (``height``, ``slope``, ``camber``, ``curvature``, ``deflection``,
+        ``half_length``, ``half_width``).
     """
     grid, poses = wheel_positions(road, x, y, z, axis, tyre.unloaded_radius)
     out = np.empty((poses.shape[0], N_EFFECTIVE))

@@ -12,7 +12,9 @@ The compiled part intersects one disc with the road (a
 plane is walked as straight pieces (exact for a bilinear grid driven along
 x), each piece is clipped to the disc's circle in closed form, and the area
 and first moments of the region inside the disc and below the road are
-integrated exactly (:func:`disc_intersection`).
+integrated exactly (:func:`disc_intersection`). The grid-row queries of
+the enveloping model's cams live here too (:func:`grid_row`, the road's
+maxima per block of a row: :func:`block_maxima`, :func:`row_block_max`).
 """
 
 from __future__ import annotations
@@ -236,6 +238,55 @@ def _x_height(road, x, j, wy):
     i = min(int(u), nx - 2)
     t = u - i
     return _row_height(z, i, j, wy) * (1.0 - t) + _row_height(z, i + 1, j, wy) * t
+
+
+def block_maxima(z: np.ndarray, per: int) -> np.ndarray:
+    """Maxima of the road over blocks of ``per`` x cells, for each pair of grid rows.
+
+    Block b spans x nodes ``b per .. (b+1) per`` (both ends: a cell between two
+    nodes lies in one block) and rows j, j+1, so it bounds the bilinear road
+    on any line between those rows. Shape ``(n_blocks, ny - 1)``.
+    """
+    nx = z.shape[0]
+    pair = np.maximum(z[:, :-1], z[:, 1:])
+    n_blocks = -(-(nx - 1) // per)
+    ends = np.minimum(np.arange(1, n_blocks + 1) * per, nx - 1)
+    out = np.maximum.reduceat(pair, np.arange(n_blocks) * per, axis=0)
+    return np.ascontiguousarray(np.maximum(out, pair[ends]), np.float64)
+
+
+@nb.njit(cache=True, inline="always")
+def grid_row(road, y):
+    """``(j, wy)``: the road at y lies between grid rows j and j+1, weight wy (clamped)."""
+    jf = (y - road.y0) * road.inv_dy
+    ny = road.z.shape[1]
+    if jf >= ny - 1:
+        return ny - 2, 1.0
+    if jf > 0.0:
+        j = min(int(jf), ny - 2)
+        return j, jf - j
+    return 0, 0.0
+
+
+@nb.njit(cache=True, inline="always")
+def row_block_max(params, road, j, xa, xb):
+    """An upper bound of the road on grid row j between x = xa and xb: the largest
+    block maximum (:func:`block_maxima`) over the blocks that cover it.
+
+    Only for a record whose ``row_block_max`` is not empty.
+    """
+    nx = road.z.shape[0]
+    blocks = params.row_block_max
+    per = params.block_per
+    k_lo = min(max(int(math.floor((min(xa, xb) - road.x0) * road.inv_dx)), 0), nx - 1)
+    k_hi = min(max(int(math.ceil((max(xa, xb) - road.x0) * road.inv_dx)), 0), nx - 1)
+    n_blocks = blocks.shape[0]
+    top = -1e300
+    for b in range(max((k_lo - 1) // per, 0), min(k_hi // per, n_blocks - 1) + 1):
+        h = blocks[b, j]
+        if h > top:
+            top = h
+    return top
 
 
 @nb.njit(cache=True, inline="always")
