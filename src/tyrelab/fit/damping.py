@@ -21,6 +21,7 @@ import math
 from typing import NamedTuple
 
 import numpy as np
+from scipy.signal import find_peaks
 
 from ..errors import InputError
 
@@ -38,16 +39,6 @@ class DropTestDamping(NamedTuple):
     stiffness: float
     #: the logarithmic decrement of each cycle used (eq. 3.6)
     decrements: np.ndarray
-
-
-def _extremes(x):
-    """Indices of the strict local extremes of ``x`` (plateaus count once)."""
-    d = np.sign(np.diff(x))
-    keep = d != 0
-    idx = np.flatnonzero(keep)
-    d = d[keep]
-    turns = np.flatnonzero(d[1:] != d[:-1])
-    return idx[turns] + 1
 
 
 def drop_test_damping(time, displacement, inertia, lever, wheels=2, cycles=3) -> DropTestDamping:
@@ -80,7 +71,8 @@ def drop_test_damping(time, displacement, inertia, lever, wheels=2, cycles=3) ->
     if not (inertia > 0 and lever > 0 and wheels >= 1):
         raise InputError("inertia, lever and wheels of the drop test must be positive",
                          field="drop test")
-    ext = _extremes(z)
+    # maxima and minima in time order (scipy's find_peaks: plateaus count once)
+    ext = np.sort(np.r_[find_peaks(z)[0], find_peaks(-z)[0]])
     need = 2 * cycles + 2
     if ext.size < need:
         raise InputError(f"the drop-test trace has {ext.size} extremes; {need} are needed for "

@@ -102,9 +102,7 @@ class QuarterVehicle:
         state[K.Q_ZU] = zu
         state[K.Q_ZS] = zu + self.spring_length
         state[K.Q_W] = omega0
-        wheel = self.model.wheel(levelled_grid(road, x0_road), wheel_load)
-        if model_state is not None:
-            wheel = wheel._replace(state=model_state)
+        wheel = self.model.wheel(levelled_grid(road, x0_road), wheel_load, state=model_state)
         n_steps = int(round(duration / dt))
         out_every = max(1, int(round(1.0 / (output_rate * dt))))
 

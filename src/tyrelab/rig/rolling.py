@@ -95,7 +95,7 @@ def roll(model: TyreModel, road="cleat:50x50", speed: float = 0.5, height: float
         state = np.array([x0, speed / height, 0.0])
     else:
         state_load = wheel_load
-        wheel = model.wheel(grid, wheel_load)._replace(state=eq.state)
+        wheel = model.wheel(grid, wheel_load, state=eq.state)
         state = np.array([x0, eq.spin, 0.0])
     inertia = max(tyre.wheel_spin_inertia, 1.0)
     n_steps = int(round(duration / dt))

@@ -68,7 +68,9 @@ class TrailerGeometry:
 
 @dataclass
 class TrailerSetup:
-    """Masses and initial state solved for one load case."""
+    """Masses and ballast solved for one load case; ``pitch0`` the frame's pitch at
+    which the ballast was placed (the vertical law's deflection). A run starts at the
+    pitch its wheels' equilibria give (:meth:`Trailer.run`)."""
 
     wheel_load: float
     frame_mass: float
@@ -276,11 +278,9 @@ class Trailer:
         n_steps = int(round(duration / dt))
         out_every = max(1, int(round(1.0 / (output_rate * dt))))
 
-        right = self.model.wheel(grid, wheel_load)
-        left = self.left.wheel(Flat().grid(), wheel_load)
-        if states is not None:
-            right = right._replace(state=states[0])
-            left = left._replace(state=states[1])
+        states = states or (None, None)
+        right = self.model.wheel(grid, wheel_load, state=states[0])
+        left = self.left.wheel(Flat().grid(), wheel_load, state=states[1])
 
         def advance(n, out, row):
             return K.trailer_steps(right, left, tp, state, n, dt, out_every, out, row, x_start)

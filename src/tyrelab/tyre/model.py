@@ -119,16 +119,15 @@ class TyreModel:
         return Equilibrium(deflection, float(speed) / (self.tyre.unloaded_radius - deflection),
                            self.initial_state(load, params))
 
-    def wheel(self, grid, load: float = 0.0, static: bool = False, speed: float | None = None
-              ) -> Wheel:
+    def wheel(self, grid, load: float = 0.0, static: bool = False, state=None) -> Wheel:
         """The :class:`Wheel` record of this tyre on road ``grid`` at static ``load`` [N].
 
-        With ``speed`` [m/s] its state is the rolling equilibrium at that
-        speed (:meth:`equilibrium`), else the static one.
+        ``state`` the model's internal state to start from (e.g. the rolling
+        equilibrium's, :meth:`equilibrium`); default the static one.
         """
         params = self.contact_params(grid, static)
-        state = (self.initial_state(load, params) if speed is None
-                 else self.equilibrium(load, speed, params).state)
+        if state is None:
+            state = self.initial_state(load, params)
         return Wheel(self.tyre.vertical_law, params, self.handling_params(), grid.surface(),
                      state)
 

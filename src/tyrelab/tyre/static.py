@@ -63,24 +63,17 @@ def press_path(wheel, z_start, heights, rate, hold, window, dt, res):
     return zc
 
 
-#: channels of :func:`roll_in_place`'s result
-ROLL_COLUMNS = ("FX", "FZ", "SPIN", "MY")
-
-
 @nb.njit(cache=True)
-def roll_in_place(wheel, height, speed, inertia, state, n_steps, dt, res):
-    """Roll ``n_steps`` at a fixed centre ``height`` [m] over a level road; the wheel
-    spins freely (spin inertia ``inertia``, driven by the tyre's moment about the axle).
+def roll_in_place(wheel, height, speed, inertia, state, n_steps, dt):
+    """Roll ``n_steps`` at a fixed centre ``height`` [m] over a level road, the wheel
+    spinning freely (spin inertia ``inertia``, driven by the tyre's moment about
+    the axle, as in :func:`tyrelab.rig.rolling.rolling_steps`); returns the mean
+    vertical load on the rim [N].
 
-    ``state = [x, omega]`` is advanced in place; ``res`` receives the means of
-    :data:`ROLL_COLUMNS` over the steps (MY the moment about the axle). An
-    infinite ``inertia`` holds the spin. A model's rolling equilibrium (the
-    ring's initial state at speed) is found with it.
+    ``state = [x, omega]`` is advanced in place. A model's rolling equilibrium
+    (the ring's initial state at speed) is found with it.
     """
-    fx = 0.0
     fz = 0.0
-    spin = 0.0
-    my = 0.0
     for s in range(n_steps):
         x = state[0]
         omega = state[1]
@@ -88,11 +81,5 @@ def roll_in_place(wheel, height, speed, inertia, state, n_steps, dt, res):
                        dt)
         state[1] = omega + dt * f.my / (inertia - dt * min(f.dspin_domega, 0.0))
         state[0] = x + speed * dt
-        fx += f.fx
         fz += f.fz
-        spin += omega
-        my += f.my
-    res[0] = fx / n_steps
-    res[1] = fz / n_steps
-    res[2] = spin / n_steps
-    res[3] = my / n_steps
+    return fz / n_steps

@@ -45,11 +45,12 @@ from .tread import (ACC_DEFL, ACC_FX, ACC_FY, ACC_FZ, ACC_NX, ACC_NY, ACC_NZ, AC
 
 
 @nb.njit(cache=True)
-def ring_substep(params, state, road, pose, arx, ary, arz, domega, h):
+def ring_substep(params, state, road, pose, arx, ary, arz, domega, h, decay):
     """One internal step of length h at ``pose`` (centre at this step's start).
 
     ``ar`` the rim's acceleration [m/s^2], ``domega`` its spin acceleration
-    [rad/s^2]. Returns the loads on the rim ``(Fx, Fy, Fz, Mx, My, Mz)``
+    [rad/s^2], ``decay = 1 - exp(-h / tau_h)`` the relaxation of the
+    foundation's Maxwell branch over the step. Returns the loads on the rim ``(Fx, Fy, Fz, Mx, My, Mz)``
     (world, moment about the centre) at the start of the step.
     """
     n = params.n_segments
@@ -189,7 +190,6 @@ def ring_substep(params, state, road, pose, arx, ary, arz, domega, h):
     # Maxwell branch: exact exponential relaxation of its damper over the step
     relaxed = state.relaxed
     rb = params.belt_radius
-    decay = 1.0 - math.exp(-h / params.hysteresis_time) if params.hysteresis_time > 0 else 1.0
     for i in range(n):
         # Boris splitting: half kick, rotation, half kick (no energy drift)
         v1 = v1s[i] + 0.5 * hm * f1[i]
@@ -225,6 +225,7 @@ def ring_advance(params, state, road, pose, dt):
     if n_sub < 1:
         n_sub = 1
     h = dt / n_sub
+    decay = 1.0 - math.exp(-h / params.hysteresis_time)
     cx, cy, cz = pose.cx, pose.cy, pose.cz
     vx, vy, vz = pose.vx, pose.vy, pose.vz
     omega = pose.omega
@@ -254,7 +255,7 @@ def ring_advance(params, state, road, pose, dt):
         at = WheelPose(cx + vx * t, cy + vy * t, cz + vz * t, pose.ax, pose.ay, pose.az,
                        vx, vy, vz, omega)
         rfx, rfy, rfz, rmx, rmy, rmz = ring_substep(params, state, road, at, arx, ary, arz,
-                                                    dom, h)
+                                                    dom, h, decay)
         fx += rfx
         fy += rfy
         fz += rfz

@@ -252,18 +252,15 @@ def ring_equilibrium(tyre, load, speed, params, tread_pattern=False, **options):
         travel = 2.0 * math.sqrt(max(r0 ** 2 - height ** 2, 0.0))   # a contact length
         n_settle = int(max(ROLL_SETTLE, 3.0 * travel / speed) / dt)
         n = int(max(ROLL_WINDOW, travel / speed) / dt)
-        res = np.zeros(4)
         # free spin from the usual effective rolling radius R0 - deflection / 3
         motion = np.array([0.0, speed / (r0 - (r0 - height) / 3.0)])
         h = height
-        roll_in_place(wheel, h, speed, inertia, motion, n_settle, dt, res)
-        roll_in_place(wheel, h, speed, inertia, motion, n, dt, res)
-        f0, h0 = float(res[1]), h
+        roll_in_place(wheel, h, speed, inertia, motion, n_settle, dt)
+        f0, h0 = roll_in_place(wheel, h, speed, inertia, motion, n, dt), h
         h = h - (load - f0) / max(tyre.vertical_stiffness, 1.0)
         for _ in range(6):
-            roll_in_place(wheel, h, speed, inertia, motion, n, dt, res)  # settle after the move
-            roll_in_place(wheel, h, speed, inertia, motion, n, dt, res)
-            f1 = float(res[1])
+            roll_in_place(wheel, h, speed, inertia, motion, n, dt)  # settle after the move
+            f1 = roll_in_place(wheel, h, speed, inertia, motion, n, dt)
             if abs(f1 - load) < EQUILIBRIUM_TOLERANCE * load or f1 == f0:
                 break
             h0, f0, h = h, f1, h - (load - f1) * (h - h0) / (f0 - f1)
