@@ -2,6 +2,8 @@
 
     python tools/golden.py record     # writes tests/data/golden/*.npz
     python tools/golden.py compare    # prints the largest relative difference per case
+    python tools/golden.py record ring        # only the cases whose name contains "ring"
+    python tools/golden.py compare '!ring'    # every case except those
 
 Each case is a public-API run (`tyrelab.simulate`, the static press, the
 ring's fixed-height roll); its channels are stored at full output rate.
@@ -78,10 +80,20 @@ def all_cases():
         yield name, run_static, args
 
 
-def main(mode):
+def _selected(name, pattern):
+    if pattern is None:
+        return True
+    if pattern.startswith("!"):
+        return pattern[1:] not in name
+    return pattern in name
+
+
+def main(mode, pattern=None):
     GOLDEN.mkdir(parents=True, exist_ok=True)
     worst = 0.0
     for name, fn, args in all_cases():
+        if not _selected(name, pattern):
+            continue
         got = fn(args)
         path = GOLDEN / f"{name}.npz"
         if mode == "record":
@@ -112,4 +124,4 @@ def relative_difference(a, b):
 
 
 if __name__ == "__main__":
-    main(sys.argv[1] if len(sys.argv) > 1 else "compare")
+    main(sys.argv[1] if len(sys.argv) > 1 else "compare", sys.argv[2] if len(sys.argv) > 2 else None)

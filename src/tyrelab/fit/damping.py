@@ -92,6 +92,51 @@ def drop_test_damping(time, displacement, inertia, lever, wheels=2, cycles=3) ->
                            decrements)
 
 
+class FreeDecay(NamedTuple):
+    """Result of :func:`free_decay`."""
+
+    #: damping ratio [-]
+    ratio: float
+    #: undamped natural frequency [Hz]
+    frequency: float
+
+
+def free_decay(time, signal, frequency_guess=3.0) -> FreeDecay:
+    """Damping ratio and natural frequency of a free decay, by a least-squares
+    fit of one damped oscillation about an offset::
+
+        x(t) = A exp(-xi omega t) cos(omega sqrt(1 - xi^2) t + phi) + x0
+
+    Unlike the decrement of two peaks (:func:`drop_test_damping`) it uses
+    every sample, so a small oscillation on a rolling rig (after a cleat)
+    is measured through the ripple of the road and the tread.
+
+    Parameters
+    ----------
+    time, signal : array_like
+        The record [s] and the decaying quantity (any unit), from the start
+        of the free decay on.
+    frequency_guess : float
+        Starting value of the frequency [Hz].
+    """
+    from scipy.optimize import curve_fit
+
+    t = np.asarray(time, float)
+    x = np.asarray(signal, float)
+    if t.shape != x.shape or t.size < 20 or not (np.all(np.isfinite(t)) and np.all(np.isfinite(x))):
+        raise InputError("a free decay needs at least 20 finite samples of time and signal",
+                         field="free decay")
+    t = t - t[0]
+
+    def model(t, a, xi, f, phi, x0):
+        w = 2.0 * math.pi * f
+        return a * np.exp(-xi * w * t) * np.cos(w * math.sqrt(max(1.0 - xi * xi, 0.0)) * t + phi) + x0
+
+    start = [0.5 * float(np.ptp(x)), 0.03, float(frequency_guess), 0.0, float(x.mean())]
+    (a, xi, f, phi, x0), _ = curve_fit(model, t, x, p0=start, maxfev=20000)
+    return FreeDecay(float(xi), float(abs(f)))
+
+
 def trailer_drop_damping(trailer, duration=3.0, cycles=3) -> DropTestDamping:
     """The drop test of thesis 3.4.1 on ``trailer`` (:meth:`~tyrelab.rig.trailer.Trailer.drop`),
     evaluated with :func:`drop_test_damping` (both wheels, lever hitch-to-axle)."""

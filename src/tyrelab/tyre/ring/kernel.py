@@ -45,7 +45,7 @@ from .tread import (ACC_DEFL, ACC_FX, ACC_FY, ACC_FZ, ACC_NX, ACC_NY, ACC_NZ, AC
 
 
 @nb.njit(cache=True)
-def ring_substep(params, state, road, pose, arx, ary, arz, domega, h, decay):
+def ring_substep(params, state, road, pose, arx, ary, arz, domega, h, decay, patch_decay):
     """One internal step of length h at ``pose`` (centre at this step's start).
 
     ``ar`` the rim's acceleration [m/s^2], ``domega`` its spin acceleration
@@ -132,6 +132,9 @@ def ring_substep(params, state, road, pose, arx, ary, arz, domega, h, decay):
         fy[i] -= m * aa
     # tread contact
     acc[ACC_DEFL] = -1.0
+    w0 = acc[ACC_W]
+    px0, py0, pz0 = acc[ACC_PX], acc[ACC_PY], acc[ACC_PZ]
+    nx0, ny0, nz0 = acc[ACC_NX], acc[ACC_NY], acc[ACC_NZ]
     for i in range(n):
         p1 = p1s[i]
         p2 = p2s[i]
@@ -181,6 +184,30 @@ def ring_substep(params, state, road, pose, arx, ary, arz, domega, h, decay):
         f2[i] += bfx * e2x + bfy * e2y + bfz * e2z
         fy[i] += bfx * ax + bfy * ay + bfz * az
         fb[i] += btw
+    # the contact patch's Maxwell element, between the road and the rim at the
+    # patch's centre, along its mean normal (this step's sums)
+    fn = acc[ACC_W] - w0
+    f_patch = patch_hysteresis(params, state, fn, patch_decay)
+    if f_patch != 0.0:
+        gx = acc[ACC_NX] - nx0
+        gy = acc[ACC_NY] - ny0
+        gz = acc[ACC_NZ] - nz0
+        gl = math.sqrt(gx * gx + gy * gy + gz * gz)
+        gx *= f_patch / gl
+        gy *= f_patch / gl
+        gz *= f_patch / gl
+        lx = (acc[ACC_PX] - px0) / fn - cx
+        ly = (acc[ACC_PY] - py0) / fn - cy
+        lz = (acc[ACC_PZ] - pz0) / fn - cz
+        rim_fx += gx
+        rim_fy += gy
+        rim_fz += gz
+        rim_mx += ly * gz - lz * gy
+        rim_my += lz * gx - lx * gz
+        rim_mz += lx * gy - ly * gx
+        acc[ACC_FX] += gx
+        acc[ACC_FY] += gy
+        acc[ACC_FZ] += gz
     # symplectic Euler; Coriolis as an exact rotation of the in-plane velocity
     relax = 1.0 / (1.0 + h * params.relax_rate)
     cr = math.cos(2.0 * omega * h)
@@ -212,6 +239,36 @@ def ring_substep(params, state, road, pose, arx, ary, arz, domega, h, decay):
     return rim_fx, rim_fy, rim_fz, rim_mx, rim_my, rim_mz
 
 
+@nb.njit(cache=True, inline="always")
+def patch_hysteresis(params, state, fn, decay):
+    """The force [N] of the contact patch's Maxwell element over one internal step.
+
+    The element stands between the road and the rim, in parallel with the
+    whole tyre, and is driven by the patch's normal force ``Fn`` (``fn``,
+    this step's sum over the blocks): its force is ``g (Fn - r)`` with
+    ``r' = (Fn - r) / tau``, relaxed exactly here (``decay = 1 - exp(-h /
+    tau)``). Below ``1/(2 pi tau)`` that is the damper ``g tau Fn'``, which
+    for a tyre of vertical stiffness ``k`` (``Fn = k rho``) is the damper
+    ``c = g tau k`` on the deflection rate (eq. 2.2's ``c rho'``); above it,
+    a stiffening by ``g``. It lives where the tyre meets the road, not on
+    material points of the belt, so rolling does not relax it: a steady patch
+    leaves it unloaded at any speed, an oscillating one is damped. It never
+    pulls: the force is held at ``>= -Fn`` so the contact force stays
+    ``>= 0``, and is 0 off the road.
+    """
+    gain = params.patch_hysteresis_gain
+    if gain == 0.0:
+        return 0.0
+    r = state.patch_relaxed[0]
+    state.patch_relaxed[0] = r + (fn - r) * decay
+    if fn <= 0.0:
+        return 0.0
+    force = gain * (fn - r)
+    if force < -fn:
+        force = -fn
+    return force
+
+
 @nb.njit(cache=True)
 def ring_advance(params, state, road, pose, dt):
     """Advance ``state`` by ``dt`` in internal steps at ``pose`` (the rim's pose at the start).
@@ -226,6 +283,7 @@ def ring_advance(params, state, road, pose, dt):
         n_sub = 1
     h = dt / n_sub
     decay = 1.0 - math.exp(-h / params.hysteresis_time)
+    patch_decay = 1.0 - math.exp(-h / params.patch_hysteresis_time)
     cx, cy, cz = pose.cx, pose.cy, pose.cz
     vx, vy, vz = pose.vx, pose.vy, pose.vz
     omega = pose.omega
@@ -255,7 +313,7 @@ def ring_advance(params, state, road, pose, dt):
         at = WheelPose(cx + vx * t, cy + vy * t, cz + vz * t, pose.ax, pose.ay, pose.az,
                        vx, vy, vz, omega)
         rfx, rfy, rfz, rmx, rmy, rmz = ring_substep(params, state, road, at, arx, ary, arz,
-                                                    dom, h, decay)
+                                                    dom, h, decay, patch_decay)
         fx += rfx
         fy += rfy
         fz += rfz

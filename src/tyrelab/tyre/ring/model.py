@@ -117,6 +117,11 @@ def ring_params(tyre, grid=None, tread_pattern=False, n_segments=N_SEGMENTS, n_b
         # static builds (relaxation) are quasi-static: the Maxwell branch has relaxed
         hysteresis_stiffness=float(rp.kh * seg) if relax == 0 else 0.0,
         hysteresis_time=float(rp.tau_h),
+        # the patch element's damper c = g tau k on the deflection rate, k the
+        # tyre's linear vertical stiffness (eq. 2.2); static builds leave it out
+        patch_hysteresis_gain=(float(rp.cp / (tyre.vertical_stiffness * rp.tau_p))
+                               if relax == 0 and rp.cp > 0 else 0.0),
+        patch_hysteresis_time=float(rp.tau_p),
         radial_damping=float(rp.cr * seg), tangential_damping=float(rp.ct * seg),
         lateral_damping=float(rp.cy * seg), torsion_damping=float(rp.cb * seg),
         # pre-tension in exact equilibrium with the pressure on the polygon
@@ -198,6 +203,8 @@ def _at_rest(state, rp):
         velocity[:] = 0.0
     # at rest the foundation's Maxwell branch has relaxed: its spring carries nothing
     state.relaxed[:] = (state.p1 * rp.cos_theta + state.p2 * rp.sin_theta - rp.belt_radius)
+    # and so has the contact patch's element
+    state.patch_relaxed[0] = float(state.block_force.sum())
     state.initialised[0] = False
     state.kinematics[KIN_TIME] = 0.0
     return state

@@ -22,6 +22,12 @@ HYSTERESIS_RADIAL              N/m^2     spring of the radial foundation's Maxwe
                                          HYSTERESIS_TIME): the sidewall rubber's loss at
                                          the trailer's 2-3 Hz (docs/ring.md, "Damping")
 HYSTERESIS_TIME                s         relaxation time of that branch
+PATCH_DAMPING                  N s/m     damping of the contact patch's normal force
+                                         below 1/(2 pi PATCH_DAMPING_TIME): a Maxwell
+                                         element acting where the tyre meets the road,
+                                         so rolling does not wash it out (docs/ring.md,
+                                         "Damping")
+PATCH_DAMPING_TIME             s         relaxation time of that element
 PRESSURE_WIDTH                 m         b in T0 = p b Rb
 EXTENSION_STIFFNESS            N         EA of the belt
 EXTENSION_DAMPING              N s       damping of belt extension
@@ -80,6 +86,8 @@ KEYS = {
     "cb": ("DAMPING_TORSION", _d(F=1, T=1)),
     "kh": ("HYSTERESIS_RADIAL", _d(F=1, L=-2)),
     "tau_h": ("HYSTERESIS_TIME", _d(T=1)),
+    "cp": ("PATCH_DAMPING", _d(F=1, T=1, L=-1)),
+    "tau_p": ("PATCH_DAMPING_TIME", _d(T=1)),
     "pressure_width": ("PRESSURE_WIDTH", _d(L=1)),
     "ea": ("EXTENSION_STIFFNESS", _d(F=1)),
     "cea": ("EXTENSION_DAMPING", _d(F=1, T=1)),
@@ -116,6 +124,8 @@ class RingParameters:
     cb: float = 5.0
     kh: float = 0.0
     tau_h: float = 0.06
+    cp: float = 0.0
+    tau_p: float = 0.04
     pressure_width: float = 0.25
     ea: float = 5.0e6
     cea: float = 40.0
@@ -162,6 +172,9 @@ class RingParameters:
         if self.kh < 0 or not self.tau_h > 0:
             raise InputError("HYSTERESIS_RADIAL must be >= 0 and HYSTERESIS_TIME > 0",
                              source=source, field="HYSTERESIS_RADIAL")
+        if self.cp < 0 or not self.tau_p > 0:
+            raise InputError("PATCH_DAMPING must be >= 0 and PATCH_DAMPING_TIME > 0",
+                             source=source, field="PATCH_DAMPING")
         if self.friction < 0:
             raise InputError("FRICTION must be >= 0", source=source, field="FRICTION")
 

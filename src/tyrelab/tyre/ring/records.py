@@ -71,6 +71,11 @@ class RingParams(NamedTuple):
     #: static builds, where it has relaxed) and relaxation time [s]
     hysteresis_stiffness: float
     hysteresis_time: float
+    #: contact patch's Maxwell element (road to rim): gain g [-] (its force is
+    #: g (Fn - r), Fn the patch's normal force, r its relaxed value; 0 in
+    #: static builds) and relaxation time [s] of r
+    patch_hysteresis_gain: float
+    patch_hysteresis_time: float
     #: belt pre-tension T0 [N] (in equilibrium with the pressure on the polygon)
     pretension: float
     #: EA [N] and its damping [N s]
@@ -121,6 +126,8 @@ class RingState(NamedTuple):
     and velocity ``vy``, twist ``beta`` [rad] and its rate ``vbeta``;
     ``relaxed`` [m], the radial displacement at which the spring of the
     foundation's Maxwell branch is relaxed (its damper's extension).
+    ``patch_relaxed[0]`` [N], the relaxed normal force ``r`` of the
+    contact patch's Maxwell element (:func:`~.kernel.patch_hysteresis`).
     Per block (N*NB): tangential tip deflections ``s1, s2`` [m] in the road
     plane, and ``block_force`` [N], each block's normal force at the end of
     the last step (footprints, pressure maps). ``kinematics`` holds the
@@ -142,6 +149,7 @@ class RingState(NamedTuple):
     beta: np.ndarray
     vbeta: np.ndarray
     relaxed: np.ndarray
+    patch_relaxed: np.ndarray
     s1: np.ndarray
     s2: np.ndarray
     block_force: np.ndarray
@@ -162,7 +170,7 @@ VELOCITIES = ("v1", "v2", "vy", "vbeta")
 def empty_state(n: int, nb: int) -> RingState:
     """A zeroed :class:`RingState` for ``n`` segments of ``nb`` blocks."""
     seg = [np.zeros(n) for _ in range(9)]
-    return RingState(*seg, np.zeros(n * nb), np.zeros(n * nb), np.zeros(n * nb),
+    return RingState(*seg, np.zeros(1), np.zeros(n * nb), np.zeros(n * nb), np.zeros(n * nb),
                      np.zeros(KIN_SIZE), np.zeros(1, np.bool_), np.ones(n, np.bool_),
                      np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(ACC_SIZE))
 
