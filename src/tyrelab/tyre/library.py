@@ -4,7 +4,8 @@
 16.00R20 of the seed thesis at an inflation pressure [Pa]. Its property files
 exist at the three measured pressures (100, 300 and 550 kPa); in between, the
 load-deflection table and the linear stiffness are interpolated linearly in
-pressure, point by point. Any other name is taken as a path to a ``.tir``.
+pressure, point by point. Any other name is taken as a path to a ``.tir`` or to a
+Project Chrono ``.json`` tyre file.
 """
 
 from __future__ import annotations
@@ -38,7 +39,8 @@ def _built_in_file(name: str, pressure: float) -> Tyre:
 
 
 def load_tyre(name: str | Path = DEFAULT_TYRE, pressure: float | None = None) -> Tyre:
-    """A built-in tyre by name at ``pressure`` [Pa], or a ``.tir`` file by path."""
+    """A built-in tyre by name at ``pressure`` [Pa], or a ``.tir`` or Project Chrono ``.json``
+    file by path (:func:`tyrelab.tyre.chrono_json.read_chrono_tyre`)."""
     key = str(name)
     single = {k.lower(): k for k in SINGLE_FILE}.get(key.lower())
     if single is not None:
@@ -50,10 +52,15 @@ def load_tyre(name: str | Path = DEFAULT_TYRE, pressure: float | None = None) ->
     match = {k.lower(): k for k in BUILT_IN}.get(key.lower())
     if match is None:
         path = Path(key)
-        if path.suffix.lower() != ".tir" and not path.exists():
+        if path.suffix.lower() not in (".tir", ".json") and not path.exists():
             raise InputError(f"unknown tyre '{key}'; expected a built-in tyre "
-                             f"({', '.join([*BUILT_IN, *SINGLE_FILE])}) or a .tir file", field="tyre")
-        tyre = Tyre.from_tir(read_tir(path), name=path.stem)
+                             f"({', '.join([*BUILT_IN, *SINGLE_FILE])}), a .tir file or a "
+                             "Project Chrono .json tyre file", field="tyre")
+        if path.suffix.lower() == ".json":  # Project Chrono's JSON tyre files
+            from .chrono_json import read_chrono_tyre
+            tyre = read_chrono_tyre(path)
+        else:
+            tyre = Tyre.from_tir(read_tir(path), name=path.stem)
         if pressure is not None and not np.isclose(pressure, tyre.pressure):
             raise InputError(f"{path} describes {tyre.pressure / 1e3:g} kPa only; "
                              "a single property file cannot be moved to another pressure",

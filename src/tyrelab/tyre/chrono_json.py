@@ -1,0 +1,801 @@
+"""Project Chrono's JSON tyre files, read as a tyrelab tyre.
+
+Project Chrono (``data/vehicle/*/tire/*.json``, BSD-3-Clause) keeps a tyre as
+a JSON file with ``//`` and ``/* */`` comments, whose ``"Template"`` names the
+Chrono tyre model. :func:`read_chrono_tyre` turns one into a :class:`Tyre`;
+:func:`read_chrono_json` gives the property file (:class:`TirFile`, SI) the
+tyre is built from, so ``write_tir(read_chrono_json(path), "tyre.tir")``
+converts a JSON file to a ``.tir``. ``load_tyre("FILE.json")`` and
+``tyrelab simulate --tyre FILE.json`` use it.
+
+Chrono's JSON numbers are SI (N, m, s, kg) unless the key says otherwise
+(the TMeasy keys carry their unit in brackets, which is SI too), so no value
+is converted. A key path is written ``A > B`` below and in error messages.
+
+What each template gives
+------------------------
+
+Every template: ``"Mass"`` [kg] -> ``[INERTIA] MASS`` (:attr:`Tyre.wheel_mass`)
+and the second component of ``"Inertia"`` ``[Ixx, Iyy, Izz]`` [kg m^2], the
+spin axis being y -> ``[INERTIA] IYY`` (:attr:`Tyre.wheel_spin_inertia`).
+Chrono's tyre mass is the tyre alone: the rim is the wheel's, in another
+Chrono file; add it if a rig needs the whole wheel.
+
+``Pac89Tire`` (Pacejka '89: vertical data and handling)
+    ``Design Parameters > Unloaded Radius`` [m] -> ``[DIMENSION] UNLOADED_RADIUS``
+    (:attr:`Tyre.unloaded_radius`); ``> Width`` [m] -> ``WIDTH``
+    (:attr:`Tyre.width`); ``> Vertical Stiffness`` [N/m] ->
+    ``[VERTICAL] VERTICAL_STIFFNESS`` (:attr:`Tyre.vertical_stiffness`,
+    optional when the curve is given); ``> Vertical Damping`` [N s/m] ->
+    ``VERTICAL_DAMPING`` (:attr:`Tyre.vertical_damping`); ``> Vertical Curve
+    Data`` rows of (deflection [m], load [N]) -> ``[DEFLECTION_LOAD_CURVE]``
+    (:attr:`Tyre.load_deflection`; as in Chrono the curve takes precedence over
+    the linear stiffness). ``Lateral Coefficients > a0 .. a13``,
+    ``Longitudinal Coefficients > b0 .. b10`` and ``Aligning Coefficients > c0
+    .. c17`` (ADAMS/Bakker convention: Fz in kN, angles in degrees, slip in
+    percent) -> ``[LATERAL_COEFFICIENTS] A0 .. A13``,
+    ``[LONGITUDINAL_COEFFICIENTS] B0 .. B10``, ``[ALIGNING_COEFFICIENTS] C0 ..
+    C17`` unchanged, with ``[MODEL] PROPERTY_FILE_FORMAT = 'PAC89'``; the
+    handling model ``pac89`` then runs it. ``Coefficient of Friction``,
+    ``Lateral Stiffness`` and ``Rolling Resistance`` are kept as header comments
+    only (tyrelab's PAC89 does not use them).
+``Pac02Tire`` (Magic Formula 5.2 / PAC2002)
+    ``TIR Specification File`` names a ``.tir``; it is read by
+    :func:`~tyrelab.tyre.tir.read_tir` (its own ``[UNITS]``) and is the tyre.
+    Chrono resolves the name against its vehicle data directory
+    (``"citybus/tire/CityBus_Pac02Tire.tir"``); here it is looked for
+    relative to the JSON's folder, next to the JSON (its file name alone) and
+    relative to each folder above the JSON (Chrono's data-directory layout),
+    first found wins; none found is an :class:`InputError` naming the key and
+    the paths tried. The JSON's ``Mass``/``Inertia`` and the embedded keys
+    below fill only what the ``.tir`` lacks. Without a ``.tir`` the
+    coefficients are embedded: ``Dimension > Unloaded Radius, Width, Aspect
+    Ratio, Rim Radius, Rim Width`` [m, -] -> ``[DIMENSION] UNLOADED_RADIUS,
+    WIDTH, ASPECT_RATIO, RIM_RADIUS, RIM_WIDTH``; ``Vertical > Vertical
+    Stiffness`` [N/m], ``Vertical Damping`` [N s/m], ``Nominal Wheel Load`` [N]
+    -> ``[VERTICAL] VERTICAL_STIFFNESS, VERTICAL_DAMPING, FNOMIN``, ``BREFF,
+    DREFF, FREFF`` unchanged, ``QFZ1, QFZ2, QFZ3, QPFZ1, QV2`` -> ``Q_FZ1,
+    Q_FZ2, Q_FZ3, PFZ1, Q_V2``; ``Tire Conditions > Inflation Pressure,
+    Nominal Inflation Pressure`` [Pa] -> ``[TIRE_CONDITIONS] IP, IP_NOM``;
+    ``FITTYP``, ``LONGVL`` [m/s], ``VXLOW`` [m/s] -> ``[MODEL]``; the sections
+    ``Scaling Factors``, ``Longitudinal / Lateral / Aligning / Overturning /
+    Rolling Coefficients`` -> ``[SCALING_COEFFICIENTS]``,
+    ``[LONGITUDINAL_COEFFICIENTS]`` ... with their keys (the ADAMS names)
+    unchanged; ``[MODEL] PROPERTY_FILE_FORMAT = 'PAC2002'``. Chrono's ``Use
+    Mode`` and ``Tire Side`` are not carried (tyrelab's Magic Formula takes
+    its use mode as an option).
+``PacejkaTire`` (Chrono's older Pacejka template)
+    ``Pacejka Parameter File`` names a ``.tir``, read as for ``Pac02Tire``.
+``MFTire`` (Magic Formula 5.2 / 6.1 / 6.2 with the property file embedded)
+    Every top-level object whose name is an ADAMS section name (upper case:
+    ``MODEL``, ``DIMENSION``, ``VERTICAL``, ...) is that section with its keys;
+    the embedded ``UNITS`` apply as in a ``.tir``.
+``FialaTire`` (vertical data only)
+    ``Fiala Parameters > Unloaded Radius`` [m], ``Width`` [m], ``Vertical
+    Stiffness`` [N/m] (optional with a curve), ``Vertical Damping`` [N s/m],
+    ``Vertical Curve Data`` [m, N] -> as for ``Pac89Tire``. ``CSLIP``,
+    ``CALPHA``, ``UMIN``, ``UMAX``, the relaxation lengths and the rolling
+    resistance are Fiala's handling model, which tyrelab does not have: kept
+    as header comments.
+``TMeasyTire``, ``TMsimpleTire`` (vertical data only)
+    ``Design > Unloaded Radius [m]``, ``Width [m]``, ``Rim Radius [m]`` ->
+    ``[DIMENSION] UNLOADED_RADIUS, WIDTH, RIM_RADIUS``; ``Design > Mass [kg]``,
+    ``Inertia [kg.m2]`` -> ``[INERTIA]`` (these replace the top-level ``Mass``
+    and ``Inertia`` of other templates). The vertical law, in Chrono's order
+    of precedence:
+
+    1. ``Parameters > Vertical > Vertical Tire Stiffness [N/m]`` or ``Tire
+       Spring Curve Data`` (deflection [m], load [N]) and ``Tire Vertical
+       Damping [Ns/m]``. Chrono fits ``F = d1 z + d2 z^2`` to the curve by least
+       squares; here the curve itself is the ``[DEFLECTION_LOAD_CURVE]``.
+    2. ``Load Index`` (0-279): Chrono's "engineer's guess" (G. Rill): the
+       index's load capacity ``F`` (:data:`LOAD_INDEX_KG` times g = 9.81 m/s^2,
+       as Chrono), the section height ``H = R0 - rim radius`` and the
+       deflection ``0.16 H`` at that load give the linear stiffness
+       ``k = F / (0.16 H)``; the damping is ``2 zeta sqrt(k m)`` with zeta = 0.5
+       (Chrono's default) and m the tyre mass.
+    3. ``Maximum Bearing Capacity [N]`` as ``F`` in the same guess (Chrono
+       passes the rim *radius* as the rim diameter on this path, which shrinks
+       its R0; here R0 stays the file's).
+
+    ``Inflation Pressure Use [Pa]`` -> ``[OPERATING_CONDITIONS] INFLPRES``
+    (:attr:`Tyre.pressure`). TMeasy's bottoming spring (rim radius + 10 mm,
+    five times the stiffness) and its handling parameters are not carried.
+``RigidTire`` (vertical data only)
+    ``Radius`` [m] -> ``UNLOADED_RADIUS``; ``Width`` [m] -> ``WIDTH``; the
+    contact material's ``Contact Material > Coefficients > Normal Stiffness``
+    [N/m] and ``Normal Damping`` [N s/m] -> ``VERTICAL_STIFFNESS``,
+    ``VERTICAL_DAMPING``: a rigid tyre's only compliance is Chrono's penalty
+    contact, and these are its linear (Hooke) coefficients for one contact.
+    Chrono uses them only when its contact system is not set to use material
+    properties (Young modulus, Poisson ratio), which are not read.
+``LugreTire`` (obsolete in Chrono; vertical data only)
+    ``Radius`` [m] -> ``UNLOADED_RADIUS``; the span of ``Disc Locations`` [m]
+    -> ``WIDTH`` (as Chrono's width); ``Normal Stiffness`` [N/m], ``Normal
+    Damping`` [N s/m] -> ``VERTICAL_STIFFNESS``, ``VERTICAL_DAMPING`` (Chrono
+    shares that force among the discs).
+
+The finite-element and multibody templates (``ANCFTire``,
+``ANCFToroidalTire``, ``ReissnerTire``, ``ReissnerToroidalTire``,
+``FEATire``, ``MBTire``) have no vertical law to read: their stiffness comes
+from their structure and inflation pressure. They raise an
+:class:`InputError` saying so, as does any other template (listing the
+supported ones).
+
+Assumptions
+-----------
+Chrono's JSON has no contact-patch data. So that every contact model runs
+the tyre, the templates read from JSON values (all but a ``.tir`` or an
+embedded ``MFTire`` property file) get the same assumed ``[CONTACT_PATCH]``
+and ``[CONTACT_WIDTH_CURVE]`` as the built-in HMMWV tyre
+(``tyre/data/hmmwv-pac89.tir``): :data:`ASSUMED_CONTACT_PATCH` (length and
+cam shape: the thesis's dimensionless XZL values, section 4.4; cams:
+Schmeitz's passenger-car optimum, 5 along and 6 across) and a half contact
+width of :data:`ASSUMED_HALF_WIDTH` times the section width at every
+deflection (the PB1-PB3 formula needs a fit). There is no ``[SHAPE]``
+table: the volume model uses a square section, as ADAMS does. The property
+file's header lists these assumptions. No template gives an inflation
+pressure the vertical data were measured at except where stated above, so
+:attr:`Tyre.pressure` is NaN otherwise.
+
+Errors
+------
+Everything wrong with a file is an :class:`InputError` naming the file, a
+line where it can (the JSON decoder's line for malformed JSON; otherwise the
+line of the key, or of the object that lacks it) and the key path: malformed
+JSON, a missing key, a value that is not a finite number (JSON's ``NaN``,
+``Infinity`` and overflowing literals included) or is out of range, a curve
+that is not rows of increasing deflection, an unknown template, a missing
+``.tir``.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import re
+from pathlib import Path
+
+import numpy as np
+
+from ..errors import InputError
+from .params import Tyre
+from .tir import TirFile, TirSection, parse_tir, read_tir
+
+#: every template :func:`read_chrono_tyre` reads
+SUPPORTED_TEMPLATES = ("Pac89Tire", "Pac02Tire", "PacejkaTire", "MFTire", "FialaTire", "TMeasyTire",
+                       "TMsimpleTire", "RigidTire", "LugreTire")
+#: Chrono templates with no vertical law in the file (finite-element and multibody tyres)
+STRUCTURAL_TEMPLATES = ("ANCFTire", "ANCFToroidalTire", "ReissnerTire", "ReissnerToroidalTire",
+                        "FEATire", "MBTire")
+
+#: contact-patch keys assumed for tyres read from JSON values (as tyre/data/hmmwv-pac89.tir)
+ASSUMED_CONTACT_PATCH = {"PA1": 0.15, "PA2": 7.06, "PAE": 0.72, "PBE": 1.0, "PCE": 2.0, "PLS": 0.9,
+                         "N_WIDTH": 6, "N_LENGTH": 5}
+#: assumed half contact width as a fraction of the section width, at every deflection
+ASSUMED_HALF_WIDTH = 0.4
+#: deflections [m] of the two rows of the assumed [CONTACT_WIDTH_CURVE]
+_WIDTH_CURVE_DEFLECTIONS = (0.0, 0.1)
+
+#: Chrono's TMeasy "engineer's guess": deflection at the load capacity per section height,
+#: damping ratio, and the g that turns a load index's mass into a force [m/s^2]
+GUESS_DEFLECTION_RATIO = 0.16
+GUESS_DAMPING_RATIO = 0.5
+GUESS_GRAVITY = 9.81
+
+#: load capacity [kg] per load index 0..279 as Project Chrono's TMeasy tables it: the ISO 4000-1 /
+#: ETRTO load-index table but for a few entries (e.g. 46.5 kg at index 1 and 5850 kg at 169, where
+#: the standard lists 46.2 and 5800). Ten indices a row, the first index of the row on the left.
+_LOAD_INDEX_TABLE = """
+  0  45 46.5 47.5 48.7 50 51.5 53 54.5 56 58
+ 10  60 61.5 63 65 67 69 71 73 75 77.5
+ 20  80 82.5 85 87.5 90 92.5 95 97.5 100 103
+ 30  106 109 112 115 118 121 125 128 132 136
+ 40  140 145 150 155 160 165 170 175 180 185
+ 50  190 195 200 206 212 218 224 230 236 243
+ 60  250 257 265 272 280 290 300 307 315 325
+ 70  335 345 355 365 375 387 400 412 425 437
+ 80  450 462 475 487 500 515 530 545 560 580
+ 90  600 615 630 650 670 690 710 730 750 775
+100  800 825 850 875 900 925 950 975 1000 1030
+110  1060 1090 1120 1150 1180 1215 1250 1285 1320 1360
+120  1400 1450 1500 1550 1600 1650 1700 1750 1800 1850
+130  1900 1950 2000 2060 2120 2180 2240 2300 2360 2430
+140  2500 2575 2650 2725 2800 2900 3000 3075 3150 3250
+150  3350 3450 3550 3650 3750 3875 4000 4125 4250 4375
+160  4500 4625 4750 4875 5000 5150 5300 5450 5600 5850
+170  6000 6150 6300 6500 6700 6900 7100 7300 7500 7750
+180  8000 8250 8500 8750 9000 9250 9500 9750 10000 10300
+190  10600 10900 11200 11500 11800 12150 12500 12850 13200 13600
+200  14000 14500 15000 15550 16000 16500 17000 17500 18000 18500
+210  19000 19500 20000 20600 21200 21800 22400 23000 23600 24300
+220  25000 25750 26500 27250 28000 29000 30000 30750 31500 32500
+230  33500 34500 35500 36500 37500 38750 40000 41250 42500 43750
+240  45000 46250 47500 48750 50000 51500 53000 54500 56000 58000
+250  60000 61500 63000 65000 67000 69000 71000 73000 75000 77500
+260  80000 82500 85000 87500 90000 92500 95000 97500 100000 103000
+270  106000 109000 112000 115000 118000 121000 125000 128500 132000 136000
+"""
+
+
+def _load_index_table() -> tuple[float, ...]:
+    values: list[float] = []
+    for row in _LOAD_INDEX_TABLE.strip().splitlines():
+        first, *loads = row.split()
+        assert int(first) == len(values) and len(loads) == 10
+        values += [float(v) for v in loads]
+    return tuple(values)
+
+
+#: load capacity [kg] of each load index (index = position)
+LOAD_INDEX_KG = _load_index_table()
+
+_PAC89_SETS = (("Lateral Coefficients", "a", 14, "LATERAL_COEFFICIENTS", "A"),
+               ("Longitudinal Coefficients", "b", 11, "LONGITUDINAL_COEFFICIENTS", "B"),
+               ("Aligning Coefficients", "c", 18, "ALIGNING_COEFFICIENTS", "C"))
+
+#: Pac02Tire embedded keys: (JSON object, JSON key) -> (section, ADAMS key)
+_PAC02_NAMED = {
+    ("Dimension", "Unloaded Radius"): ("DIMENSION", "UNLOADED_RADIUS"),
+    ("Dimension", "Width"): ("DIMENSION", "WIDTH"),
+    ("Dimension", "Aspect Ratio"): ("DIMENSION", "ASPECT_RATIO"),
+    ("Dimension", "Rim Radius"): ("DIMENSION", "RIM_RADIUS"),
+    ("Dimension", "Rim Width"): ("DIMENSION", "RIM_WIDTH"),
+    ("Vertical", "Vertical Stiffness"): ("VERTICAL", "VERTICAL_STIFFNESS"),
+    ("Vertical", "Vertical Damping"): ("VERTICAL", "VERTICAL_DAMPING"),
+    ("Vertical", "Nominal Wheel Load"): ("VERTICAL", "FNOMIN"),
+    ("Vertical", "BREFF"): ("VERTICAL", "BREFF"),
+    ("Vertical", "DREFF"): ("VERTICAL", "DREFF"),
+    ("Vertical", "FREFF"): ("VERTICAL", "FREFF"),
+    ("Vertical", "QFZ1"): ("VERTICAL", "Q_FZ1"),
+    ("Vertical", "QFZ2"): ("VERTICAL", "Q_FZ2"),
+    ("Vertical", "QFZ3"): ("VERTICAL", "Q_FZ3"),
+    ("Vertical", "QPFZ1"): ("VERTICAL", "PFZ1"),
+    ("Vertical", "QV2"): ("VERTICAL", "Q_V2"),
+    ("Tire Conditions", "Inflation Pressure"): ("TIRE_CONDITIONS", "IP"),
+    ("Tire Conditions", "Nominal Inflation Pressure"): ("TIRE_CONDITIONS", "IP_NOM"),
+}
+#: Pac02Tire embedded top-level keys -> [MODEL] keys
+_PAC02_MODEL = {"FITTYP": "FITTYP", "LONGVL": "LONGVL", "VXLOW": "VXLOW"}
+#: Pac02Tire embedded coefficient objects -> sections (keys are the ADAMS names)
+_PAC02_SECTIONS = {"Scaling Factors": "SCALING_COEFFICIENTS",
+                   "Longitudinal Coefficients": "LONGITUDINAL_COEFFICIENTS",
+                   "Lateral Coefficients": "LATERAL_COEFFICIENTS",
+                   "Aligning Coefficients": "ALIGNING_COEFFICIENTS",
+                   "Overturning Coefficients": "OVERTURNING_COEFFICIENTS",
+                   "Rolling Coefficients": "ROLLING_COEFFICIENTS"}
+
+_SECTION_NAME = re.compile(r"[A-Z][A-Z0-9_]*")
+_COMMENT = re.compile(r'"(?:\\.|[^"\\])*"|//[^\n]*|/\*.*?\*/', re.S)
+
+
+# --- the JSON document ------------------------------------------------------
+
+def _blank(match: re.Match) -> str:
+    """A comment replaced by spaces (newlines kept): lines and columns stay where they were."""
+    text = match.group(0)
+    if text.startswith('"'):
+        return text
+    return re.sub(r"[^\n]", " ", text)
+
+
+def _where(keys) -> str:
+    return " > ".join(str(k) if not isinstance(k, int) else f"row {k + 1}" for k in keys)
+
+
+class _Document:
+    """A parsed Chrono JSON file with the helpers that read it and name what is wrong."""
+
+    def __init__(self, path: Path):
+        self.path = path
+        self.source = str(path)
+        if not path.is_file():
+            raise InputError("no such Chrono tyre file", source=self.source)
+        try:
+            raw = path.read_text(encoding="utf-8")
+        except UnicodeDecodeError as exc:
+            raise InputError(f"not UTF-8 text ({exc.reason} at byte {exc.start})",
+                             source=self.source) from None
+        self.text = _COMMENT.sub(_blank, raw)
+        try:
+            self.data = json.loads(self.text)
+        except json.JSONDecodeError as exc:
+            raise InputError(f"malformed JSON: {exc.msg} (column {exc.colno})", source=self.source,
+                             line=exc.lineno) from None
+        if not isinstance(self.data, dict):
+            raise InputError("expected a JSON object ({ ... }) at the top level", source=self.source,
+                             line=1)
+
+    # -- where -------------------------------------------------------------
+    def line(self, keys) -> int | None:
+        """Line of the last key of ``keys`` found in the text (each searched after its parent)."""
+        pos, line = 0, None
+        for key in keys:
+            if isinstance(key, int):
+                break
+            pattern = '"' + re.escape(json.dumps(key, ensure_ascii=False)[1:-1]) + r'"\s*:'
+            m = re.compile(pattern).search(self.text, pos)
+            if m is None:
+                break
+            pos = m.end()
+            line = self.text.count("\n", 0, m.start()) + 1
+        return line
+
+    def error(self, message: str, keys) -> InputError:
+        return InputError(message, source=self.source, line=self.line(keys), field=_where(keys) or None)
+
+    # -- what --------------------------------------------------------------
+    def has(self, *keys) -> bool:
+        node = self.data
+        for key in keys:
+            if isinstance(node, dict) and not isinstance(key, int) and key in node:
+                node = node[key]
+            elif isinstance(node, list) and isinstance(key, int) and 0 <= key < len(node):
+                node = node[key]
+            else:
+                return False
+        return True
+
+    def value(self, *keys):
+        """The value at ``keys``; a missing key names itself and the object that lacks it."""
+        node = self.data
+        for i, key in enumerate(keys):
+            if not isinstance(node, dict):
+                raise self.error(f"expected an object holding '{key}', found {_kind(node)}", keys[:i])
+            if key not in node:
+                where = f" in '{_where(keys[:i])}'" if i else ""
+                raise self.error(f"missing key '{key}'{where}", keys[:i + 1])
+            node = node[key]
+        return node
+
+    def number(self, *keys, minimum: float | None = None, positive: bool = False) -> float:
+        """The finite number at ``keys`` (``minimum``, ``positive``: its range)."""
+        return self.check_number(self.value(*keys), keys, minimum, positive)
+
+    def check_number(self, value, keys, minimum: float | None = None, positive: bool = False) -> float:
+        """``value`` (found at ``keys``) as a finite float in range, or an error naming ``keys``."""
+        if isinstance(value, bool) or not isinstance(value, (int, float)):
+            raise self.error(f"expected a number, found {_kind(value)}", keys)
+        x = float(value)
+        if not math.isfinite(x):
+            raise self.error(f"expected a finite number, found {value!r}", keys)
+        if positive and not x > 0:
+            raise self.error(f"expected a positive number, found {value!r}", keys)
+        if minimum is not None and not x >= minimum:
+            raise self.error(f"expected a number >= {minimum:g}, found {value!r}", keys)
+        return x
+
+    def string(self, *keys) -> str:
+        value = self.value(*keys)
+        if not isinstance(value, str) or not value.strip():
+            raise self.error(f"expected a non-empty string, found {_kind(value)}", keys)
+        return value
+
+    def vector(self, *keys, size: int) -> list[float]:
+        value = self.value(*keys)
+        if not isinstance(value, list) or len(value) != size:
+            raise self.error(f"expected a list of {size} numbers, found {_kind(value)}", keys)
+        return [self.check_number(v, keys, minimum=0.0) for v in value]
+
+    def curve(self, *keys) -> np.ndarray:
+        """A load-deflection curve: 2-100 rows of (deflection [m], load [N]), deflection increasing."""
+        value = self.value(*keys)
+        if not isinstance(value, list) or not 2 <= len(value) <= 100:
+            raise self.error(f"expected a list of 2 to 100 [deflection, load] rows, found {_kind(value)}",
+                             keys)
+        rows = []
+        for i, row in enumerate(value):
+            if not isinstance(row, list) or len(row) != 2:
+                raise self.error(f"expected a [deflection, load] pair, found {_kind(row)}", keys + (i,))
+            rows.append([self.check_number(v, keys + (i,), minimum=0.0) for v in row])
+        table = np.array(rows, dtype=float)
+        if np.any(np.diff(table[:, 0]) <= 0):
+            raise self.error("deflections must increase strictly down the curve", keys)
+        return table
+
+
+def _kind(value) -> str:
+    if isinstance(value, bool):
+        return f"'{str(value).lower()}'"
+    if isinstance(value, (dict, list)):
+        return "an object" if isinstance(value, dict) else f"a list of {len(value)}"
+    if value is None:
+        return "null"
+    return repr(value)
+
+
+# --- the property file --------------------------------------------------------
+
+class _Builder:
+    """A :class:`TirFile` in SI filled key by key, each key remembering its JSON line."""
+
+    def __init__(self, doc: _Document, template: str, header=(), tir: TirFile | None = None):
+        self.doc = doc
+        if tir is not None:  # add to a property file read from elsewhere
+            self.tir = tir
+            return
+        self.tir = TirFile(source=doc.source, header=[
+            "$" + "-" * 74,
+            f"$ Project Chrono {template} read from {doc.path.name} by tyrelab.tyre.chrono_json",
+            *header])
+        self.put("MDI_HEADER", "FILE_TYPE", "tir")
+        self.put("MDI_HEADER", "FILE_VERSION", 3.0)
+        self.put("MDI_HEADER", "FILE_FORMAT", "ASCII")
+        for key, word in (("LENGTH", "meter"), ("FORCE", "newton"), ("ANGLE", "radians"),
+                          ("MASS", "kg"), ("TIME", "second")):
+            self.put("UNITS", key, word)
+
+    def section(self, name: str, keys=()) -> TirSection:
+        sec = self.tir.sections.get(name)
+        if sec is None:
+            sec = TirSection(name, self.doc.line(keys) or 0)
+            self.tir.sections[name] = sec
+        return sec
+
+    def put(self, section: str, key: str, value, keys=()) -> None:
+        sec = self.section(section, keys)
+        sec.entries[key] = value
+        line = self.doc.line(keys) if keys else None
+        if line is not None:
+            sec.lines[key] = line
+
+    def table(self, section: str, table, columns, keys=()) -> None:
+        sec = self.section(section, keys)
+        sec.table = np.asarray(table, dtype=float)
+        sec.columns = list(columns)
+
+    def assumed_contact_patch(self, width: float) -> None:
+        self.tir.header += [
+            "$ ASSUMED (the JSON has no contact-patch data): [CONTACT_PATCH] length and cam",
+            "$ shape are the thesis's dimensionless XZL values (section 4.4), cam counts",
+            "$ Schmeitz's passenger-car optimum (5 along, 6 across); [CONTACT_WIDTH_CURVE]",
+            f"$ a half contact width of {ASSUMED_HALF_WIDTH:g} x the section width at every deflection.",
+        ]
+        for key, value in ASSUMED_CONTACT_PATCH.items():
+            self.put("CONTACT_PATCH", key, value)
+        b = ASSUMED_HALF_WIDTH * width
+        self.table("CONTACT_WIDTH_CURVE", [[d, b] for d in _WIDTH_CURVE_DEFLECTIONS],
+                   ["deflection", "half_width"])
+
+    def mass_and_inertia(self, mass_keys=("Mass",), inertia_keys=("Inertia",)) -> None:
+        doc = self.doc
+        self.put("INERTIA", "MASS", doc.number(*mass_keys, minimum=0.0), mass_keys)
+        self.put("INERTIA", "IYY", doc.vector(*inertia_keys, size=3)[1], inertia_keys)
+
+    def vertical(self, stiffness_keys, damping_keys, curve_keys=None) -> None:
+        """Linear stiffness (optional when a curve is given), damping, curve."""
+        doc = self.doc
+        has_curve = curve_keys is not None and doc.has(*curve_keys)
+        if not has_curve or doc.has(*stiffness_keys):
+            self.put("VERTICAL", "VERTICAL_STIFFNESS", doc.number(*stiffness_keys, positive=True),
+                     stiffness_keys)
+        self.put("VERTICAL", "VERTICAL_DAMPING", doc.number(*damping_keys, minimum=0.0), damping_keys)
+        if has_curve:
+            self.table("DEFLECTION_LOAD_CURVE", doc.curve(*curve_keys), ["pen", "fz"], curve_keys)
+
+    def dimensions(self, radius_keys, width: float | None = None, width_keys=None,
+                   rim_keys=None) -> tuple[float, float]:
+        doc = self.doc
+        r0 = doc.number(*radius_keys, positive=True)
+        self.put("DIMENSION", "UNLOADED_RADIUS", r0, radius_keys)
+        if width is None:
+            width = doc.number(*width_keys, positive=True)
+        self.put("DIMENSION", "WIDTH", width, width_keys or ())
+        if rim_keys is not None:
+            rim = doc.number(*rim_keys, positive=True)
+            if not rim < r0:
+                raise doc.error(f"the rim radius {rim:g} m must be below the unloaded radius {r0:g} m",
+                                rim_keys)
+            self.put("DIMENSION", "RIM_RADIUS", rim, rim_keys)
+        return r0, width
+
+
+def _comment(doc: _Document, label: str, *keys) -> list[str]:
+    """A header line recording a value tyrelab does not use (nothing when absent)."""
+    if not doc.has(*keys):
+        return []
+    return [f"$ {label}: {json.dumps(doc.value(*keys))} (not used by tyrelab)"]
+
+
+def _pac89(doc: _Document) -> TirFile:
+    dp = ("Design Parameters",)
+    header = [*_comment(doc, "source's coefficient of friction", "Coefficient of Friction"),
+              *_comment(doc, "lateral stiffness [N/m]", *dp, "Lateral Stiffness"),
+              *_comment(doc, "rolling resistance coefficient", *dp, "Rolling Resistance"),
+              "$ Coefficients in the ADAMS/Bakker convention (Fz in kN, slip angle and camber in",
+              "$ degrees, longitudinal slip in percent)."]
+    b = _Builder(doc, "Pac89Tire", header)
+    b.put("MODEL", "PROPERTY_FILE_FORMAT", "PAC89")
+    b.put("MODEL", "TYRESIDE", "LEFT")
+    _, width = b.dimensions(dp + ("Unloaded Radius",), width_keys=dp + ("Width",))
+    b.mass_and_inertia()
+    b.vertical(dp + ("Vertical Stiffness",), dp + ("Vertical Damping",), dp + ("Vertical Curve Data",))
+    b.assumed_contact_patch(width)
+    for obj, letter, count, section, adams in _PAC89_SETS:
+        b.section(section, (obj,))
+        for i in range(count):
+            keys = (obj, f"{letter}{i}")
+            b.put(section, f"{adams}{i}", doc.number(*keys), keys)
+    return b.tir
+
+
+def _fiala(doc: _Document) -> TirFile:
+    fp = ("Fiala Parameters",)
+    header = [f"$ Fiala handling parameters ({name}) not used by tyrelab: {json.dumps(doc.value(*fp, name))}"
+              for name in ("CSLIP", "CALPHA", "UMIN", "UMAX", "Rolling Resistance")
+              if doc.has(*fp, name)]
+    b = _Builder(doc, "FialaTire", header)
+    _, width = b.dimensions(fp + ("Unloaded Radius",), width_keys=fp + ("Width",))
+    b.mass_and_inertia()
+    b.vertical(fp + ("Vertical Stiffness",), fp + ("Vertical Damping",), fp + ("Vertical Curve Data",))
+    b.assumed_contact_patch(width)
+    return b.tir
+
+
+def _tmeasy(doc: _Document, template: str) -> TirFile:
+    design = ("Design",)
+    b = _Builder(doc, template)
+    r0, width = b.dimensions(design + ("Unloaded Radius [m]",), width_keys=design + ("Width [m]",),
+                             rim_keys=design + ("Rim Radius [m]",))
+    rim = b.tir.sections["DIMENSION"].entries["RIM_RADIUS"]
+    b.mass_and_inertia(design + ("Mass [kg]",), design + ("Inertia [kg.m2]",))
+    mass = b.tir.sections["INERTIA"].entries["MASS"]
+    vert = ("Parameters", "Vertical")
+    if doc.has("Parameters"):
+        stiffness, curve = vert + ("Vertical Tire Stiffness [N/m]",), vert + ("Tire Spring Curve Data",)
+        if not doc.has(*stiffness) and not doc.has(*curve):
+            doc.value(*vert)  # names a missing 'Vertical'
+            raise doc.error("missing key 'Vertical Tire Stiffness [N/m]' (or 'Tire Spring Curve Data')",
+                            vert)
+        if doc.has(*stiffness):
+            b.put("VERTICAL", "VERTICAL_STIFFNESS", doc.number(*stiffness, positive=True), stiffness)
+            b.put("VERTICAL", "VERTICAL_DAMPING",
+                  doc.number(*vert, "Tire Vertical Damping [Ns/m]", minimum=0.0),
+                  vert + ("Tire Vertical Damping [Ns/m]",))
+        else:
+            b.vertical(stiffness, vert + ("Tire Vertical Damping [Ns/m]",), curve)
+    else:
+        if doc.has("Load Index"):
+            keys = ("Load Index",)
+            li = doc.number(*keys, minimum=0.0)
+            if li != int(li) or li >= len(LOAD_INDEX_KG):
+                raise doc.error(f"expected a whole load index 0-{len(LOAD_INDEX_KG) - 1}, found {li:g}", keys)
+            load = LOAD_INDEX_KG[int(li)] * GUESS_GRAVITY
+            what = f"load index {int(li)} ({LOAD_INDEX_KG[int(li)]:g} kg)"
+        elif doc.has("Maximum Bearing Capacity [N]"):
+            keys = ("Maximum Bearing Capacity [N]",)
+            load = doc.number(*keys, positive=True)
+            what = f"bearing capacity {load:g} N"
+        else:
+            raise InputError("no vertical data: expected 'Parameters' > 'Vertical', a 'Load Index' or a "
+                             "'Maximum Bearing Capacity [N]'", source=doc.source, field="Parameters")
+        k = load / (GUESS_DEFLECTION_RATIO * (r0 - rim))
+        c = 2.0 * GUESS_DAMPING_RATIO * math.sqrt(k * mass)
+        b.put("VERTICAL", "VERTICAL_STIFFNESS", k, keys)
+        b.put("VERTICAL", "VERTICAL_DAMPING", c, keys)
+        b.tir.header += [
+            f"$ Vertical law GUESSED as Chrono does from the {what}: stiffness = load /",
+            f"$ ({GUESS_DEFLECTION_RATIO:g} x (unloaded radius - rim radius)), damping = 2 x "
+            f"{GUESS_DAMPING_RATIO:g} x sqrt(stiffness x tyre mass)."]
+    if doc.has("Inflation Pressure Use [Pa]"):
+        keys = ("Inflation Pressure Use [Pa]",)
+        b.put("OPERATING_CONDITIONS", "INFLPRES", doc.number(*keys, positive=True), keys)
+    b.assumed_contact_patch(width)
+    return b.tir
+
+
+def _rigid(doc: _Document) -> TirFile:
+    coeffs = ("Contact Material", "Coefficients")
+    b = _Builder(doc, "RigidTire", [
+        "$ Vertical law: the Hooke coefficients of Chrono's penalty contact (Contact Material >",
+        "$ Coefficients > Normal Stiffness, Normal Damping) for one contact."])
+    _, width = b.dimensions(("Radius",), width_keys=("Width",))
+    b.mass_and_inertia()
+    b.vertical(coeffs + ("Normal Stiffness",), coeffs + ("Normal Damping",))
+    b.assumed_contact_patch(width)
+    return b.tir
+
+
+def _lugre(doc: _Document) -> TirFile:
+    keys = ("Disc Locations",)
+    discs = doc.value(*keys)
+    if not isinstance(discs, list) or len(discs) < 2:
+        raise doc.error(f"expected a list of at least two disc positions, found {_kind(discs)}", keys)
+    ys = [doc.check_number(v, keys) for v in discs]
+    width = abs(ys[0] - ys[-1])
+    if not width > 0:
+        raise doc.error("the first and last discs are at the same place: the tyre has no width", keys)
+    b = _Builder(doc, "LugreTire", ["$ Width: the span of the Lugre discs (as Chrono)."])
+    b.dimensions(("Radius",), width=width)
+    b.tir.sections["DIMENSION"].lines["WIDTH"] = doc.line(keys)
+    b.mass_and_inertia()
+    b.vertical(("Normal Stiffness",), ("Normal Damping",))
+    b.assumed_contact_patch(width)
+    return b.tir
+
+
+def _pac02_embedded(doc: _Document, b: _Builder, only_missing: bool) -> None:
+    """Copy Pac02Tire's embedded keys into ``b.tir`` (``only_missing``: keep what is there)."""
+    tir = b.tir
+
+    def put(section, key, value, keys):
+        if not (only_missing and tir.has(section, key)):
+            b.put(section, key, value, keys)
+
+    for (obj, name), (section, key) in _PAC02_NAMED.items():
+        if doc.has(obj, name):
+            put(section, key, doc.number(obj, name), (obj, name))
+    for name, key in _PAC02_MODEL.items():
+        if doc.has(name):
+            put("MODEL", key, doc.number(name), (name,))
+    for obj, section in _PAC02_SECTIONS.items():
+        if not doc.has(obj):
+            continue
+        entries = doc.value(obj)
+        if not isinstance(entries, dict):
+            raise doc.error(f"expected an object of coefficients, found {_kind(entries)}", (obj,))
+        for name in entries:
+            if not _SECTION_NAME.fullmatch(name):
+                raise doc.error("expected an ADAMS coefficient name (upper case, e.g. PCX1)", (obj, name))
+            put(section, name, doc.number(obj, name), (obj, name))
+
+
+def _fill_inertia(doc: _Document, tir: TirFile) -> None:
+    """The JSON's Mass and Inertia where the property file has no wheel or tyre mass/inertia."""
+    sec = tir.sections.get("INERTIA")
+    if sec is None:
+        sec = tir.sections["INERTIA"] = TirSection("INERTIA", 0)
+    if not (tir.has("INERTIA", "WHEEL_MASS") or tir.has("INERTIA", "MASS")):
+        sec.entries["MASS"] = doc.number("Mass", minimum=0.0)
+    if not (tir.has("INERTIA", "WHEEL_IYY") or tir.has("INERTIA", "IYY")):
+        sec.entries["IYY"] = doc.vector("Inertia", size=3)[1]
+
+
+def _named_tir(doc: _Document, key: str) -> Path:
+    """The .tir a JSON names under ``key``, found as the module docstring says."""
+    name = doc.string(key)
+    given = Path(name)
+    folder = doc.path.parent
+    if given.is_absolute():
+        tried = [given]
+    else:
+        tried = [folder / given, folder / given.name] + [up / given for up in folder.resolve().parents]
+    seen = []
+    for candidate in tried:
+        if candidate not in seen:
+            seen.append(candidate)
+        if candidate.is_file():
+            return candidate
+    shown = ", ".join(str(p) for p in seen[:3]) + (" and the folders above" if len(seen) > 3 else "")
+    raise doc.error(f"the property file '{name}' was not found (looked for {shown})", (key,))
+
+
+def _property_file(doc: _Document, template: str, key: str) -> TirFile:
+    if template == "Pac02Tire" and not doc.has(key):  # coefficients embedded in the JSON
+        doc.value("Dimension")
+        doc.value("Vertical")
+        b = _Builder(doc, template)
+        b.put("MODEL", "PROPERTY_FILE_FORMAT", "PAC2002")
+        _pac02_embedded(doc, b, only_missing=False)
+        for obj, name in (("Dimension", "Unloaded Radius"), ("Dimension", "Width"),
+                          ("Vertical", "Vertical Stiffness")):
+            doc.number(obj, name, positive=True)
+        doc.number("Vertical", "Vertical Damping", minimum=0.0)
+        b.mass_and_inertia()
+        b.assumed_contact_patch(b.tir.number("DIMENSION", "WIDTH"))
+        return b.tir
+    doc.number("Mass", minimum=0.0)  # Chrono requires both, whatever the .tir holds
+    doc.vector("Inertia", size=3)
+    path = _named_tir(doc, key)
+    tir = read_tir(path)
+    tir.header = [f"$ read through Project Chrono {template} file {doc.source} (key '{key}')", *tir.header]
+    if template == "Pac02Tire":
+        _pac02_embedded(doc, _Builder(doc, template, tir=tir), only_missing=True)
+    _fill_inertia(doc, tir)
+    return tir
+
+
+def _render(value) -> str:
+    if isinstance(value, str):
+        quote = "'" if "'" not in value else '"'
+        return f"{quote}{value}{quote}"
+    return repr(value) if isinstance(value, float) else str(int(value))
+
+
+def _mf_embedded(doc: _Document) -> TirFile:
+    """MFTire: the property file's sections as top-level JSON objects."""
+    lines = [f"$ Project Chrono MFTire read from {doc.path.name} by tyrelab.tyre.chrono_json"]
+    where = {}
+    for name, entries in doc.data.items():
+        if not _SECTION_NAME.fullmatch(name):
+            continue
+        if not isinstance(entries, dict):
+            raise doc.error(f"expected an object of '{name}' keys, found {_kind(entries)}", (name,))
+        lines.append(f"[{name}]")
+        for key, value in entries.items():
+            if not re.fullmatch(r"[A-Za-z_][A-Za-z0-9_]*", key):
+                raise doc.error("expected a property-file key (letters, digits, _)", (name, key))
+            if not isinstance(value, str):
+                doc.number(name, key)  # finite numbers only
+            elif "'" in value and '"' in value:
+                raise doc.error("a string may not hold both kinds of quote", (name, key))
+            lines.append(f"{key} = {_render(value)}")
+            where[(name.upper(), key.upper())] = (name, key)
+    if len(lines) == 1:
+        raise InputError("no property-file sections (upper-case objects such as \"MODEL\", "
+                         "\"DIMENSION\", \"VERTICAL\")", source=doc.source, field="MFTire")
+    try:
+        tir = parse_tir("\n".join(lines) + "\n", source=doc.source)
+    except InputError as exc:  # its line is the rendered text's: name the JSON's instead
+        keys = next((v for k, v in where.items() if k[1] == exc.field), ())
+        raise InputError(exc.reason, source=doc.source, line=doc.line(keys) if keys else None,
+                         field=_where(keys) or exc.field) from None
+    for sec in tir.sections.values():
+        sec.line = doc.line((sec.name,)) or 0
+        sec.lines = {key: doc.line(where[(sec.name, key)]) for key in sec.entries
+                     if (sec.name, key) in where}
+    _fill_inertia(doc, tir)
+    return tir
+
+
+# --- front door -----------------------------------------------------------------
+
+def read_chrono_json(path) -> TirFile:
+    """The property file (:class:`TirFile`, SI) of a Project Chrono JSON tyre file.
+
+    See the module docstring for the keys each template gives and what is
+    assumed. Raises :class:`InputError` naming the file, line and key.
+    """
+    doc = _Document(Path(path))
+    if doc.has("Type") and doc.value("Type") != "Tire":
+        raise doc.error(f"expected a Chrono tyre file (\"Type\": \"Tire\"), found {_kind(doc.value('Type'))}",
+                        ("Type",))
+    template = doc.string("Template")
+    if template == "Pac89Tire":
+        return _pac89(doc)
+    if template == "FialaTire":
+        return _fiala(doc)
+    if template in ("TMeasyTire", "TMsimpleTire"):
+        return _tmeasy(doc, template)
+    if template == "RigidTire":
+        return _rigid(doc)
+    if template == "LugreTire":
+        return _lugre(doc)
+    if template == "Pac02Tire":
+        return _property_file(doc, template, "TIR Specification File")
+    if template == "PacejkaTire":
+        return _property_file(doc, template, "Pacejka Parameter File")
+    if template == "MFTire":
+        return _mf_embedded(doc)
+    supported = ", ".join(SUPPORTED_TEMPLATES)
+    if template in STRUCTURAL_TEMPLATES:
+        raise doc.error(f"'{template}' is a finite-element or multibody tyre: its vertical stiffness comes "
+                        f"from its structure and inflation pressure, not from a number in the file, so "
+                        f"tyrelab cannot run it; supported templates: {supported}", ("Template",))
+    raise doc.error(f"unknown template '{template}'; supported templates: {supported}", ("Template",))
+
+
+def read_chrono_tyre(path, name: str | None = None) -> Tyre:
+    """A :class:`Tyre` from a Project Chrono JSON tyre file (named after the file by default).
+
+    Parameters
+    ----------
+    path : str or Path
+        The ``.json`` file (``//`` and ``/* */`` comments allowed, as Chrono).
+    name : str, optional
+        The tyre's name; default the file's stem.
+
+    Raises
+    ------
+    InputError
+        Malformed JSON (with its line), a missing key, a value that is not a
+        finite number in range, an unknown template, a missing ``.tir``.
+
+    Examples
+    --------
+    >>> tyre = read_chrono_tyre("HMMWV_Pac89Tire.json")  # doctest: +SKIP
+    >>> tyre.unloaded_radius, tyre.vertical_law.static_load(0.05)  # doctest: +SKIP
+    (0.464, 19670.0)
+    """
+    path = Path(path)
+    return Tyre.from_tir(read_chrono_json(path), name=name or path.stem)
