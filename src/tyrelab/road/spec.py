@@ -118,17 +118,25 @@ def road_from_spec(spec: str | Road) -> Road:
     if text.lower() in tracks:
         return tracks[text.lower()]()
     path_text, _, offset = text.partition("@")
-    if path_text.lower().endswith(".crg"):
+    suffix = Path(path_text).suffix.lower()
+    if suffix in (".crg", ".rdf", ".obj"):
         path = Path(path_text)
+        what = {".crg": "OpenCRG", ".rdf": "Adams road data", ".obj": "OBJ mesh"}[suffix]
         if not path.is_file():
-            raise InputError("no such OpenCRG file", source=str(path))
-        from .crg import CrgRoad
+            raise InputError(f"no such {what} file", source=str(path))
         v = 0.0
         if offset:
             if not re.fullmatch(_NUM, offset):
                 raise InputError(f"cannot read lateral offset '{offset}' in road '{text}'; expected metres",
                                  field="road")
             v = float(offset)
+        if suffix == ".rdf":
+            from .rdf import read_rdf
+            return read_rdf(path, y_offset=v)
+        if suffix == ".obj":
+            from .mesh_files import read_obj
+            return read_obj(path, y_offset=v)
+        from .crg import CrgRoad
         return CrgRoad(path, v_offset=v)
     raise InputError(f"unknown road '{text}'; expected one of: {', '.join(road_names())}",
                      field="road")
