@@ -303,3 +303,20 @@ def test_missing_blocks(tmp_path, text, fragment):
 def test_spec_names_a_missing_file(tmp_path):
     with pytest.raises(InputError, match="no such Adams road data file"):
         road_from_spec(str(tmp_path / "nowhere.rdf"))
+
+
+def test_cli_exports_rdf_and_obj_that_read_back_as_the_road(tmp_path):
+    """`tyrelab road export ROAD -o FILE.rdf|.obj`: the file read back as a road
+    has the road's heights at its grid nodes."""
+    from tyrelab.cli.main import main
+    from tyrelab.road.spec import road_from_spec
+
+    road = road_from_spec("cleat:50x50")
+    grid = road.grid()
+    x = grid.x0 + grid.dx * np.arange(grid.z.shape[0])
+    for name in ("c.rdf", "c.obj"):
+        out = tmp_path / name
+        assert main(["road", "export", "cleat:50x50", "-o", str(out)]) == 0
+        back = road_from_spec(str(out))
+        np.testing.assert_allclose(back.height(x, np.zeros_like(x)), road.height(x, np.zeros_like(x)),
+                                   rtol=0, atol=1e-12)

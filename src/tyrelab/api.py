@@ -8,6 +8,8 @@
 from __future__ import annotations
 
 from .errors import InputError
+from .limits import check_pressure
+from .rig.simulation import SimulationError
 from .tyre.model import TyreModel
 from .tyre.library import DEFAULT_TYRE, load_tyre
 from .tyre.params import Tyre
@@ -15,6 +17,8 @@ from .tyre.params import Tyre
 #: rigs that :func:`simulate` drives: the towed trailer, the quarter vehicle, the
 #: fixed-height rolling test, the trailer's drop test (thesis 3.4.1), a single wheel dropped
 RIGS = ("trailer", "quarter-vehicle", "rolling", "drop", "wheel-drop")
+#: output sample rate [Hz] when none is given (every step when the step is longer than 1 ms)
+DEFAULT_OUTPUT_RATE = 1000.0
 
 
 def default_handling(tyre: Tyre) -> str:
@@ -47,18 +51,41 @@ def make_tyre_model(tyre: str | Tyre = DEFAULT_TYRE, model: str = "point", press
     ``handling=None`` takes the handling model the property file describes
     (:func:`default_handling`).
     """
+    if pressure is not None:
+        check_pressure(pressure)
     t = tyre if isinstance(tyre, Tyre) else load_tyre(tyre, pressure)
     if stiffness is not None:
         t = t.with_stiffness(stiffness)
     return TyreModel(t, contact=model, handling=handling or default_handling(t))
 
 
+def _default_duration(road, speed: float) -> float:
+    """The simulated time of a run to the road's end (as the rigs compute it)."""
+    return max(road.extent()[1] - road.run_start, 1.0) / speed
+
+
+def _diverged(exc: Exception, tm: TyreModel, dt: float, wheel_load: float) -> SimulationError:
+    """A divergence as one line naming the step size and the likely parameter."""
+    from .limits import stable_step, wheel_hop_omega
+    limit, why = stable_step(tm, wheel_load)
+    text = " ".join(str(exc).split())
+    if tm.has_state:
+        likely = (f"the {tm.contact} model's parameters ([FLEXIBLE_RING] of the tyre) or the time "
+                  f"step; its stated stable step is {limit:.3g} s")
+    else:
+        _, k_max, mass = wheel_hop_omega(tm.tyre, wheel_load)
+        likely = (f"VERTICAL_STIFFNESS / [DEFLECTION_LOAD_CURVE] (stiffest {k_max:.3g} N/m) against "
+                  f"the wheel mass {mass:.3g} kg of {tm.tyre.name}; stable step {limit:.3g} s ({why})")
+    return SimulationError(f"{text.rstrip('.;')} at time step {dt:g} s; likely cause: {likely}; "
+                           "try a smaller time step or check the property file")
+
+
 def simulate(tyre: str | Tyre = DEFAULT_TYRE, model: str = "point", road="cleat:50x50",
              speed: float = 12 / 3.6, load="LC1", pressure: float | None = None,
              stiffness: str | None = None, handling: str | None = None,
              rig: str = "trailer", duration: float | None = None,
-             dt: float = 1e-3, output_rate: float = 1000.0, progress: bool | None = None,
-             left_wheel: str | None = None):
+             dt: float = 1e-3, output_rate: float | None = None, progress: bool | None = None,
+             left_wheel: str | None = None, force: bool = False):
     """Run a tyre model on a rig over a road; returns the signal table.
 
     Parameters
@@ -70,9 +97,11 @@ def simulate(tyre: str | Tyre = DEFAULT_TYRE, model: str = "point", road="cleat:
     road : str or Road
         A road name (see :func:`tyrelab.road.spec.road_from_spec`).
     speed : float
-        Towing speed [m/s].
+        Towing speed [m/s], :data:`tyrelab.limits.MIN_SPEED` to
+        :data:`~tyrelab.limits.MAX_SPEED`.
     load : str or float
-        ``"LC1"``-``"LC3"`` (thesis Table 3-4) or a static wheel load [N].
+        ``"LC1"``-``"LC3"`` (thesis Table 3-4) or a static wheel load [N],
+        below the load that presses the tyre onto its rim.
     pressure : float, optional
         Inflation pressure [Pa] (built-in tyres only).
     stiffness : {"table", "linear"}, optional
@@ -87,22 +116,87 @@ def simulate(tyre: str | Tyre = DEFAULT_TYRE, model: str = "point", road="cleat:
         ``wheel-drop``: the quarter vehicle dropped the same way.
     duration, dt, output_rate : float
         Simulated time [s] (default: until the road ends; 3 s for a drop),
-        time step [s], output sample rate [Hz].
+        time step [s], output sample rate [Hz] (at most ``1 / dt``; default
+        1000 Hz, or every step when the step is longer than 1 ms). The step
+        must not exceed the model's stable step
+        (:func:`tyrelab.limits.stable_step`).
     left_wheel : str, optional
         Trailer rigs: contact model of the left wheel, which runs on flat
         ground (default: ``model``), e.g. ``"point"`` -- the same tyre and
         vertical law at a fraction of the ring's cost.
+    force : bool
+        Run even when the estimated memory or wall time is above
+        :data:`tyrelab.limits.MAX_MEMORY` / :data:`~tyrelab.limits.MAX_WALL_TIME`.
+
+    Every argument is checked before any work (:mod:`tyrelab.limits`); a run
+    that leaves the physics the models hold for (rim contact, an overturned
+    trailer, a wheel off the road) issues a
+    :class:`tyrelab.guards.PhysicsWarning` per finding (also listed in the
+    table's ``attrs["metadata"]["physics_warnings"]``).
     """
+    from . import guards, limits
+
     if rig not in RIGS:
         raise InputError(f"unknown rig '{rig}', expected one of {', '.join(RIGS)}", field="rig")
+    drop = rig in ("drop", "wheel-drop")
+    if not drop:
+        speed = limits.check_speed(speed)
+    dt = limits.check_dt(dt)
+    if output_rate is None:
+        output_rate = min(DEFAULT_OUTPUT_RATE, 1.0 / dt)
+    output_rate = limits.check_rate(output_rate, dt)
+    if duration is not None:
+        duration = limits.check_duration(duration, dt, output_rate)
     tm = make_tyre_model(tyre, model, pressure, stiffness, handling)
     if left_wheel is not None and rig not in ("trailer", "drop"):
         raise InputError(f"left_wheel applies to the trailer rigs, not to '{rig}'", field="left_wheel")
+    if isinstance(load, str):
+        from .rig.trailer import load_case_wheel_load
+        wheel_load = limits.check_wheel_load(load_case_wheel_load(load), tm.tyre)
+    else:
+        wheel_load = limits.check_wheel_load(load, tm.tyre)
+    guards.check_load_range(tm.tyre, wheel_load)
+    if rig in ("quarter-vehicle", "wheel-drop") and tm.tyre.wheel_mass * 9.80665 >= wheel_load:
+        raise InputError(f"wheel load {wheel_load:.6g} N does not exceed the weight of the wheel "
+                         f"({tm.tyre.wheel_mass:.6g} kg) the quarter vehicle carries; allowed: above "
+                         f"{tm.tyre.wheel_mass * 9.80665:.6g} N", field="load")
+    left = None
+    if rig in ("trailer", "drop") and left_wheel is not None and left_wheel != tm.contact:
+        left = TyreModel(tm.tyre, contact=left_wheel, handling=tm.handling)
+    # the wheels the rig runs: the trailer has two, the left one on flat ground
+    models = [tm, left or tm] if rig in ("trailer", "drop") else [tm]
+    limits.check_stable_step(dt, [tm] if left is None else [tm, left], wheel_load)
+    cells = 0
+    if not drop:
+        from .road.spec import road_from_spec
+        road = road_from_spec(road)
+        run_time = _default_duration(road, speed) if duration is None else duration
+        if duration is None and run_time > limits.MAX_DURATION:
+            raise InputError(f"the run to the road's end at {speed:.6g} m/s would last {run_time:.6g} s, "
+                             f"above the {limits.MAX_DURATION:g} s allowed; give a duration or a "
+                             "higher speed", field="speed")
+        cells = limits.grid_cells(road)
+        guards.check_road_for_tyre(road, tm.tyre)
+    else:
+        run_time = duration or (3.0 if rig == "drop" else 2.0)
+    limits.check_resources(f"a {run_time:.6g} s run at a {dt:g} s step",
+                           memory=limits.run_memory(run_time, dt, output_rate, cells),
+                           wall_time=limits.run_wall_time(models, run_time, dt), force=force,
+                           hint="use a larger time step, a shorter duration or a higher speed")
+    try:
+        table = _run_rig(tm, left, rig, road if not drop else None, speed, load, duration, dt,
+                         output_rate, progress)
+    except SimulationError as exc:
+        raise _diverged(exc, tm, dt, wheel_load) from None
+    found = guards.check_run(table, tm.tyre)
+    if found:
+        table.attrs["metadata"]["physics_warnings"] = found
+    return table
+
+
+def _run_rig(tm, left, rig, road, speed, load, duration, dt, output_rate, progress):
     if rig in ("trailer", "drop"):
         from .rig.trailer import Trailer
-        left = None
-        if left_wheel is not None and left_wheel != tm.contact:
-            left = TyreModel(tm.tyre, contact=left_wheel, handling=tm.handling)
         trailer = Trailer(tm, load, left=left)
         if rig == "drop":
             return trailer.drop(duration=duration or 3.0, dt=dt, output_rate=output_rate,

@@ -23,15 +23,14 @@ y to the left, z up. Time is in seconds.
 from __future__ import annotations
 
 import json
-from contextlib import contextmanager
-import os
-import tempfile
 from pathlib import Path
 
 import numpy as np
 import pandas as pd
 
 from .errors import InputError
+from . import io_atomic
+from .io_atomic import atomic_output  # noqa: F401 - the one atomic writer, re-exported here
 
 #: column name -> (unit, description). Order is the order in files.
 CHANNELS: dict[str, tuple[str, str]] = {
@@ -111,36 +110,15 @@ def make_signal(data: dict[str, np.ndarray], metadata: dict | None = None) -> pd
                       metadata)
 
 
-def _atomic_target(path):
-    """A temporary sibling of ``path``; renamed over it only when complete."""
-    directory = os.path.dirname(os.path.abspath(path)) or "."
-    fd, tmp = tempfile.mkstemp(prefix=".tyrelab-", suffix=".part", dir=directory)
-    os.close(fd)
-    return tmp
-
-
-@contextmanager
-def atomic_output(path):
-    """Write ``path`` whole or not at all: yields a temporary sibling name to write to,
-    renamed over ``path`` when the block ends normally, removed when it raises (also on
-    KeyboardInterrupt), so no reader ever sees a partial file under the final name."""
-    tmp = _atomic_target(path)
-    try:
-        yield tmp
-        os.replace(tmp, path)
-    except BaseException:
-        if os.path.exists(tmp):
-            os.remove(tmp)
-        raise
-
-
 def write_signal(df: pd.DataFrame, path) -> None:
     """Write a signal table as Parquet (``.parquet``) or CSV (``.csv``).
 
     Units and run metadata go into the Parquet schema metadata, or into
     ``#`` comment lines at the top of a CSV. The file appears only when it is
-    complete (written to a temporary name, then renamed), so an interrupted
-    run never leaves a file that looks finished.
+    complete (written to a temporary name, then renamed: :mod:`tyrelab.io_atomic`),
+    so an interrupted run never leaves a file that looks finished. A missing
+    folder, a folder as ``path`` or a table with no rows is an
+    :class:`InputError` before anything is written.
     """
 
     path = Path(path)
@@ -148,9 +126,11 @@ def write_signal(df: pd.DataFrame, path) -> None:
     if suffix not in (".parquet", ".csv"):
         raise InputError(f"unknown output format '{path.suffix}', expected .parquet or .csv",
                          source=str(path))
+    if len(df) == 0:
+        raise InputError("refusing to write a signal table with no rows", source=str(path))
     meta = {"units": df.attrs.get("units", units(df.columns)),
             "metadata": df.attrs.get("metadata", {})}
-    with atomic_output(path) as tmp:
+    with io_atomic.atomic_output(path) as tmp:
         if suffix == ".parquet":
             import pyarrow as pa
             import pyarrow.parquet as pq
@@ -192,6 +172,11 @@ def read_signal(path) -> pd.DataFrame:
         raise
     except Exception as exc:  # pyarrow / pandas parse errors
         raise InputError(f"not a readable signal table ({exc})", source=str(path)) from None
+    for col in df.columns:  # NaN marks a missing sample; an infinite one is a damaged file
+        values = df[col].to_numpy()
+        if values.dtype.kind == "f" and np.isinf(values).any():
+            row = int(np.flatnonzero(np.isinf(values))[0])
+            raise InputError(f"sample {row + 1} is infinite ({values[row]})", source=str(path), field=col)
     df.attrs["units"] = meta.get("units", units(df.columns))
     df.attrs["metadata"] = meta.get("metadata", {})
     return df

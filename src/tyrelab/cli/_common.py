@@ -1,4 +1,11 @@
-"""Argument parsing helpers for the command line (units converted here, once)."""
+"""Argument parsing helpers for the command line (units converted here, once).
+
+Every number a command takes is parsed by one of these argparse types, which
+refuse a non-number, a non-finite value and a value outside the bounds of
+:mod:`tyrelab.limits` with one line naming the option, the value and what is
+allowed; output paths are checked with :func:`tyrelab.io_atomic.check_output_path`
+right after parsing, before any work.
+"""
 
 from __future__ import annotations
 
@@ -6,24 +13,58 @@ import argparse
 import math
 
 from ..errors import InputError
+from ..limits import check_number
 
 
-def positive_float(name: str, scale: float = 1.0):
-    """argparse type: a positive finite number, multiplied by ``scale`` into SI."""
+def _fmt(v: float) -> str:
+    return f"{v:.6g}"
+
+
+def bounded_float(name: str, low: float | None = None, high: float | None = None, unit: str = "",
+                  scale: float = 1.0, low_open: bool = False):
+    """argparse type: a finite number in ``[low, high]`` (command-line units), times ``scale`` into SI.
+
+    ``low_open``: the low bound itself is excluded (``low < value``).
+    """
+
     def parse(text: str) -> float:
         try:
             value = float(text)
         except ValueError:
             raise argparse.ArgumentTypeError(f"{name} must be a number, got '{text}'") from None
-        if not (math.isfinite(value) and value > 0):
+        if low is not None and low >= 0 and value <= 0 and (low_open or low > 0):
             raise argparse.ArgumentTypeError(f"{name} must be a positive number, got '{text}'")
+        try:
+            check_number(value, name, low, high, unit, low_open, given=text)
+        except InputError as exc:
+            raise argparse.ArgumentTypeError(exc.reason) from None
         return value * scale
     parse.__name__ = name
     return parse
 
 
+def positive_float(name: str, scale: float = 1.0):
+    """argparse type: a positive finite number, multiplied by ``scale`` into SI."""
+    return bounded_float(name, 0.0, None, scale=scale, low_open=True)
+
+
+def count(name: str, low: int, high: int):
+    """argparse type: a whole number in ``[low, high]``."""
+    def parse(text: str) -> int:
+        try:
+            value = int(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"{name} must be a whole number, got '{text}'") from None
+        if not low <= value <= high:
+            raise argparse.ArgumentTypeError(f"{name} {value} is out of range; allowed: {low} to {high}")
+        return value
+    parse.__name__ = name
+    return parse
+
+
 def load_value(text: str):
-    """A load case name (LC1..LC3) or a wheel load in N."""
+    """A load case name (LC1..LC3) or a wheel load in N (finite, at least the limits' minimum)."""
+    from ..limits import MIN_LOAD
     try:
         value = float(text)
     except ValueError:
@@ -31,10 +72,55 @@ def load_value(text: str):
     if not (math.isfinite(value) and value > 0):
         raise argparse.ArgumentTypeError(f"load must be a load case (LC1-LC3) or a positive force in N, "
                                          f"got '{text}'")
+    if value < MIN_LOAD:
+        raise argparse.ArgumentTypeError(f"load {text} N is out of range; allowed: a load case (LC1-LC3) "
+                                         f"or at least {MIN_LOAD:g} N")
     return value
 
 
-def output_path(text: str) -> str:
-    if not (text.lower().endswith(".parquet") or text.lower().endswith(".csv")):
-        raise InputError(f"output file '{text}' must end in .parquet or .csv", field="-o")
-    return text
+def pressure_kpa(default_help: str = "default 300"):
+    """argparse type of ``--pressure`` in kPa (bounds of :mod:`tyrelab.limits`), into Pa."""
+    from ..limits import MAX_PRESSURE, MIN_PRESSURE
+    return bounded_float("pressure", MIN_PRESSURE / 1e3, MAX_PRESSURE / 1e3, "kPa", scale=1e3)
+
+
+def output_path(text: str, suffixes=(".parquet", ".csv"), field: str = "-o", inputs=()):
+    """Check an output file before any work (:func:`tyrelab.io_atomic.check_output_path`)."""
+    from ..io_atomic import check_output_path
+    return check_output_path(text, suffixes, field, inputs)
+
+
+def add_force(parser) -> None:
+    """``--force``: run a request estimated above the memory or time limit."""
+    from ..limits import MAX_MEMORY, MAX_WALL_TIME
+    parser.add_argument("--force", action="store_true",
+                        help=f"run even when the request is estimated to need more than "
+                             f"{MAX_MEMORY / 1024 ** 3:g} GiB of memory or {MAX_WALL_TIME / 60:g} min")
+
+
+#: suffixes of the files commands read (road files may carry an ``@OFFSET``)
+INPUT_SUFFIXES = (".tir", ".json", ".tdx", ".csv", ".parquet", ".toml")
+ROAD_SUFFIXES = (".crg", ".rdf", ".obj")
+
+
+def input_files(*values) -> list[str]:
+    """The file paths among command values (a tyre file, a road file ``FILE[@V]`` ...), to keep
+    outputs off them."""
+    out = []
+    for v in values:
+        if v is None:
+            continue
+        text = str(v)
+        road = text.partition("@")[0]
+        if road.lower().endswith(ROAD_SUFFIXES):
+            out.append(road)
+        elif text.lower().endswith(INPUT_SUFFIXES):
+            out.append(text)
+    return out
+
+
+def renamed(exc: InputError, names: dict[str, str]) -> InputError:
+    """The same error with the Python argument name replaced by the command-line option."""
+    if exc.field in names:
+        return InputError(exc.reason, source=exc.source, line=exc.line, field=names[exc.field])
+    return exc

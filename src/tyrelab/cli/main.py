@@ -2,27 +2,52 @@
 
 Each subcommand lives in its own module of this package with a
 ``register(subparsers)`` function that adds its parser and sets
-``func(args) -> int``. Bad input raises :class:`tyrelab.errors.InputError`;
-it is printed here as one line on stderr with exit status 2, never as a
-traceback.
+``func(args) -> int``. What a user sees on stderr is always one line per
+message, never a traceback:
+
+* bad input (:class:`tyrelab.errors.InputError`, argparse's own errors):
+  ``tyrelab: error: ...``, exit status 2;
+* a simulation that diverged: ``tyrelab: error: ...`` naming the step and the
+  likely parameter, exit status 2;
+* a warning (a :class:`tyrelab.guards.PhysicsWarning`, a repeated section
+  in a property file ...): ``tyrelab: warning: ...``, the command goes on;
+* Ctrl-C: ``tyrelab: interrupted``, exit status 130; ``SIGTERM``:
+  ``tyrelab: terminated``, exit status 143 -- both unwind normally, so every
+  output being written is removed and a previous file of that name stays;
+* the operating system refusing (disk full, permission denied):
+  ``tyrelab: error: ...``, exit status 1;
+* anything else is a bug: ``tyrelab: internal error (a bug) in 'tyrelab
+  CMD': Type: message; run again with --debug for the full trace``, exit
+  status 1. ``--debug`` (anywhere on the command line) shows the traceback.
 """
 
 from __future__ import annotations
 
 import argparse
 import importlib
+import signal
 import sys
+import threading
+import warnings
 
 from ..errors import InputError
 
 #: subcommand modules, in the order ``tyrelab --help`` lists them
 SUBCOMMANDS = ["simulate", "plot", "static", "road", "fit", "modal", "validate", "mf", "study"]
+#: longest message printed for an unexpected error [characters]
+MAX_MESSAGE = 400
+
+
+class Terminated(KeyboardInterrupt):
+    """SIGTERM, raised in the main thread so the command unwinds as on Ctrl-C."""
 
 
 def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(
         prog="tyrelab",
         description="A virtual tyre test lab for rough and off-road terrain.")
+    parser.add_argument("--debug", action="store_true",
+                        help="show the full Python traceback of an unexpected error")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND")
     for name in SUBCOMMANDS:
         try:
@@ -39,31 +64,142 @@ class _ArgumentError(Exception):
     pass
 
 
-def main(argv=None) -> int:
-    parser = build_parser()
+def _one_line(text: str, limit: int = MAX_MESSAGE) -> str:
+    text = " ".join(str(text).split())
+    return text if len(text) <= limit else text[:limit - 3] + "..."
 
-    def error(message):  # argparse's own errors: one line, exit 2
-        raise _ArgumentError(message)
 
+def _show_warning(message, category, filename, lineno, file=None, line=None):
+    print(f"tyrelab: warning: {_one_line(message)}", file=sys.stderr)
+
+
+def _set_error(parser, error) -> None:
+    """Route argparse's errors of ``parser`` and every nested subcommand parser to ``error``."""
     parser.error = error
-    for action in parser._subparsers._group_actions if parser._subparsers else []:
-        for sp in action.choices.values():
-            sp.error = error
+    for action in parser._actions:
+        if isinstance(action, argparse._SubParsersAction):
+            for sp in action.choices.values():
+                _set_error(sp, error)
+
+
+#: the signal that asked this command to stop (SIGINT or SIGTERM), once one has
+_signalled: list[int] = []
+
+
+def _on_signal(signum, frame):
+    """SIGINT / SIGTERM: remember it and unwind. A signal can arrive while a C library calls
+    back into Python (numba compiling through llvmlite), which swallows the exception and
+    fails later in some other way; the remembered signal still decides how the command ends."""
+    _signalled.append(signum)
+    if signum == signal.SIGTERM:
+        raise Terminated()
+    raise KeyboardInterrupt()
+
+
+def _unraisable(hook_args) -> None:
+    """An exception Python could not raise (in a C callback, a destructor): one line, or none
+    when it is the interrupt itself."""
+    if _signalled or isinstance(hook_args.exc_value, KeyboardInterrupt):
+        return
+    where = getattr(hook_args.object, "__qualname__", None) or type(hook_args.object).__name__
+    print(f"tyrelab: warning: an error was ignored in {where}: {hook_args.exc_type.__name__}: "
+          f"{_one_line(hook_args.exc_value)}", file=sys.stderr)
+
+
+def _interrupted() -> int | None:
+    """Exit status and message if a signal stopped the command, else None."""
+    if not _signalled:
+        return None
+    if _signalled[0] == signal.SIGTERM:
+        print("tyrelab: terminated", file=sys.stderr)
+        return 143
+    print("tyrelab: interrupted", file=sys.stderr)
+    return 130
+
+
+def _command(argv) -> str:
+    """The verb of the command line (and its action for the verbs that have one)."""
+    words = [a for a in argv if not a.startswith("-")]
+    if not words:
+        return "tyrelab"
+    verb = words[:2] if words[0] in ("road", "fit", "mf") else words[:1]
+    return "tyrelab " + " ".join(verb)
+
+
+def main(argv=None) -> int:
+    argv = list(sys.argv[1:] if argv is None else argv)
+    debug = "--debug" in argv
+    argv = [a for a in argv if a != "--debug"]
+    main_thread = threading.current_thread() is threading.main_thread()
+    _signalled.clear()
+    previous = {}
+    if main_thread:
+        for signum in (signal.SIGTERM, signal.SIGINT):
+            previous[signum] = signal.signal(signum, _on_signal)
+    hook = sys.unraisablehook
+    sys.unraisablehook = _unraisable
     try:
+        with warnings.catch_warnings():
+            warnings.showwarning = _show_warning
+            return _main(argv, debug)
+    finally:
+        sys.unraisablehook = hook
+        for signum, handler in previous.items():
+            signal.signal(signum, handler)
+
+
+def _main(argv, debug: bool) -> int:
+    try:
+        parser = build_parser()
+
+        def error(message):  # argparse's own errors: one line, exit 2
+            raise _ArgumentError(message)
+
+        _set_error(parser, error)
         args = parser.parse_args(argv)
         if not getattr(args, "func", None):
             parser.print_help()
             return 1
         return int(args.func(args) or 0)
-    except _ArgumentError as exc:
-        print(f"tyrelab: error: {exc}", file=sys.stderr)
+    except BaseException as exc:
+        if isinstance(exc, SystemExit):
+            raise
+        code = _interrupted()
+        if code is not None:
+            return code
+        if debug and not isinstance(exc, (_ArgumentError, InputError, KeyboardInterrupt)):
+            raise
+        return _report(exc, argv)
+
+
+def _report(exc: BaseException, argv) -> int:
+    """One line on stderr for the exception that ended the command; returns its exit status."""
+    from ..rig.simulation import SimulationError
+
+    if isinstance(exc, _ArgumentError):
+        print(f"tyrelab: error: {_one_line(exc)}", file=sys.stderr)
         return 2
-    except InputError as exc:
-        print(f"tyrelab: error: {exc}", file=sys.stderr)
+    if isinstance(exc, (InputError, SimulationError)):
+        print(f"tyrelab: error: {_one_line(exc, 2000)}", file=sys.stderr)
         return 2
-    except KeyboardInterrupt:
+    if isinstance(exc, Terminated):
+        print("tyrelab: terminated", file=sys.stderr)
+        return 143
+    if isinstance(exc, KeyboardInterrupt):
         print("tyrelab: interrupted", file=sys.stderr)
         return 130
+    if isinstance(exc, MemoryError):
+        print(f"tyrelab: error: out of memory ({_one_line(exc) or 'MemoryError'}); ask for less "
+              "(a coarser step, a shorter run)", file=sys.stderr)
+        return 1
+    if isinstance(exc, OSError):  # the system refused: disk full, permission denied ...
+        what = exc.strerror or _one_line(exc)
+        where = f": {exc.filename}" if getattr(exc, "filename", None) else ""
+        print(f"tyrelab: error: {what}{where}", file=sys.stderr)
+        return 1
+    print(f"tyrelab: internal error (a bug) in '{_command(argv)}': {type(exc).__name__}: "
+          f"{_one_line(exc)}; run again with --debug for the full trace", file=sys.stderr)
+    return 1
 
 
 if __name__ == "__main__":

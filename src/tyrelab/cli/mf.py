@@ -6,7 +6,15 @@ Mz(alpha) at several loads.
 
 from __future__ import annotations
 
+import math
+
 from ..errors import InputError
+
+
+#: largest load asked for, as a fraction of FNOMIN (far beyond any file's FZMAX)
+MAX_LOAD_FACTOR = 10.0
+#: most loads (curves per panel) in one figure
+MAX_LOADS = 20
 
 
 def _load_factors(text: str) -> list[float]:
@@ -14,22 +22,27 @@ def _load_factors(text: str) -> list[float]:
         values = [float(v) for v in text.split(",") if v.strip()]
     except ValueError:
         values = []
-    if not values or any(not v > 0.0 for v in values):
-        raise InputError(f"expected positive numbers separated by commas, found '{text}'",
+    if not values or any(not (math.isfinite(v) and 0.0 < v <= MAX_LOAD_FACTOR) for v in values) \
+            or len(values) > MAX_LOADS:
+        raise InputError(f"expected 1 to {MAX_LOADS} numbers 0 < f <= {MAX_LOAD_FACTOR:g} (fractions of "
+                         f"FNOMIN) separated by commas, found '{text}'",
                          source="command line", field="--loads")
     return values
 
 
 def _curves(args) -> int:
+    from ..io_atomic import IMAGE_SUFFIXES, check_output_path
     from ..report.mf_curves import plot_curves
     from ..tyre.handling.mf import MagicFormula, check_use_mode
 
-    model = MagicFormula.from_tir(args.tir)
+    output = check_output_path(args.output, IMAGE_SUFFIXES, "-o", inputs=[args.tir])
+    factors = _load_factors(args.loads)
     try:
         mode = check_use_mode(args.use_mode)
     except InputError as exc:
         raise InputError(exc.reason, source="command line", field="--use-mode") from None
-    out = plot_curves(model, args.output, _load_factors(args.loads), use_mode=mode)
+    model = MagicFormula.from_tir(args.tir)
+    out = plot_curves(model, output, factors, use_mode=mode)
     print(f"wrote {out} (Magic Formula {model.version})")
     return 0
 

@@ -4,7 +4,8 @@ from __future__ import annotations
 
 import sys
 
-from ._common import positive_float
+from ..limits import MAX_SEGMENTS, MIN_LOAD, MIN_SEGMENTS
+from ._common import bounded_float, count, input_files, output_path, pressure_kpa
 
 
 def register(sub):
@@ -15,12 +16,13 @@ def register(sub):
                                    "where the tyre has them.")
     p.add_argument("--tyre", default="xzl-16.00R20",
                    help="built-in tyre name or .tir file with [FLEXIBLE_RING] (default: xzl-16.00R20)")
-    p.add_argument("--pressure", type=positive_float("pressure", 1e3), default=None, metavar="KPA",
+    p.add_argument("--pressure", type=pressure_kpa(), default=None, metavar="KPA",
                    help="inflation pressure in kPa (built-in tyres; default 300)")
-    p.add_argument("--load", type=positive_float("load"), default=None, metavar="N",
+    p.add_argument("--load", type=bounded_float("load", MIN_LOAD, None, "N"), default=None, metavar="N",
                    help="linearise about the tyre pressed on a plate under this load in N "
                         "(default: free tyre)")
-    p.add_argument("--segments", type=int, default=100, help="belt segments (default 100)")
+    p.add_argument("--segments", type=count("--segments", MIN_SEGMENTS, MAX_SEGMENTS), default=100,
+                   help=f"belt segments, {MIN_SEGMENTS} to {MAX_SEGMENTS} (default 100)")
     p.add_argument("-o", "--output", default=None, help="also write the table to a .csv file")
     p.set_defaults(func=run)
 
@@ -28,13 +30,15 @@ def register(sub):
 def run(args) -> int:
     import numpy as np
 
-    from ..errors import InputError
+    from ..io_atomic import atomic_write
+    from ..limits import check_wheel_load
     from ..tyre.library import BUILT_IN, load_tyre, modal_table
     from ..tyre.ring.modal import ring_modal
 
-    if args.segments < 12:
-        raise InputError("at least 12 segments", field="--segments")
+    out = output_path(args.output, (".csv",), inputs=input_files(args.tyre)) if args.output else None
     tyre = load_tyre(args.tyre, args.pressure)
+    if args.load:
+        check_wheel_load(args.load, tyre, field="--load")
     table = ring_modal(tyre, load=args.load or 0.0, n_segments=args.segments)
     key = f"{tyre.pressure / 1e3:.0f}kPa"
     if str(args.tyre).lower() in {k.lower() for k in BUILT_IN}:
@@ -44,8 +48,6 @@ def run(args) -> int:
     state = f"loaded {args.load:.0f} N" if args.load else "free"
     print(f"{tyre.name} at {tyre.pressure / 1e3:g} kPa, {state}:", file=sys.stdout)
     print(table.to_string(index=False, float_format=lambda v: f"{v:.2f}"), file=sys.stdout)
-    if args.output:
-        if not args.output.lower().endswith(".csv"):
-            raise InputError(f"output file '{args.output}' must end in .csv", field="-o")
-        table.to_csv(args.output, index=False)
+    if out is not None:
+        atomic_write(out, lambda tmp: table.to_csv(tmp, index=False))
     return 0

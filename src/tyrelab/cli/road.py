@@ -1,47 +1,22 @@
-"""``tyrelab road``: look at a road, its spectrum, or export it as OpenCRG.
+"""``tyrelab road``: look at a road, its spectrum, or export it (OpenCRG, Adams .rdf, .obj).
 
 ROAD is anything :func:`tyrelab.road.spec.road_from_spec` accepts: an
 obstacle (``cleat:50x50``), a built-in track (``belgian-paving``) or a
-``.crg`` file (``road.crg@0.5``).
+``.crg``, ``.rdf`` or ``.obj`` file (``road.crg@0.5``).
 """
 
 from __future__ import annotations
 
-import argparse
-import math
+from pathlib import Path
 
 from ..errors import InputError
+from ..limits import MAX_GRID_SPACING, MAX_ROAD_WIDTH, MAX_SPECTRUM_LINES, MIN_GRID_SPACING
+from ._common import add_force, bounded_float, count, input_files
 
 
-def _float(name):
-    def parse(text):
-        try:
-            value = float(text)
-        except ValueError:
-            raise argparse.ArgumentTypeError(f"{name} must be a number, got '{text}'") from None
-        if not math.isfinite(value):
-            raise argparse.ArgumentTypeError(f"{name} must be finite, got '{text}'")
-        return value
-    parse.__name__ = name
-    return parse
-
-
-def _positive(name):
-    base = _float(name)
-
-    def parse(text):
-        value = base(text)
-        if value <= 0:
-            raise argparse.ArgumentTypeError(f"{name} must be positive, got '{text}'")
-        return value
-    parse.__name__ = name
-    return parse
-
-
-def _image_path(text: str) -> str:
-    if not text.lower().endswith((".png", ".pdf", ".svg", ".jpg")):
-        raise InputError(f"image file '{text}' must end in .png, .pdf, .svg or .jpg", field="-o")
-    return text
+def _image_path(text: str, inputs=()) -> Path:
+    from ..io_atomic import IMAGE_SUFFIXES, check_output_path
+    return check_output_path(text, IMAGE_SUFFIXES, "-o", inputs)
 
 
 def register(sub):
@@ -50,44 +25,66 @@ def register(sub):
     rs.required = True
 
     show = rs.add_parser("show", help="heightmap and a longitudinal cut")
-    show.add_argument("road", metavar="ROAD", help="road name, track or FILE.crg[@V]")
+    show.add_argument("road", metavar="ROAD", help="road name, track or FILE.crg|.rdf|.obj[@V]")
     show.add_argument("-o", "--output", default="road.png", help="image file (default road.png)")
-    show.add_argument("--y", type=_float("y"), default=0.0, help="lateral position of the cut [m]")
+    show.add_argument("--y", type=bounded_float("y", -MAX_ROAD_WIDTH, MAX_ROAD_WIDTH, "m"), default=0.0,
+                      help="lateral position of the cut [m]")
+    add_force(show)
     show.set_defaults(func=run_show)
 
     spec = rs.add_parser("spectrum", help="displacement spectral density and power-law fit (eq. 3.8)")
-    spec.add_argument("road", metavar="ROAD", help="road name, track or FILE.crg[@V]")
+    spec.add_argument("road", metavar="ROAD", help="road name, track or FILE.crg|.rdf|.obj[@V]")
     spec.add_argument("-o", "--output", default=None, help="image file for the DSD plot")
-    spec.add_argument("--y", type=_float("y"), default=0.0, help="lateral position of the profile [m]")
-    spec.add_argument("--lines", type=int, default=1, help="average this many profiles across the road")
-    spec.add_argument("--band", nargs=2, type=_positive("band"), default=None, metavar=("LO", "HI"),
+    spec.add_argument("--y", type=bounded_float("y", -MAX_ROAD_WIDTH, MAX_ROAD_WIDTH, "m"), default=0.0,
+                      help="lateral position of the profile [m]")
+    spec.add_argument("--lines", type=count("--lines", 1, MAX_SPECTRUM_LINES), default=1,
+                      help=f"average this many profiles across the road (1 to {MAX_SPECTRUM_LINES})")
+    spec.add_argument("--band", nargs=2, type=bounded_float("band", 0.0, 1000.0, "cycles/m", low_open=True),
+                      default=None, metavar=("LO", "HI"),
                       help="fit band [cycles/m] (default 0.05 10, ISO 8608)")
+    add_force(spec)
     spec.set_defaults(func=run_spectrum)
 
-    exp = rs.add_parser("export", help="write the road as an OpenCRG file")
-    exp.add_argument("road", metavar="ROAD", help="road name, track or FILE.crg[@V]")
-    exp.add_argument("-o", "--output", required=True, help="the .crg file to write")
-    exp.add_argument("--spacing", nargs=2, type=_positive("spacing"), default=None, metavar=("DX", "DY"),
-                     help="grid spacing [m] (default: the road's own)")
+    exp = rs.add_parser("export", help="write the road as an OpenCRG, Adams .rdf or .obj file")
+    exp.add_argument("road", metavar="ROAD", help="road name, track or FILE.crg|.rdf|.obj[@V]")
+    exp.add_argument("-o", "--output", required=True,
+                     help="the file to write: .crg (OpenCRG), .rdf (Adams road data) or .obj (mesh)")
+    exp.add_argument("--spacing", nargs=2, default=None,
+                     type=bounded_float("spacing", MIN_GRID_SPACING, MAX_GRID_SPACING, "m"),
+                     metavar=("DX", "DY"),
+                     help=f"grid spacing [m], {MIN_GRID_SPACING:g} to {MAX_GRID_SPACING:g} "
+                          "(default: the road's own)")
     exp.add_argument("--format", default="KDBI", choices=("KDBI", "KRBI", "LDFI", "LRFI"),
                      help="OpenCRG data format (default KDBI, binary double)")
+    exp.add_argument("--method", choices=("2D", "3D"), default=None,
+                     help=".rdf: a 2D poly_line road or a 3D shell (default: 2D when the road "
+                          "does not vary across)")
+    exp.add_argument("--mu", type=bounded_float("mu", 0.0, 5.0, low_open=True), default=1.0,
+                     help=".rdf: the friction coefficient written (default 1.0)")
+    add_force(exp)
     exp.set_defaults(func=run_export)
 
     lst = rs.add_parser("list", help="the road names ROAD accepts")
     lst.set_defaults(func=run_list)
 
 
-def _road(text):
+def _road(text, force: bool = False):
+    """The road of a command, with its grid's memory checked before it is built."""
+    from ..limits import check_resources, grid_cells
     from ..road.spec import road_from_spec
 
-    return road_from_spec(text)
+    road = road_from_spec(text)
+    cells = grid_cells(road)
+    check_resources(f"the grid of {road.name} ({cells:.3g} nodes)", memory=8.0 * 3 * cells, force=force,
+                    field="ROAD")
+    return road
 
 
 def run_show(args) -> int:
     from ..report.road_plots import plot_road, save_figure
 
-    out = _image_path(args.output)
-    road = _road(args.road)
+    out = _image_path(args.output, input_files(args.road))
+    road = _road(args.road, args.force)
     save_figure(plot_road(road, y=args.y), out)
     xmin, xmax, ymin, ymax = road.extent()
     print(f"{out}: {road.name}; x {xmin:g}..{xmax:g} m, y {ymin:g}..{ymax:g} m")
@@ -98,14 +95,12 @@ def run_spectrum(args) -> int:
     from ..road.iso8608 import BAND, iso_class
     from ..road.spectrum import displacement_spectral_density, fit_power_law
 
-    out = _image_path(args.output) if args.output else None
+    out = _image_path(args.output, input_files(args.road)) if args.output else None
     band = tuple(args.band) if args.band else BAND
     if band[0] >= band[1]:
         raise InputError(f"band {band[0]:g} {band[1]:g}: the low end must be below the high end",
                          field="--band")
-    if args.lines < 1:
-        raise InputError(f"--lines must be at least 1, got {args.lines}", field="--lines")
-    road = _road(args.road)
+    road = _road(args.road, args.force)
     phi, s = displacement_spectral_density(road, y=args.y, lines=args.lines)
     a, n = fit_power_law(phi, s, band=band)
     print(f"{road.name}: A = {a:.3g} m^2/(cycles/m), n = {n:.2f} "
@@ -122,14 +117,27 @@ def run_spectrum(args) -> int:
 
 
 def run_export(args) -> int:
-    from ..road.crg import write_crg
+    from pathlib import Path
 
-    if not args.output.lower().endswith(".crg"):
-        raise InputError(f"output file '{args.output}' must end in .crg", field="-o")
-    road = _road(args.road)
-    path = write_crg(road, args.output, spacing=tuple(args.spacing) if args.spacing else None,
-                     fmt=args.format)
-    print(f"{path}: {road.name} as OpenCRG {args.format}")
+    from ..io_atomic import check_output_path
+
+    out = check_output_path(args.output, (".crg", ".rdf", ".obj"), "-o", input_files(args.road))
+    road = _road(args.road, args.force)
+    spacing = tuple(args.spacing) if args.spacing else None
+    suffix = Path(out).suffix.lower()
+    if suffix == ".rdf":
+        from ..road.rdf_write import write_rdf
+        method = args.method or ("3D" if road.varies_in_y() else "2D")
+        path = write_rdf(road, out, method=method, spacing=spacing, mu=args.mu)
+        print(f"{path}: {road.name} as an Adams road data file ({method})")
+    elif suffix == ".obj":
+        from ..road.mesh_files import write_obj
+        path = write_obj(road, out, spacing=spacing)
+        print(f"{path}: {road.name} as a triangle mesh")
+    else:
+        from ..road.crg import write_crg
+        path = write_crg(road, out, spacing=spacing, fmt=args.format, force=args.force)
+        print(f"{path}: {road.name} as OpenCRG {args.format}")
     return 0
 
 

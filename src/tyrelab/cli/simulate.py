@@ -4,16 +4,26 @@ from __future__ import annotations
 
 import sys
 
-from ._common import load_value, output_path, positive_float
+from ..limits import MAX_DT, MAX_DURATION, MAX_OUTPUT_RATE, MAX_SPEED, MIN_DT, MIN_SPEED
+from ._common import (add_force, bounded_float, input_files, load_value, output_path, pressure_kpa,
+                      renamed)
+
+#: Python argument names of :func:`tyrelab.simulate` -> the options that set them
+OPTIONS = {"speed": "--speed", "duration": "--duration", "dt": "--dt", "output_rate": "--rate",
+           "load": "--load", "pressure": "--pressure", "rig": "--rig", "left_wheel": "--left-wheel",
+           "stiffness": "--stiffness", "tyre": "--tyre", "model": "--model", "road": "--road"}
 
 
 def register(sub):
     p = sub.add_parser("simulate", help="run a tyre model over a road on the test trailer",
                        description="Run a tyre model on the towed test trailer (or a quarter "
-                                   "vehicle) over a road and write the signal table.")
+                                   "vehicle) over a road and write the signal table. Every value "
+                                   "is checked before the run (bounds in tyrelab.limits); a run "
+                                   "that leaves the models' valid range (rim contact, an "
+                                   "overturned trailer) prints a warning line per finding.")
     p.add_argument("--tyre", default="xzl-16.00R20",
-                   help="built-in tyre name or .tir file (default: xzl-16.00R20)")
-    p.add_argument("--pressure", type=positive_float("pressure", 1e3), default=None, metavar="KPA",
+                   help="built-in tyre name, .tir or Chrono .json file (default: xzl-16.00R20)")
+    p.add_argument("--pressure", type=pressure_kpa(), default=None, metavar="KPA",
                    help="inflation pressure in kPa (built-in tyres; default 300)")
     p.add_argument("--model", default="point", help="contact model (default: point)")
     p.add_argument("--stiffness", choices=("table", "linear"), default=None,
@@ -23,9 +33,11 @@ def register(sub):
                    help="tangential force model (default: what the property file describes)")
     p.add_argument("--road", default="cleat:50x50",
                    help="road: flat, cleat:WxH[@ANGLE], bump:H, step:H, pothole:DxL[xW], a track name "
-                        "or FILE.crg (sizes in mm; default cleat:50x50)")
-    p.add_argument("--speed", type=positive_float("speed", 1 / 3.6), default=12 / 3.6, metavar="KMH",
-                   help="towing speed in km/h (default 12)")
+                        "or FILE.crg|.rdf|.obj (sizes in mm; default cleat:50x50)")
+    p.add_argument("--speed", type=bounded_float("speed", MIN_SPEED * 3.6, MAX_SPEED * 3.6, "km/h",
+                                                 scale=1 / 3.6),
+                   default=12 / 3.6, metavar="KMH",
+                   help=f"towing speed in km/h, {MIN_SPEED * 3.6:g} to {MAX_SPEED * 3.6:g} (default 12)")
     p.add_argument("--load", type=load_value, default="LC1",
                    help="load case LC1, LC2, LC3 (thesis Table 3-4) or a wheel load in N (default LC1)")
     p.add_argument("--rig", choices=("trailer", "quarter-vehicle", "rolling", "drop", "wheel-drop"),
@@ -35,30 +47,41 @@ def register(sub):
     p.add_argument("--left-wheel", default=None, metavar="MODEL",
                    help="trailer rigs: contact model of the left wheel on flat ground (default: --model), "
                         "e.g. point: the same tyre and vertical law at a fraction of a ring's cost")
-    p.add_argument("--duration", type=positive_float("duration"), default=None, metavar="S",
-                   help="simulated time in s (default: until the road ends)")
-    p.add_argument("--dt", type=positive_float("time step"), default=1e-3, metavar="S",
-                   help="integration time step in s (default 0.001)")
-    p.add_argument("--rate", type=positive_float("output rate"), default=1000.0, metavar="HZ",
-                   help="output sample rate in Hz (default 1000)")
+    p.add_argument("--duration", type=bounded_float("duration", 0.0, MAX_DURATION, "s", low_open=True),
+                   default=None, metavar="S",
+                   help=f"simulated time in s, at most {MAX_DURATION:g} (default: until the road ends)")
+    p.add_argument("--dt", type=bounded_float("time step", MIN_DT, MAX_DT, "s"), default=1e-3, metavar="S",
+                   help=f"integration time step in s, {MIN_DT:g} to {MAX_DT:g} and at most the model's "
+                        "stable step (default 0.001)")
+    p.add_argument("--rate", type=bounded_float("output rate", 0.0, MAX_OUTPUT_RATE, "Hz", low_open=True),
+                   default=None, metavar="HZ",
+                   help="output sample rate in Hz, at most 1/dt (default 1000, or every step when "
+                        "--dt is above 1 ms)")
     p.add_argument("-o", "--output", type=str, default="run.parquet",
                    help="output signal table, .parquet or .csv (default run.parquet)")
+    add_force(p)
     p.set_defaults(func=run)
 
 
 def run(args) -> int:
     from .. import simulate
+    from ..errors import InputError
     from ..signal import write_signal
 
-    output_path(args.output)
-    table = simulate(tyre=args.tyre, model=args.model, road=args.road, speed=args.speed,
-                     load=args.load, pressure=args.pressure, stiffness=args.stiffness,
-                     handling=args.handling, rig=args.rig, left_wheel=args.left_wheel,
-                     duration=args.duration, dt=args.dt, output_rate=args.rate)
-    write_signal(table, args.output)
+    out = output_path(args.output, inputs=input_files(args.tyre, args.road))
+    try:
+        table = simulate(tyre=args.tyre, model=args.model, road=args.road, speed=args.speed,
+                         load=args.load, pressure=args.pressure, stiffness=args.stiffness,
+                         handling=args.handling, rig=args.rig, left_wheel=args.left_wheel,
+                         duration=args.duration, dt=args.dt, output_rate=args.rate, force=args.force)
+    except InputError as exc:
+        raise renamed(exc, OPTIONS) from None
+    write_signal(table, out)
     fz = table["FZW"]
+    found = table.attrs["metadata"].get("physics_warnings", [])
+    note = (f"; OUTSIDE the models' valid range: {len(found)} warning(s) above" if found else "")
     print(f"{args.output}: {len(table)} samples over {table['RUNTIME'].iloc[-1]:.2f} s; "
           f"normal force {fz.min() / 1e3:.1f} to {fz.max() / 1e3:.1f} kN "
-          f"(static {table.attrs['metadata'].get('static_wheel_load_N', float('nan')) / 1e3:.1f} kN)",
-          file=sys.stdout)
+          f"(static {table.attrs['metadata'].get('static_wheel_load_N', float('nan')) / 1e3:.1f} kN)"
+          + note, file=sys.stdout)
     return 0

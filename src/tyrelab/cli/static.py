@@ -4,15 +4,19 @@ from __future__ import annotations
 
 import numpy as np
 
-from ._common import positive_float
+from ..limits import MAX_STATIC_STEPS, MIN_LOAD, MIN_STATIC_STEPS
+from ._common import bounded_float, count, input_files, output_path, pressure_kpa
+
+#: what ``-o`` may be: a table, or a plot of it
+TABLE_SUFFIXES = (".csv",)
 
 
 def register(sub):
     p = sub.add_parser("static", help="static press: load-deflection on a plate or cleat, footprint",
                        description="Press the non-rolling tyre onto the flat plate or a cleat and "
                                    "report the load at each deflection (thesis 3.3).")
-    p.add_argument("--tyre", default="xzl-16.00R20", help="built-in tyre or .tir file")
-    p.add_argument("--pressure", type=positive_float("pressure", 1e3), default=None, metavar="KPA",
+    p.add_argument("--tyre", default="xzl-16.00R20", help="built-in tyre, .tir or Chrono .json file")
+    p.add_argument("--pressure", type=pressure_kpa(), default=None, metavar="KPA",
                    help="inflation pressure in kPa (default 300)")
     p.add_argument("--model", default="point", help="contact model (default point)")
     p.add_argument("--stiffness", choices=("table", "linear"), default=None)
@@ -20,40 +24,60 @@ def register(sub):
                    help="plate, cleat:WxH (mm) or footprint (default plate)")
     p.add_argument("--direction", choices=("lateral", "longitudinal"), default="lateral",
                    help="cleat axis across (lateral) or along (longitudinal) the wheel plane")
-    p.add_argument("--max-deflection", type=positive_float("deflection", 1e-3), default=0.08,
-                   metavar="MM", help="largest press deflection in mm (default 80)")
-    p.add_argument("--steps", type=int, default=17, help="number of deflections (default 17)")
-    p.add_argument("--load", type=positive_float("load"), default=None, metavar="N",
-                   help="footprint load in N (footprint test)")
-    p.add_argument("-o", "--output", default=None, help="write the table (.csv) or a plot (.png)")
+    p.add_argument("--max-deflection", type=bounded_float("deflection", 0.0, 1000.0, "mm", scale=1e-3,
+                                                          low_open=True), default=0.08,
+                   metavar="MM", help="largest press deflection in mm, below rim contact (default 80)")
+    p.add_argument("--steps", type=count("--steps", MIN_STATIC_STEPS, MAX_STATIC_STEPS), default=17,
+                   help=f"number of deflections, {MIN_STATIC_STEPS} to {MAX_STATIC_STEPS} (default 17)")
+    p.add_argument("--load", type=bounded_float("load", MIN_LOAD, None, "N"), default=None, metavar="N",
+                   help="footprint load in N, below the load that reaches the rim (footprint test)")
+    p.add_argument("-o", "--output", default=None,
+                   help="write the table (.csv) or a plot (.png, .pdf, .svg, .jpg); the footprint "
+                        "test writes an image (default footprint.png)")
     p.set_defaults(func=run)
 
 
 def run(args) -> int:
     from ..api import make_tyre_model
     from ..errors import InputError
-    from ..rig.static_press import footprint, static_press
+    from ..io_atomic import IMAGE_SUFFIXES, atomic_write, save_figure
+    from ..limits import check_wheel_load, rim_deflection
+    from ..rig.static_press import footprint, press_road, static_press
 
+    inputs = input_files(args.tyre)
+    if args.test == "footprint":
+        out = output_path(args.output or "footprint.png", IMAGE_SUFFIXES, inputs=inputs)
+    else:
+        out = output_path(args.output, TABLE_SUFFIXES + IMAGE_SUFFIXES, inputs=inputs) \
+            if args.output else None
+        press_road(args.test, args.direction)  # a bad test name or cleat size: refused now
     model = make_tyre_model(args.tyre, args.model, args.pressure, args.stiffness, handling="none")
+    tyre = model.tyre
     if args.test == "footprint":
         from ..report.footprint import plot_footprint
-        load = args.load or float(model.tyre.tir.number("VERTICAL", "FNOMIN", default=40e3))
+        if args.load is not None:
+            load = check_wheel_load(args.load, tyre, field="--load")
+        else:
+            load = float(tyre.tir.number("VERTICAL", "FNOMIN", default=40e3))
+            check_wheel_load(load, tyre, field="FNOMIN (the default --load)")
         result = footprint(model, load)
-        path = args.output or "footprint.png"
-        plot_footprint(result, path)
-        print(f"{path}: footprint at {load / 1e3:.1f} kN")
+        plot_footprint(result, out)
+        print(f"{out}: footprint at {load / 1e3:.1f} kN")
         return 0
-    if args.steps < 2:
-        raise InputError("need at least 2 steps", field="--steps")
+    room, how = rim_deflection(tyre)
+    if args.max_deflection >= room:
+        raise InputError(f"{args.max_deflection * 1e3:g} mm would press {tyre.name} onto its rim "
+                         f"({room * 1e3:.0f} mm = {how}); allowed: below {room * 1e3:.0f} mm",
+                         field="--max-deflection")
     d = np.linspace(0.0, args.max_deflection, args.steps)
     table = static_press(model, d, args.test, args.direction)
-    print(f"# {model.tyre.name} {model.tyre.pressure / 1e3:g} kPa, {model.contact}, {args.test}"
+    print(f"# {tyre.name} {tyre.pressure / 1e3:g} kPa, {model.contact}, {args.test}"
           + (f" ({args.direction})" if args.test != "plate" else ""))
     print(" deflection_mm   load_N")
     for dd, f in zip(table["deflection"], table["load"]):
         print(f"{dd * 1e3:14.1f} {f:9.0f}")
-    if args.output:
-        if args.output.lower().endswith(".png"):
+    if out is not None:
+        if out.suffix.lower() in IMAGE_SUFFIXES:
             import matplotlib
             matplotlib.use("Agg")
             import matplotlib.pyplot as plt
@@ -63,7 +87,7 @@ def run(args) -> int:
             ax.set_ylabel("load [kN]")
             ax.set_title(f"static press, {args.test}")
             ax.grid(alpha=0.3)
-            fig.savefig(args.output, dpi=120)
+            save_figure(fig, out, dpi=120)
         else:
-            table.to_csv(args.output, index=False)
+            atomic_write(out, lambda tmp: table.to_csv(tmp, index=False))
     return 0

@@ -42,8 +42,13 @@ def run(args) -> int:
     if args.example:
         sys.stdout.write(study.example_spec())
         return 0
+    from ..io_atomic import check_output_folder
+
+    if args.output is not None:
+        check_output_folder(args.output, "-o")
     spec = study.builtin_spec() if args.spec is None else study.load_spec(args.spec)
     output = args.output if args.output is not None else spec.output
+    check_output_folder(output, "-o" if args.output is not None else "[study] output")
     result = study.run(spec, workers=args.workers, scheduler=args.scheduler, output=output)
     index = result.index
     done = int((index["status"] == "done").sum()) if len(index) else 0

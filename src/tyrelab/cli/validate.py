@@ -7,9 +7,12 @@ overlay, the relative error over time and the force distributions.
 from __future__ import annotations
 
 import argparse
+import math
 from pathlib import Path
 
 from ..errors import InputError
+from ..limits import MAX_SPEED
+from ._common import bounded_float
 
 
 def _segments(text: str):
@@ -24,6 +27,9 @@ def _segments(text: str):
     except ValueError:
         raise InputError(f"expected 'auto', 'none' or T0:T1[:T2], got '{text}'",
                          source="command line", field="--segments") from None
+    if not all(math.isfinite(t) for t in times):
+        raise InputError(f"segment times must be finite seconds, got '{text}'",
+                         source="command line", field="--segments")
     if len(times) not in (2, 3) or any(b <= a for a, b in zip(times, times[1:])):
         raise InputError("segment times must be increasing: T0:T1[:T2]",
                          source="command line", field="--segments")
@@ -36,8 +42,8 @@ def _numbers(text: str, n: int, option: str) -> list[float]:
         values = [float(x) for x in text.split(":")]
     except (ValueError, AttributeError):
         values = []
-    if len(values) != n:
-        raise InputError(f"expected {n} numbers separated by ':', got '{text}'",
+    if len(values) != n or not all(math.isfinite(v) for v in values):
+        raise InputError(f"expected {n} finite numbers separated by ':', got '{text}'",
                          source="command line", field=option)
     return values
 
@@ -67,10 +73,14 @@ def _shift(text: str):
     if text == "auto":
         return "auto"
     try:
-        return float(text)
+        value = float(text)
     except ValueError:
         raise InputError(f"expected seconds or 'auto', got '{text}'", source="command line",
                          field="--shift") from None
+    if not math.isfinite(value):
+        raise InputError(f"expected finite seconds or 'auto', got '{text}'", source="command line",
+                         field="--shift")
+    return value
 
 
 def register(subparsers) -> None:
@@ -88,18 +98,20 @@ def register(subparsers) -> None:
                    help="obstacle leading and trailing edge and height [m] (--segments geometry)")
     p.add_argument("--tyre", default=None, metavar="R:HC",
                    help="free tyre radius and wheel-centre height on flat road [m]")
-    p.add_argument("--speed", type=float, default=None,
+    p.add_argument("--speed", type=bounded_float("speed", 0.0, MAX_SPEED, "m/s", low_open=True), default=None,
                    help="constant speed [m/s] when MEAS has no X_WC or DISTANCE channel")
-    p.add_argument("--x0", type=float, default=0.0,
+    p.add_argument("--x0", type=bounded_float("x0", -1e4, 1e4, "m"), default=0.0,
                    help="wheel-centre position at MEAS's first sample [m] (with --speed)")
     p.add_argument("--shift", default="0",
                    help="seconds the simulation is delayed by, or 'auto' (cross-correlation)")
-    p.add_argument("--max-shift", type=float, default=None, help="limit of the auto shift [s]")
+    p.add_argument("--max-shift", type=bounded_float("max-shift", 0.0, 1e4, "s"), default=None,
+                   help="limit of the auto shift [s]")
     p.add_argument("--repeat", default=None,
                    help="a second measurement of the same test: report its scatter beside")
     p.add_argument("--column-map", default=None,
                    help="column map file for a measured .csv (source,channel,unit)")
-    p.add_argument("--slope", type=float, default=5.0, help="S-N slope for pseudo-damage")
+    p.add_argument("--slope", type=bounded_float("slope", 0.0, 100.0, low_open=True), default=5.0,
+                   help="S-N slope for pseudo-damage (0 < slope <= 100)")
     p.add_argument("--html", default=None,
                    help="output page (default: MEAS name + '_validation.html' in the cwd)")
     p.set_defaults(func=run)
@@ -112,6 +124,11 @@ def run(args: argparse.Namespace) -> int:
     from ..validate.compare import METRICS, compare_aligned, metric_row
     from ..validate.tables import metrics_table, table_html, table_markdown_by_metric
 
+    from ..io_atomic import check_output_path
+
+    out = Path(args.html) if args.html else Path(Path(args.meas).stem + "_validation.html")
+    check_output_path(out, (".html", ".htm"), "--html",
+                      inputs=[args.sim, args.meas, args.repeat, args.column_map])
     segments = _segments(args.segments)
     shift = _shift(args.shift)
     sim = read_run(args.sim)
@@ -141,7 +158,6 @@ def run(args: argparse.Namespace) -> int:
     print(table_markdown_by_metric(table, {k: u for k, (u, _) in METRICS.items()}))
     for note in notes:
         print(note)
-    out = Path(args.html) if args.html else Path(Path(args.meas).stem + "_validation.html")
     write_page(out, page_html(f"Validation: {Path(args.sim).name} vs {Path(args.meas).name}",
                               table_html(table, best=0), aligned, result, notes))
     print(f"page written: {out}")

@@ -71,10 +71,14 @@ def _number(cell: str, path, lineno, field) -> float:
     if text == "" or text.lower() == "nan":
         return np.nan
     try:
-        return float(text)
+        value = float(text)
     except ValueError:
         raise InputError(f"'{text}' is not a number", source=str(path), line=lineno,
                          field=field) from None
+    if not np.isfinite(value):
+        raise InputError(f"'{text}' is not a finite number (leave the cell empty for a missing value)",
+                         source=str(path), line=lineno, field=field)
+    return value
 
 
 def read_mapped_csv(path, column_map: dict, delimiter: str = ",",
@@ -122,8 +126,15 @@ def read_mapped_csv(path, column_map: dict, delimiter: str = ",",
             data[channel][r] = _number(row[i], path, lineno, source)
     if not rows:
         raise InputError("no data rows", source=str(path))
-    si = {ch: to_si(data[ch], unit, source=str(path), field=src)
-          for src, (ch, unit) in column_map.items()}
+    with np.errstate(over="ignore"):
+        si = {ch: to_si(data[ch], unit, source=str(path), field=src)
+              for src, (ch, unit) in column_map.items()}
+    for src, (ch, _) in column_map.items():
+        over = np.isinf(si[ch])
+        if over.any():
+            k = int(np.flatnonzero(over)[0])
+            raise InputError(f"value {data[ch][k]!r} overflows when converted to SI", source=str(path),
+                             line=rows[k][0], field=src)
     df = make_signal(si, {"source": str(path), **(metadata or {})})
     df.attrs["units"] = {ch: si_unit(unit) for ch, unit in column_map.values()} | {
         c: df.attrs["units"].get(c, "") for c in df.columns if c not in channels}

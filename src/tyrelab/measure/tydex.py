@@ -18,7 +18,9 @@ Values: a stored number ``raw`` of a channel means ``factor * raw + offset``
 in the channel's unit, which is then converted to SI
 (:mod:`tyrelab.measure.units`). The missing-value word ``NOTAVAIL`` reads as
 NaN. A record may be wrapped over several lines; it is complete when it holds
-one value per channel.
+one value per channel. Any other non-finite number (``nan``, ``inf``, a
+value that overflows when scaled or converted to SI) is an
+:class:`InputError` naming the file, the line and the channel.
 
 References
 ----------
@@ -31,13 +33,14 @@ References
 from __future__ import annotations
 
 import json
-import os
+import math
 from pathlib import Path
 
 import numpy as np
 import pandas as pd
 
 from ..errors import InputError
+from ..io_atomic import atomic_write_text
 from ..signal import CHANNELS, make_signal
 from .units import from_si, si_unit, to_si
 
@@ -94,6 +97,10 @@ def _channel(text: str, path, lineno: int) -> dict:
             raise InputError(f"conversion factor '{tok}' is not a number",
                              source=path, line=lineno, field=name)
     values = [float(v) for v in numbers] or [1.0]
+    for v in values:
+        if not math.isfinite(v):
+            raise InputError(f"conversion factor or offset {v} is not a finite number",
+                             source=path, line=lineno, field=name)
     if len(values) > 3:
         raise InputError("expected at most a conversion factor and two offsets",
                          source=path, line=lineno, field=name)
@@ -139,7 +146,7 @@ def _read_sections(path: Path):
 def _records(lines, channels, path):
     """Data records from ``**MEASURDATA`` lines; wrapped records allowed."""
     n = len(channels)
-    rows, pending, start = [], [], None
+    rows, pending, start, starts = [], [], None, []
     for lineno, text in lines:
         tokens = text.split()
         if not pending:
@@ -154,16 +161,21 @@ def _records(lines, channels, path):
                 if tok.upper() == MISSING:
                     row.append(np.nan)
                 elif _is_number(tok):
-                    row.append(float(tok))
+                    value = float(tok)
+                    if not math.isfinite(value):
+                        raise InputError(f"'{tok}' is not a finite number (write {MISSING} for a "
+                                         "missing value)", source=str(path), line=ln, field=ch["name"])
+                    row.append(value)
                 else:
                     raise InputError(f"'{tok}' is not a number", source=str(path), line=ln,
                                      field=ch["name"])
             rows.append(row)
+            starts.append(start)
             pending = []
     if pending:
         raise InputError(f"last record has {len(pending)} values, expected {n}",
                          source=str(path), line=start)
-    return np.array(rows, dtype=float).reshape(-1, n)
+    return np.array(rows, dtype=float).reshape(-1, n), starts
 
 
 def _key_values(lines, path, numeric: bool):
@@ -180,7 +192,11 @@ def _key_values(lines, path, numeric: bool):
             unit, value = "", unit
         entry = {"description": desc, "unit": unit, "value": value}
         if numeric and _is_number(value):
-            entry["value"] = float(to_si(float(value), unit, str(path), lineno, name))
+            si = float(to_si(float(value), unit, str(path), lineno, name))
+            if not math.isfinite(si):
+                raise InputError(f"'{value}' is not a finite number (in SI)", source=str(path),
+                                 line=lineno, field=name)
+            entry["value"] = si
             entry["unit"] = si_unit(unit)
         out[name] = entry
     return out
@@ -224,11 +240,20 @@ def read_tydex(path) -> pd.DataFrame:
             raise InputError(f"channel listed twice (first on line {seen[ch['name']]})",
                              source=str(path), line=ch["line"], field=ch["name"])
         seen[ch["name"]] = ch["line"]
-    raw = _records(sections["**MEASURDATA"], channels, path)
+    raw, record_lines = _records(sections["**MEASURDATA"], channels, path)
     if raw.shape[0] == 0:
         raise InputError("section **MEASURDATA holds no record", source=str(path))
-    data = {ch["name"]: to_si(ch["factor"] * raw[:, i] + ch["offset"], ch["unit"])
-            for i, ch in enumerate(channels)}
+    data = {}
+    with np.errstate(over="ignore", invalid="ignore"):
+        for i, ch in enumerate(channels):
+            data[ch["name"]] = to_si(ch["factor"] * raw[:, i] + ch["offset"], ch["unit"])
+            overflow = np.isnan(data[ch["name"]]) != np.isnan(raw[:, i])
+            overflow |= np.isinf(data[ch["name"]])
+            if overflow.any():
+                k = int(np.flatnonzero(overflow)[0])
+                raise InputError(f"value {raw[k, i]!r} overflows when scaled by the channel's factor and "
+                                 "converted to SI", source=str(path), line=record_lines[k],
+                                 field=ch["name"])
     comments = [text for _, text in sections.get("**COMMENTS", [])]
     metadata = {}
     for line in comments:
@@ -322,13 +347,4 @@ def write_tydex(df: pd.DataFrame, path, units: dict | None = None,
     table written and read back is identical. One record per line.
     """
     text = tydex_text(df, units=units, header=header, constants=constants)
-    path = Path(path)
-    tmp = path.with_name(f".{path.name}.part")
-    try:
-        with open(tmp, "w", encoding="utf-8", newline="\n") as fh:
-            fh.write(text)
-        os.replace(tmp, path)
-    except BaseException:
-        if tmp.exists():
-            tmp.unlink()
-        raise
+    atomic_write_text(Path(path), text, newline="\n")

@@ -8,7 +8,7 @@ import numpy as np
 
 
 def plot_footprint(result: dict, path) -> Path:
-    """Write the footprint of :func:`tyrelab.rig.static_press.footprint` as a PNG.
+    """Write the footprint of :func:`tyrelab.rig.static_press.footprint` as an image (atomically).
 
     Each contacting tread block is drawn as a rectangle of its cell, coloured
     by its contact pressure [kPa]; the outline is drawn in red (as FTire/fit
@@ -56,6 +56,5 @@ def plot_footprint(result: dict, path) -> Path:
                  f"{result.get('pressure_inflation', float('nan')) / 1e3:.0f} kPa, "
                  f"{result.get('length', 0) * 1e3:.0f} x {result.get('width', 0) * 1e3:.0f} mm")
     fig.tight_layout()
-    fig.savefig(path, dpi=120)
-    plt.close(fig)
-    return path
+    from ..io_atomic import save_figure
+    return save_figure(fig, path, dpi=120)

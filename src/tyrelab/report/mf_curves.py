@@ -37,7 +37,7 @@ def curve_data(model, load_factors=DEFAULT_LOAD_FACTORS, kappa_max=0.3, alpha_ma
 
 
 def plot_curves(model, output, load_factors=DEFAULT_LOAD_FACTORS, use_mode=111, dpi=120) -> Path:
-    """Write a three-panel figure (Fx-kappa, Fy-alpha, Mz-alpha) to ``output``."""
+    """Write a three-panel figure (Fx-kappa, Fy-alpha, Mz-alpha) to ``output`` (atomically)."""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
@@ -58,7 +58,5 @@ def plot_curves(model, output, load_factors=DEFAULT_LOAD_FACTORS, use_mode=111, 
     axes[0].legend()
     fig.suptitle(f"{Path(model.source).name} -- Magic Formula {model.version}, "
                  f"ISO-W, gamma = 0, Vx = {model.coefficient('LONGVL'):g} m/s, use_mode {use_mode}")
-    output = Path(output)
-    fig.savefig(output, dpi=dpi)
-    plt.close(fig)
-    return output
+    from ..io_atomic import save_figure
+    return save_figure(fig, Path(output), dpi=dpi)

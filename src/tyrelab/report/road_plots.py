@@ -7,7 +7,6 @@ spatial frequency on log-log axes, with the fitted power law ``S = A phi^-n``
 
 from __future__ import annotations
 
-import os
 from pathlib import Path
 
 import matplotlib
@@ -16,6 +15,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
+from ..io_atomic import save_figure as _save_atomic  # noqa: E402
 from ..road.iso8608 import BAND, ISO_CLASSES, N0, W_ISO, iso_class  # noqa: E402
 from ..road.spectrum import log_binned, road_profile  # noqa: E402
 
@@ -24,18 +24,8 @@ MAX_PIXELS = (2000, 400)
 
 
 def save_figure(fig, path, dpi: int = 120) -> Path:
-    """Save ``fig`` so that ``path`` appears only when complete (write, then rename)."""
-    path = Path(path)
-    fmt = path.suffix.lstrip(".") or "png"
-    tmp = path.with_name(f".{path.name}.{os.getpid()}.part")
-    try:
-        fig.savefig(tmp, dpi=dpi, format=fmt)
-        os.replace(tmp, path)
-    finally:
-        if tmp.exists():
-            tmp.unlink()
-        plt.close(fig)
-    return path
+    """Save ``fig`` so that ``path`` appears only when complete (:func:`tyrelab.io_atomic.save_figure`)."""
+    return _save_atomic(fig, path, dpi=dpi)
 
 
 def _heightmap(ax, road):

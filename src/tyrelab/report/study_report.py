@@ -59,7 +59,7 @@ import numpy as np
 import pandas as pd
 
 from .._version import __version__
-from ..signal import atomic_output
+from ..io_atomic import atomic_output
 from ..validate.compare import METRICS, THESIS_CLEAT, THESIS_TRACK
 from ..validate.tables import _fmt, summary_html, table_html
 from .study_figures import (ERRORS_SCRIPT, MAX_POINTS, PALETTE, RENDERED_SCRIPT, FigureSink,

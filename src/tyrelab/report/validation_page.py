@@ -15,11 +15,11 @@ from __future__ import annotations
 import base64
 import html
 import io
-import os
 from pathlib import Path
 
 import numpy as np
 
+from ..io_atomic import atomic_write_text
 from ..validate.align import Aligned
 from ..validate.distributions import fit_normal, histogram_density
 from ..validate.metrics import relative_error
@@ -134,12 +134,4 @@ def page_html(title: str, table_html: str, aligned: Aligned, result: dict,
 
 def write_page(path, text: str) -> None:
     """Write the page; it appears only when complete (temporary name, rename)."""
-    path = Path(path)
-    tmp = path.with_name(f".{path.name}.part")
-    try:
-        tmp.write_text(text, encoding="utf-8")
-        os.replace(tmp, path)
-    except BaseException:
-        if tmp.exists():
-            tmp.unlink()
-        raise
+    atomic_write_text(Path(path), text)

@@ -19,6 +19,8 @@ from typing import NamedTuple
 import numba as nb
 import numpy as np
 
+from ..errors import InputError
+
 #: length along x of the road blocks whose maximum height bounds a contact search [m]
 BLOCK_LENGTH = 0.04
 
@@ -70,11 +72,14 @@ class RoadGrid:
     def __post_init__(self):
         z = np.ascontiguousarray(self.z, dtype=np.float64)
         if z.ndim != 2 or z.shape[0] < 2 or z.shape[1] < 2:
-            raise ValueError("a road grid needs at least 2 x 2 nodes")
+            raise InputError("a road grid needs at least 2 x 2 nodes", field="road")
         if not np.all(np.isfinite(z)):
-            raise ValueError("a road grid must be finite; fill empty cells first")
-        if not (self.dx > 0 and self.dy > 0):
-            raise ValueError("grid spacing must be positive")
+            raise InputError("a road grid must be finite; fill empty cells first", field="road")
+        if not (math.isfinite(self.dx) and math.isfinite(self.dy) and self.dx > 0 and self.dy > 0):
+            raise InputError(f"grid spacing must be positive and finite, got {self.dx}, {self.dy}",
+                             field="road")
+        if not (math.isfinite(self.x0) and math.isfinite(self.y0)):
+            raise InputError(f"grid origin must be finite, got {self.x0}, {self.y0}", field="road")
         object.__setattr__(self, "z", z)
 
     def surface(self) -> RoadSurface:

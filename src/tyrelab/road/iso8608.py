@@ -30,6 +30,7 @@ from __future__ import annotations
 import numpy as np
 from scipy import fft, stats
 
+from .. import limits
 from ..errors import InputError
 from .base import GriddedRoad
 from .grid import RoadGrid
@@ -58,8 +59,11 @@ def power_law(spec) -> tuple[float, float]:
     except (TypeError, ValueError):
         raise InputError(f"expected an ISO 8608 class A-H or a pair (A, n), got {spec!r}",
                          field="road class") from None
-    if not (a > 0 and n > 0):
-        raise InputError(f"power law needs A > 0 and n > 0, got A = {a}, n = {n}", field="road class")
+    if not (np.isfinite(a) and np.isfinite(n) and a > 0 and n > 0):
+        raise InputError(f"power law needs finite A > 0 and n > 0, got A = {a}, n = {n}", field="road class")
+    if a > 1.0 or n > 10.0:
+        raise InputError(f"power law A = {a:g}, n = {n:g} is no road: allowed A <= 1 m^2/(cycles/m) "
+                         "(ISO 8608 class H is 2.6e-3) and n <= 10", field="road class")
     return a, n
 
 
@@ -104,9 +108,13 @@ def _bins(npts: int, dx: float, band) -> tuple[np.ndarray, np.ndarray, float]:
     return k[keep], f[keep], dn
 
 
-def _check_sizes(length: float, spacing: float) -> int:
+def _check_sizes(length: float, spacing: float, what: str = "length",
+                 high: float = limits.MAX_ROAD_LENGTH) -> int:
     if not (length > 0 and spacing > 0):
         raise InputError(f"length and spacing must be positive, got {length}, {spacing}", field="road")
+    limits.check_number(length, "road", 0.0, high, "m", low_open=True, what=f"random road {what}")
+    limits.check_number(spacing, "road", limits.MIN_GRID_SPACING, limits.MAX_GRID_SPACING, "m",
+                        what="random road grid spacing")
     return int(np.floor(length / spacing + 1e-9)) + 1
 
 
@@ -149,7 +157,7 @@ def iso8608_surface(spec, length: float = 100.0, width: float = 4.0,
     a, n = power_law(spec)
     dx, dy = spacing
     nx = _check_sizes(length, dx)
-    ny = _check_sizes(width, dy)
+    ny = _check_sizes(width, dy, "width", limits.MAX_ROAD_WIDTH)
     npts = fft.next_fast_len(nx)
     k, f, dn = _bins(npts, dx, band)
     rng = np.random.default_rng(seed)
@@ -203,10 +211,19 @@ class RandomRoad(GriddedRoad):
 
     def __init__(self, spec="C", length: float = 100.0, width: float | None = 4.0,
                  spacing: tuple[float, float] = (0.01, 0.01), seed=0, band=BAND,
-                 start: float = 0.0, taper: float = 0.0):
+                 start: float = 0.0, taper: float = 0.0, force: bool = False):
         self.a, self.n = power_law(spec)
         self.band = tuple(float(b) for b in band)
+        if not (len(self.band) == 2 and all(np.isfinite(self.band)) and 0 < self.band[0] < self.band[1]):
+            raise InputError(f"band must be two increasing positive frequencies, got {band}", field="band")
         dx, dy = (float(s) for s in spacing)
+        nx = _check_sizes(length, dx)
+        ny = _check_sizes(width, dy, "width", limits.MAX_ROAD_WIDTH) if width else 2
+        limits.check_resources(f"a random road of {nx} x {ny} nodes", memory=8.0 * 4 * nx * ny,
+                               force=force, field="road", hint="use a coarser spacing or a smaller road")
+        limits.check_number(start, "road", -limits.MAX_ROAD_LENGTH, limits.MAX_ROAD_LENGTH, "m",
+                            what="random road start")
+        limits.check_number(taper, "road", 0.0, 0.5 * length, "m", what="random road taper")
         if width:
             z = iso8608_surface((self.a, self.n), length, width, (dx, dy), seed, band)
             y0 = -0.5 * width

@@ -5,6 +5,13 @@ x where the obstacle begins at the road centreline (y = 0). Sizes in metres.
 Grids place the obstacle's edges on grid nodes where the geometry allows it
 (perpendicular obstacles), so a sharp edge stays sharp under bilinear
 interpolation.
+
+Sizes are bounded (:mod:`tyrelab.limits`): heights and depths up to
+:data:`~tyrelab.limits.MAX_OBSTACLE_HEIGHT`, lengths along the road from
+:data:`~tyrelab.limits.MIN_OBSTACLE_SIZE` to
+:data:`~tyrelab.limits.MAX_OBSTACLE_LENGTH`, widths across it up to the
+road's width; a size outside is an :class:`InputError` naming it, before
+any grid is built.
 """
 
 from __future__ import annotations
@@ -13,6 +20,7 @@ import math
 
 import numpy as np
 
+from .. import limits
 from ..errors import InputError
 from .base import Road
 
@@ -28,6 +36,24 @@ def _positive(value, name):
     if not (value is not None and np.isfinite(value) and value > 0):
         raise InputError(f"must be a positive number of metres, got {value}", field=name)
     return float(value)
+
+
+def _height(value, name):
+    """An obstacle height or depth [m]: positive, at most MAX_OBSTACLE_HEIGHT."""
+    _positive(value, name)
+    return limits.check_number(value, "road", 0.0, limits.MAX_OBSTACLE_HEIGHT, "m", low_open=True,
+                               what=name)
+
+
+def _length(value, name, high=limits.MAX_OBSTACLE_LENGTH):
+    """An obstacle size [m] along or across the road: MIN_OBSTACLE_SIZE to ``high``."""
+    _positive(value, name)
+    return limits.check_number(value, "road", limits.MIN_OBSTACLE_SIZE, high, "m", what=name)
+
+
+def _start(value):
+    return limits.check_number(value, "road", -limits.MAX_ROAD_LENGTH, limits.MAX_ROAD_LENGTH, "m",
+                               what="obstacle start")
 
 
 def _spacing_through(edges, target=EDGE_SPACING):
@@ -79,17 +105,17 @@ class Cleat(Road):
     """
 
     def __init__(self, width, height, angle=0.0, bevel=0.0, start=5.0):
-        self.width = _positive(width, "cleat width")
-        self.cleat_height = _positive(height, "cleat height")
+        self.width = _length(width, "cleat width")
+        self.cleat_height = _height(height, "cleat height")
         if not (np.isfinite(angle) and -80.0 <= angle <= 80.0):
             raise InputError(f"cleat angle must be between -80 and 80 degrees, got {angle}",
                              field="cleat angle")
         self.angle = float(angle)
-        if not (0.0 <= bevel <= min(self.width / 2, self.cleat_height)):
+        if not (np.isfinite(bevel) and 0.0 <= bevel <= min(self.width / 2, self.cleat_height)):
             raise InputError(f"bevel must be between 0 and half the width / the height, got {bevel}",
                              field="cleat bevel")
         self.bevel = float(bevel)
-        self.start = float(start)
+        self.start = _start(start)
         self.name = (f"cleat {self.width * 1e3:g} x {self.cleat_height * 1e3:g} mm "
                      f"at {self.angle:g} deg")
         if self.angle == 0.0:
@@ -140,13 +166,15 @@ class TrapezoidalBump(Road):
     """
 
     def __init__(self, height, ramp_length=None, top_length=None, start=5.0):
-        self.bump_height = _positive(height, "bump height")
-        self.ramp_length = _positive(ramp_length if ramp_length is not None else 4.0 * self.bump_height,
-                                     "bump ramp length")
+        self.bump_height = _height(height, "bump height")
+        self.ramp_length = _length(ramp_length if ramp_length is not None else 4.0 * self.bump_height,
+                                   "bump ramp length")
         self.top_length = float(top_length) if top_length is not None else 0.5
-        if self.top_length < 0:
+        if not (np.isfinite(self.top_length) and self.top_length >= 0):
             raise InputError(f"top length must be >= 0, got {top_length}", field="bump top length")
-        self.start = float(start)
+        if self.top_length > 0:
+            _length(self.top_length, "bump top length")
+        self.start = _start(start)
         self.name = (f"trapezoidal bump {self.bump_height * 1e3:g} mm, ramps "
                      f"{self.ramp_length * 1e3:g} mm, top {self.top_length * 1e3:g} mm")
         self.default_spacing = (_spacing_through(self._edges()), 1.0)
@@ -177,9 +205,13 @@ class Step(Road):
         if not (np.isfinite(height) and height != 0.0):
             raise InputError(f"step height must be a non-zero number of metres, got {height}",
                              field="step height")
+        limits.check_number(abs(height), "road", 0.0, limits.MAX_OBSTACLE_HEIGHT, "m", low_open=True,
+                            what="step height")
         self.step_height = float(height)
-        self.start = float(start)
-        self.default_spacing = (float(spacing), 1.0)
+        self.start = _start(start)
+        self.default_spacing = (limits.check_number(spacing, "road", limits.MIN_GRID_SPACING,
+                                                    limits.MAX_GRID_SPACING, "m",
+                                                    what="step grid spacing"), 1.0)
         self.name = f"step {self.step_height * 1e3:g} mm"
 
     def height(self, x, y):
@@ -206,10 +238,10 @@ class Pothole(Road):
     """
 
     def __init__(self, depth, length, width=None, start=5.0):
-        self.depth = _positive(depth, "pothole depth")
-        self.length = _positive(length, "pothole length")
-        self.width = None if width is None else _positive(width, "pothole width")
-        self.start = float(start)
+        self.depth = _height(depth, "pothole depth")
+        self.length = _length(length, "pothole length")
+        self.width = None if width is None else _length(width, "pothole width", limits.MAX_OBSTACLE_WIDTH)
+        self.start = _start(start)
         self.name = (f"pothole {self.depth * 1e3:g} mm deep, {self.length * 1e3:g} mm long"
                      + ("" if self.width is None else f", {self.width * 1e3:g} mm wide"))
         dx = _spacing_through([0.0, self.length])
@@ -225,7 +257,7 @@ class Pothole(Road):
         # grid nodes, so the edges a wheel rolls over are exact corners
         inside = (x > self.start) & (x < self.start + self.length)
         if self.width is not None:
-            inside &= np.abs(y) < self.width / 2
+            inside = inside & (np.abs(y) < self.width / 2)
         return np.where(inside, -self.depth, 0.0)
 
     def extent(self):
@@ -250,10 +282,10 @@ class Ridge(Road):
     """
 
     def __init__(self, width, height, length=2.0, start=-1.0):
-        self.width = _positive(width, "cleat width")
-        self.ridge_height = _positive(height, "cleat height")
-        self.length = _positive(length, "ridge length")
-        self.start = float(start)
+        self.width = _length(width, "cleat width", limits.MAX_OBSTACLE_WIDTH)
+        self.ridge_height = _height(height, "cleat height")
+        self.length = _length(length, "ridge length")
+        self.start = _start(start)
         self.name = f"longitudinal cleat {self.width * 1e3:g} x {self.ridge_height * 1e3:g} mm"
         dy = _spacing_through([0.0, self.width])
         self.default_spacing = (0.01, dy)

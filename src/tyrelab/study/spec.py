@@ -73,6 +73,7 @@ import tomllib
 from importlib import resources
 from pathlib import Path
 
+from .. import limits
 from ..errors import InputError
 from .checker import Checker, describe_value
 from .keys import run_key, tyre_digest  # noqa: F401 - part of this module's API
@@ -81,8 +82,9 @@ from .records import (ModelSpec, ReferenceFile, RunSpec, StudySpec, TestSpec,  #
 
 #: the obstacle groups of the thesis (Table 5-15); the summary rules differ per group
 GROUPS = ("discrete obstacles", "rough tracks")
-#: speed range accepted [km/h]
-MAX_SPEED_KMH = 200.0
+#: speed range accepted [km/h] (:data:`tyrelab.limits.MIN_SPEED`, ``MAX_SPEED``)
+MIN_SPEED_KMH = limits.MIN_SPEED * 3.6
+MAX_SPEED_KMH = round(limits.MAX_SPEED * 3.6, 9)
 DEFAULT_DT = 1e-3
 DEFAULT_OUTPUT_RATE = 1000.0
 #: the built-in thesis campaign (package data)
@@ -113,7 +115,12 @@ def _study(ck: Checker, doc):
         ck.fail(("study", "output"), "expected a folder path, got an empty string")
     out = Path(out_text).expanduser()
     output = (out if out.is_absolute() else ck.base / out).resolve()
+    if output.exists() and not output.is_dir():
+        ck.fail(("study", "output"), f"'{out_text}' is a file; expected a results folder")
     dt = ck.number(t.get("dt", DEFAULT_DT), ("study", "dt"), "a time step > 0 [s]", low=0.0)
+    if not limits.MIN_DT <= dt <= limits.MAX_DT:
+        ck.fail(("study", "dt"), f"time step {dt:g} s is out of range; allowed: {limits.MIN_DT:g} to "
+                f"{limits.MAX_DT:g} s")
     rate = ck.number(t.get("output_rate", DEFAULT_OUTPUT_RATE), ("study", "output_rate"),
                      "an output rate > 0 [Hz]", low=0.0)
     if rate * dt > 1.0 + 1e-9:
@@ -246,12 +253,18 @@ def _load(ck: Checker, value, path, cases):
             ck.fail(path, f"unknown load case {json.dumps(value)}; expected one of {', '.join(cases)} "
                     "or a wheel load in N")
         return key
-    return ck.number(value, path, f"a load case ({', '.join(cases)}) or a wheel load > 0 in N", low=0.0)
+    load = ck.number(value, path, f"a load case ({', '.join(cases)}) or a wheel load > 0 in N", low=0.0)
+    if load < limits.MIN_LOAD:
+        ck.fail(path, f"wheel load {load:g} N is out of range; allowed: at least {limits.MIN_LOAD:g} N")
+    return load
 
 
 def _speed(ck: Checker, value, path):
     kmh = ck.number(value, path, f"a speed in km/h, 0 < v <= {MAX_SPEED_KMH:g}", low=0.0,
                     high=MAX_SPEED_KMH)
+    if kmh < MIN_SPEED_KMH:
+        ck.fail(path, f"speed {kmh:g} km/h is out of range; allowed: {MIN_SPEED_KMH:g} to "
+                f"{MAX_SPEED_KMH:g} km/h")
     return kmh / 3.6
 
 
@@ -312,7 +325,8 @@ def _reference(ck: Checker, raw, path, speeds, loads, models, cases):
     return None, tuple(out)
 
 
-def _tests(ck: Checker, doc, models) -> tuple[TestSpec, ...]:
+def _tests(ck: Checker, doc, models, dt: float = DEFAULT_DT,
+           rate: float = DEFAULT_OUTPUT_RATE) -> tuple[TestSpec, ...]:
     from ..api import RIGS
     from ..tyre.library import load_cases
 
@@ -343,6 +357,10 @@ def _tests(ck: Checker, doc, models) -> tuple[TestSpec, ...]:
         duration = None
         if "duration" in t:
             duration = ck.number(t["duration"], path + ("duration",), "a duration > 0 [s]", low=0.0)
+            try:
+                limits.check_duration(duration, dt, rate)
+            except InputError as exc:
+                ck.fail(path + ("duration",), exc.reason)
         reference_model, reference_files = None, ()
         if "reference" in t:
             reference_model, reference_files = _reference(ck, t["reference"], path + ("reference",),
@@ -415,7 +433,7 @@ def parse_spec(text: str, source: str | Path = "<string>", base: str | Path | No
     name, output, dt, rate, left = _study(ck, doc)
     tyres = _tyres(ck, doc)
     models = _models(ck, doc, tyres)
-    tests = _tests(ck, doc, models)
+    tests = _tests(ck, doc, models, dt, rate)
     limits = _limits(ck, doc)
     return StudySpec(name, output, dt, rate, tuple(t for t, _ in tyres), models, tests, limits,
                      Path(src) if src != "<string>" else src, left, text, ck.base)

@@ -28,7 +28,8 @@ from pathlib import Path
 import pandas as pd
 
 from ..errors import InputError
-from ..signal import atomic_output, read_signal, write_signal
+from ..io_atomic import atomic_output
+from ..signal import read_signal, write_signal
 
 #: status of a run's record
 DONE, FAILED = "done", "failed"

@@ -11,6 +11,7 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
+from .. import limits
 from ..errors import InputError
 from .tir import TirFile, read_tir, write_tir
 from .vertical import DEFAULT_DAMPING_RAMP, VerticalLaw
@@ -72,10 +73,8 @@ class Tyre:
         if not isinstance(tir, TirFile):
             tir = read_tir(tir)
         src = tir.source
+        check_physics(tir)
         r0 = tir.number("DIMENSION", "UNLOADED_RADIUS", required=True)
-        if not r0 > 0:
-            raise InputError(f"UNLOADED_RADIUS must be positive, got {r0}", source=src,
-                             field="UNLOADED_RADIUS")
         width = tir.number("DIMENSION", "WIDTH", default=0.0)
         table = tir.table("DEFLECTION_LOAD_CURVE")
         k = tir.number("VERTICAL", "VERTICAL_STIFFNESS", default=None)
@@ -84,14 +83,16 @@ class Tyre:
                              source=src, field="VERTICAL_STIFFNESS")
         if k is None:  # secant stiffness of the table's last point
             k = float(table[-1, 1] / table[-1, 0])
+            if not k <= limits.MAX_STIFFNESS:
+                raise InputError(f"the table's secant stiffness {k:g} N/m is not physical; allowed: "
+                                 f"up to {limits.MAX_STIFFNESS:g} N/m", source=src,
+                                 line=tir.row_line("DEFLECTION_LOAD_CURVE", len(table) - 1),
+                                 field="DEFLECTION_LOAD_CURVE")
         c = tir.number("VERTICAL", "VERTICAL_DAMPING", default=0.0)
         if c < 0 or k <= 0:
             raise InputError("vertical stiffness must be positive and damping non-negative",
                              source=src, field="VERTICAL")
         if table is not None:
-            if table.shape[1] != 2:
-                raise InputError("[DEFLECTION_LOAD_CURVE] needs two columns (deflection, load)",
-                                 source=src, field="DEFLECTION_LOAD_CURVE")
             VerticalLaw.table(table[:, 0], table[:, 1], c, source=src)  # validates the table
         shape = tir.table("SHAPE")
         if shape is not None and (shape.shape[1] != 2 or shape.shape[0] > 10):
@@ -161,3 +162,86 @@ class Tyre:
         if self.load_deflection is not None:
             tir.set_table("DEFLECTION_LOAD_CURVE", self.load_deflection, ["pen", "fz"])
         write_tir(tir, path)
+
+
+def _fail(tir: TirFile, message: str, section: str, key: str | None = None, row: int | None = None):
+    line = tir.row_line(section, row) if row is not None else tir.line_of(section, key)
+    raise InputError(message, source=tir.source, line=line, field=key or section)
+
+
+def _bounded(tir: TirFile, section: str, key: str, low: float, high: float, unit: str,
+             low_open: bool = True, why: str = "") -> float | None:
+    """The value of ``key`` if present, checked to lie in (low, high] ([low, high] unless low_open)."""
+    value = tir.get(section, key)
+    if value is None:
+        return None
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        _fail(tir, f"expected a number, found '{value}'", section, key)
+    v = float(value)
+    if (v <= low if low_open else v < low) or v > high:
+        lo = f"{low:g} <" if low_open else f"{low:g} <="
+        _fail(tir, f"{v:g} {unit} is not physical{why}; allowed: {lo} {key} <= {high:g} {unit}",
+              section, key)
+    return v
+
+
+def check_physics(tir: TirFile) -> None:
+    """Check a property file's values for physical sense, naming file and line.
+
+    Positive finite radius (at most :data:`tyrelab.limits.MAX_RADIUS`), width,
+    stiffness, damping (non-negative), masses and inertias where the file gives
+    them; the rim inside the tyre; a ``[DEFLECTION_LOAD_CURVE]`` that has rows,
+    two columns, non-negative deflections that increase strictly and
+    non-negative loads that never decrease. Sections a file does not have are
+    not checked (every model checks what it needs).
+    """
+    r0 = tir.get("DIMENSION", "UNLOADED_RADIUS")
+    if r0 is not None:
+        r0 = _bounded(tir, "DIMENSION", "UNLOADED_RADIUS", 0.0, limits.MAX_RADIUS, "m")
+    _bounded(tir, "DIMENSION", "WIDTH", 0.0, limits.MAX_WIDTH, "m", why=" (a tyre has a width)")
+    rim = _bounded(tir, "DIMENSION", "RIM_RADIUS", 0.0, limits.MAX_RADIUS, "m")
+    if rim is not None and r0 is not None and not rim < r0:
+        _fail(tir, f"RIM_RADIUS {rim:g} m is not inside the tyre: it must be below UNLOADED_RADIUS "
+              f"{r0:g} m", "DIMENSION", "RIM_RADIUS")
+    _bounded(tir, "VERTICAL", "VERTICAL_STIFFNESS", 0.0, limits.MAX_STIFFNESS, "N/m")
+    _bounded(tir, "VERTICAL", "VERTICAL_DAMPING", 0.0, limits.MAX_DAMPING, "N s/m", low_open=False)
+    if r0 is not None:
+        _bounded(tir, "VERTICAL", "DAMPING_RAMP", 0.0, r0, "m")
+    for key in ("FNOMIN",):
+        _bounded(tir, "VERTICAL", key, 0.0, limits.MAX_TIR_MAGNITUDE, "N")
+    _bounded(tir, "VERTICAL_FORCE_RANGE", "FZMAX", 0.0, limits.MAX_TIR_MAGNITUDE, "N")
+    for key in ("WHEEL_MASS", "MASS"):
+        _bounded(tir, "INERTIA", key, 0.0, limits.MAX_WHEEL_MASS, "kg", why=" (a wheel has mass)")
+    for key in ("WHEEL_IYY", "IYY"):
+        _bounded(tir, "INERTIA", key, 0.0, limits.MAX_WHEEL_INERTIA, "kg m^2",
+                 why=" (a wheel has a spin inertia)")
+    for sec, key in (("OPERATING_CONDITIONS", "INFLPRES"), ("TIRE_CONDITIONS", "IP")):
+        _bounded(tir, sec, key, 0.0, limits.MAX_TIR_MAGNITUDE, "Pa")
+    name = "DEFLECTION_LOAD_CURVE"
+    if tir.has(name):
+        table = tir.table(name)
+        if table is None or table.size == 0:
+            _fail(tir, f"section [{name}] has no rows of (deflection, load); give at least two rows "
+                  "or remove the section to use VERTICAL_STIFFNESS", name)
+        if table.ndim != 2 or table.shape[1] != 2:
+            _fail(tir, f"[{name}] needs two columns (deflection, load), found {table.shape[-1]}", name,
+                  row=0)
+        d, f = table[:, 0], table[:, 1]
+        if len(d) < 2:
+            _fail(tir, f"[{name}] has {len(d)} row; a load-deflection curve needs at least two", name,
+                  row=0)
+        for i in range(len(d)):
+            if d[i] < 0:
+                _fail(tir, f"deflection {d[i]:g} m is negative", name, row=i)
+            if f[i] < 0:
+                _fail(tir, f"load {f[i]:g} N is negative (a tyre does not pull the road)", name, row=i)
+            if i and not d[i] > d[i - 1]:
+                _fail(tir, f"deflection {d[i]:g} m does not increase (previous row {d[i - 1]:g} m); "
+                      "deflections must increase strictly down the table", name, row=i)
+            if i and f[i] < f[i - 1]:
+                _fail(tir, f"load {f[i]:g} N is below the previous row's {f[i - 1]:g} N; the load "
+                      "must not fall as the deflection grows", name, row=i)
+            if r0 is not None and d[i] > r0:
+                _fail(tir, f"deflection {d[i]:g} m is beyond the unloaded radius {r0:g} m", name, row=i)
+        if len(d) >= 1 and not f[-1] > 0:
+            _fail(tir, "the last load is zero: the table carries no load", name, row=len(d) - 1)

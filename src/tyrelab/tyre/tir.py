@@ -21,14 +21,21 @@ the earlier one as a whole, and a :class:`RepeatedSectionWarning` names the
 section and both line numbers. This is what a reader that fills a dictionary
 section by section (MFeval, ADAMS) ends up with, and it keeps a table from
 silently growing by concatenation.
+
+Numbers
+-------
+Every number must be finite and at most :data:`tyrelab.limits.MAX_TIR_MAGNITUDE`
+in size, in the file and after conversion to SI (``nan``, ``inf``, ``1e400``
+or a value that overflows in its unit are an :class:`InputError` naming the
+file, line and key). Each table keeps the line number of every row
+(:attr:`TirSection.row_lines`) so later checks can name the line.
 """
 
 from __future__ import annotations
 
 import copy
-import os
+import math
 import re
-import tempfile
 import warnings
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -36,6 +43,8 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import InputError
+from ..io_atomic import atomic_write_text
+from ..limits import MAX_TIR_MAGNITUDE
 
 
 class RepeatedSectionWarning(UserWarning):
@@ -135,6 +144,8 @@ class TirSection:
     table: np.ndarray | None = None
     columns: list[str] | None = None
     lines: dict[str, int] = field(default_factory=dict)
+    #: line number of each table row (empty when built in memory)
+    row_lines: list[int] = field(default_factory=list)
 
 
 @dataclass
@@ -175,6 +186,24 @@ class TirFile:
     def table(self, section: str) -> np.ndarray | None:
         sec = self.sections.get(section.upper())
         return None if sec is None else sec.table
+
+    def line_of(self, section: str, key: str | None = None) -> int | None:
+        """Line of ``key`` in ``[section]`` (of the section header without a key), if known."""
+        sec = self.sections.get(section.upper())
+        if sec is None:
+            return None
+        if key is None:
+            return sec.line or None
+        return sec.lines.get(key.upper()) or sec.line or None
+
+    def row_line(self, section: str, row: int) -> int | None:
+        """Line of table row ``row`` (0-based) of ``[section]``, if known."""
+        sec = self.sections.get(section.upper())
+        if sec is None:
+            return None
+        if 0 <= row < len(sec.row_lines):
+            return sec.row_lines[row]
+        return sec.line or None
 
     def set(self, section: str, key: str, value) -> None:
         sec = self.sections.setdefault(section.upper(), TirSection(section.upper(), 0))
@@ -230,9 +259,18 @@ def _parse_value(raw: str, source: str, line: int, key: str):
             return raw  # bare word, e.g. USE_MODE = YES in some writers
         raise InputError(f"expected a number or a quoted string, found '{raw}'",
                          source=source, line=line, field=key) from None
+    _check_finite(number, raw, source, line, key)
     if number.is_integer() and re.fullmatch(r"[+-]?\d+", raw):
         return int(number)
     return number
+
+
+def _check_finite(number: float, raw: str, source, line, key) -> None:
+    if not math.isfinite(number):
+        raise InputError(f"'{raw}' is not a finite number", source=source, line=line, field=key)
+    if abs(number) > MAX_TIR_MAGNITUDE:
+        raise InputError(f"{raw} is beyond the {MAX_TIR_MAGNITUDE:g} any tyre parameter stays within",
+                         source=source, line=line, field=key)
 
 
 def parse_tir(text: str, source: str = "<string>") -> TirFile:
@@ -250,6 +288,7 @@ def parse_tir(text: str, source: str = "<string>") -> TirFile:
                     raise InputError(f"table row has {len(r)} values, expected {width} like the first row",
                                      source=source, line=ln, field=current.name)
             current.table = np.array(rows, dtype=float)
+            current.row_lines = list(row_lines)
 
     for lineno, raw_line in enumerate(text.splitlines(), start=1):
         line = raw_line.strip()
@@ -298,6 +337,8 @@ def parse_tir(text: str, source: str = "<string>") -> TirFile:
         except ValueError:
             raise InputError(f"expected 'KEY = value' or a row of numbers, found '{body}'",
                              source=source, line=lineno, field=current.name) from None
+        for tok, v in zip(body.split(), values):
+            _check_finite(v, tok, source, lineno, current.name)
         if current.entries:
             raise InputError(f"a row of numbers inside the key-value section [{current.name}]",
                              source=source, line=lineno)
@@ -318,7 +359,11 @@ def _to_si(tir: TirFile, inverse: bool = False) -> None:
             if dim is None or not isinstance(value, (int, float)) or isinstance(value, bool):
                 continue
             f = _units_factor(units, dim, tir.source, sec.lines.get(key))
-            sec.entries[key] = value / f if inverse else value * f
+            converted = value / f if inverse else value * f
+            if not math.isfinite(converted):
+                raise InputError(f"{value!r} overflows when converted to SI", source=tir.source,
+                                 line=sec.lines.get(key), field=key)
+            sec.entries[key] = converted
         dims = TABLE_DIMENSIONS.get(sec.name)
         if dims is not None and sec.table is not None:
             if sec.table.shape[1] != len(dims):
@@ -326,7 +371,14 @@ def _to_si(tir: TirFile, inverse: bool = False) -> None:
                                  source=tir.source, line=sec.line, field=sec.name)
             for j, dim in enumerate(dims):
                 f = _units_factor(units, dim, tir.source, sec.line)
-                sec.table[:, j] = sec.table[:, j] / f if inverse else sec.table[:, j] * f
+                with np.errstate(over="ignore"):
+                    sec.table[:, j] = sec.table[:, j] / f if inverse else sec.table[:, j] * f
+                bad = np.flatnonzero(~np.isfinite(sec.table[:, j]))
+                if bad.size:
+                    k = int(bad[0])
+                    line = sec.row_lines[k] if k < len(sec.row_lines) else sec.line
+                    raise InputError(f"column {j + 1} overflows when converted to SI", source=tir.source,
+                                     line=line, field=sec.name)
 
 
 def read_tir(path) -> TirFile:
@@ -376,9 +428,5 @@ def format_tir(tir: TirFile, units: dict[str, str] | None = None) -> str:
 
 def write_tir(tir: TirFile, path, units: dict[str, str] | None = None) -> None:
     """Write a property file (atomically: the file appears only when complete)."""
-    path = Path(path)
     text = format_tir(tir, units)
-    fd, tmp = tempfile.mkstemp(prefix=".tyrelab-", suffix=".part", dir=str(path.parent.resolve()))
-    with os.fdopen(fd, "w", encoding="utf-8") as fh:
-        fh.write(text)
-    os.replace(tmp, path)
+    atomic_write_text(Path(path), text)

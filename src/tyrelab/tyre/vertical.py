@@ -72,8 +72,16 @@ class VerticalLaw(NamedTuple):
         if d.size > 100:
             raise InputError(f"a load-deflection table holds at most 100 points, got {d.size}",
                              source=source)
+        if not (np.all(np.isfinite(d)) and np.all(np.isfinite(f))):
+            raise InputError("a load-deflection table must hold finite numbers only", source=source)
         if np.any(np.diff(d) <= 0):
             raise InputError("deflections must increase strictly down the table", source=source)
+        if d[0] < 0 or np.any(f < 0):
+            raise InputError("deflections and loads of a load-deflection table must not be negative",
+                             source=source)
+        if np.any(np.diff(f) < 0):
+            raise InputError("the load must not fall as the deflection grows down the table",
+                             source=source)
         if d[0] > 0:  # the curve starts at the unloaded tyre
             d = np.r_[0.0, d]
             f = np.r_[0.0, f]

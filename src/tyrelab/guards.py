@@ -1,0 +1,166 @@
+"""Physics guards: a run that leaves the physics its models hold for says so.
+
+Two kinds of check, both outside the compiled kernels:
+
+* **before a run** (:func:`check_road_for_tyre`, :func:`check_load_range`):
+  an obstacle edge taller than the tyre's radius is refused
+  (:class:`~tyrelab.errors.InputError`); a static load above the property
+  file's ``FZMAX`` is warned about.
+* **after a run** (:func:`check_run`), on the signal table: rim contact
+  (deflection beyond the unloaded radius less the rim radius, or the wheel
+  centre below the road), an overturned rig (trailer roll or pitch beyond
+  :data:`OVERTURN_ANGLE`), a wheel that left the road for longer than
+  :data:`AIRBORNE_TIME` (not on the rolling rig, whose axle is held at a
+  fixed height), and a peak normal force far above ``FZMAX``.
+
+Each finding is one :class:`PhysicsWarning` line saying what happened, when,
+and what to change; the command line prints it as ``tyrelab: warning: ...``.
+The results themselves are never altered.
+"""
+
+from __future__ import annotations
+
+import math
+import warnings
+
+import numpy as np
+
+from . import limits
+from .errors import InputError
+
+#: a towed trailer whose frame rolls or pitches beyond this [deg] has overturned (a
+#: 2.4 m track with its centre of mass near hitch height tips at about 40-50 deg; the
+#: thesis's runs stay within a few degrees)
+OVERTURN_ANGLE = 30.0
+#: the test wheel off the road (zero normal force) for longer than this [s] has left the
+#: road (a hop over a cleat at 42 km/h lasts a few tens of milliseconds)
+AIRBORNE_TIME = 0.5
+
+
+class PhysicsWarning(UserWarning):
+    """A run went outside the physics its models are valid for (rim contact, overturn ...)."""
+
+
+def _warn(message: str) -> None:
+    warnings.warn(message, PhysicsWarning, stacklevel=3)
+
+
+def path_edge(road, width: float, spacing: float | None = None) -> tuple[float, float]:
+    """``(height, x)`` of the tallest edge along the wheel's path: the largest height change
+    between neighbouring grid nodes along x, over y = 0 and the tyre's two shoulders."""
+    g = getattr(road, "_grid", None)
+    xmin, xmax, _, _ = road.extent()
+    ys = np.array([-0.5 * width, 0.0, 0.5 * width])
+    if g is not None:
+        nx = g.z.shape[0]
+        xs = g.x0 + g.dx * np.arange(nx)
+    else:
+        dx = spacing or road.default_spacing[0]
+        nx = int(math.ceil((xmax - xmin) / dx - 1e-9)) + 1
+        if nx > 50_000_000:  # the road's own bounds forbid this; never sample it whole
+            raise InputError(f"the road's grid along x has {nx} nodes", field="road")
+        xs = xmin + dx * np.arange(nx)
+    best, where = 0.0, float("nan")
+    chunk = 1_000_000
+    for i0 in range(0, xs.size, chunk):
+        x = xs[i0:min(i0 + chunk + 1, xs.size)]
+        if x.size < 2:
+            continue
+        X, Y = (np.array(a) for a in np.broadcast_arrays(x[:, None], ys[None, :]))
+        z = np.asarray(road.height(X, Y), dtype=float).reshape(X.shape)
+        dz = np.abs(np.diff(z, axis=0)).max(axis=1)
+        k = int(np.argmax(dz))
+        if dz[k] > best:
+            best, where = float(dz[k]), float(x[k])
+    return best, where
+
+
+def check_road_for_tyre(road, tyre) -> None:
+    """Refuse a road with an edge on the wheel's path taller than the tyre's radius."""
+    r0 = float(tyre.unloaded_radius)
+    width = float(tyre.width) if tyre.width > 0 else 0.0
+    edge, x = path_edge(road, width)
+    limit = limits.MAX_EDGE_TO_RADIUS * r0
+    if edge > limit:
+        raise InputError(f"road '{road.name}': an edge {edge:.4g} m high at x = {x:.4g} m is taller "
+                         f"than the tyre's unloaded radius {r0:.4g} m; the models hold for "
+                         f"obstacles up to {limit:.4g} m: use a smaller obstacle or a larger tyre",
+                         field="road")
+
+
+def check_load_range(tyre, wheel_load: float) -> None:
+    """Warn when the static wheel load is above the property file's FZMAX."""
+    fz = limits.fzmax(tyre)
+    if fz is not None and wheel_load > fz:
+        _warn(f"the static wheel load {wheel_load / 1e3:.4g} kN is above FZMAX {fz / 1e3:.4g} kN "
+              f"of {tyre.name}: its handling coefficients are extrapolated; use a load up to FZMAX")
+
+
+def _longest_run(mask: np.ndarray) -> tuple[int, int]:
+    """``(start, length)`` of the longest run of True in ``mask``."""
+    if not mask.any():
+        return 0, 0
+    m = np.r_[False, mask, False].astype(np.int8)
+    d = np.diff(m)
+    starts = np.flatnonzero(d == 1)
+    ends = np.flatnonzero(d == -1)
+    lengths = ends - starts
+    k = int(np.argmax(lengths))
+    return int(starts[k]), int(lengths[k])
+
+
+def check_run(table, tyre) -> list[str]:
+    """Check a run's signal table against the models' validity; warn once per finding.
+
+    Returns the messages (also issued as :class:`PhysicsWarning`).
+    """
+    found: list[str] = []
+    if len(table) == 0 or "RUNTIME" not in table.columns:
+        return found
+    t = table["RUNTIME"].to_numpy(dtype=float)
+    r0 = float(tyre.unloaded_radius)
+    if "DEFLECT" in table.columns:
+        d = table["DEFLECT"].to_numpy(dtype=float)
+        k = int(np.argmax(d))
+        room, how = limits.rim_deflection(tyre)
+        if d[k] >= r0:
+            found.append(f"the wheel centre went below the road: deflection {d[k]:.3g} m at "
+                         f"t = {t[k]:.3f} s is beyond the whole unloaded radius {r0:.4g} m; the "
+                         "results after it are not physical: use a smaller obstacle, a lower speed "
+                         "or load")
+        elif d[k] > room:
+            found.append(f"rim contact: deflection {d[k] * 1e3:.0f} mm at t = {t[k]:.3f} s is beyond "
+                         f"the {room * 1e3:.0f} mm the tyre has ({how}); the models do not describe "
+                         "a tyre pressed onto its rim: use a smaller obstacle, a lower speed or load")
+    limit = math.radians(OVERTURN_ANGLE)
+    for col, what in (("ROLL", "rolled"), ("PITCH", "pitched")):
+        if col in table.columns:
+            a = np.abs(table[col].to_numpy(dtype=float))
+            k = int(np.argmax(a))
+            if a[k] > limit:
+                found.append(f"the trailer overturned: it {what} {math.degrees(a[k]):.0f} deg at "
+                             f"t = {t[k]:.3f} s, beyond the {OVERTURN_ANGLE:g} deg the rig holds; "
+                             "the results after it are not physical: use a smaller obstacle, a "
+                             "smoother road class or a lower speed")
+                break
+    rig = str(table.attrs.get("metadata", {}).get("rig", ""))
+    if "FZW" in table.columns and len(t) > 1:
+        fz = table["FZW"].to_numpy(dtype=float)
+        start, n = _longest_run(fz <= 0.0)
+        if n > 1 and rig != "rolling":  # the rolling rig holds its axle: off the road is no jump
+            dt_out = float(np.median(np.diff(t)))
+            length = n * dt_out
+            if length > AIRBORNE_TIME:
+                found.append(f"the test wheel left the road for {length:.3g} s from t = {t[start]:.3f} s "
+                             f"(longer than {AIRBORNE_TIME:g} s): the rig is airborne, not testing the "
+                             "tyre: use a smaller obstacle or a lower speed")
+        fzm = limits.fzmax(tyre)
+        k = int(np.argmax(fz))
+        if fzm is not None and fz[k] > limits.PEAK_LOAD_FACTOR * fzm:
+            found.append(f"the normal force peaked at {fz[k] / 1e3:.4g} kN at t = {t[k]:.3f} s, more "
+                         f"than {limits.PEAK_LOAD_FACTOR:g} x FZMAX {fzm / 1e3:.4g} kN of {tyre.name}: "
+                         "the tyre's coefficients do not reach that far: use a lower load, speed or "
+                         "obstacle")
+    for message in found:
+        _warn(message)
+    return found

@@ -1,0 +1,389 @@
+"""The bounds every number a user gives must lie in, and the resources a request may use.
+
+One place for them, each with its reason. A value outside its bound is an
+:class:`~tyrelab.errors.InputError` naming the argument, the value and the
+allowed range, raised before any work. Physical bounds are hard; the two
+*resource* limits (:data:`MAX_MEMORY`, :data:`MAX_WALL_TIME`) guard against
+a request that would exhaust the machine or run for hours by mistake, and an
+explicit ``force=True`` (``--force`` on the command line) lifts them.
+
+Estimates are rough (within a factor of about 3): enough to tell a typo
+(``--dt 1e-9``, ``--speed 1e-9``) from a long but meant request.
+"""
+
+from __future__ import annotations
+
+import math
+
+from .errors import InputError
+
+# --- resources --------------------------------------------------------------------------
+
+#: largest memory one request may need before ``force`` [bytes]: 2 GiB, well inside a
+#: workstation's memory, far above any run of the thesis campaign (a 100 m track at
+#: 3 km/h at 1 kHz is 0.15 GB of output)
+MAX_MEMORY = 2 * 1024 ** 3
+#: longest estimated wall time of one request before ``force`` [s]: 10 min (the longest
+#: runs of the thesis campaign, the ring on a 100 m track at 3 km/h, take about 2-3 min)
+MAX_WALL_TIME = 600.0
+#: wall time [s] per simulated second at a 1 ms step on one core, per contact model
+#: (README benchmarks, as the study runner's cost table); others: by kind below
+MODEL_COST = {"point": 0.002, "volume": 0.015, "enveloping": 0.015, "ring": 0.9, "ring-tp": 1.0}
+#: cost of an unknown analytic model / model with its own dynamics [s per simulated s at 1 ms]
+ANALYTIC_COST, DYNAMIC_COST = 0.015, 1.0
+#: internal step of the models with their own dynamics (the ring's, at 100 segments) [s]:
+#: below it their cost grows as 1/dt
+DYNAMIC_INTERNAL_STEP = 36e-6
+#: columns of a run's output array (the trailer has 31, the quarter vehicle 34), rounded up
+OUTPUT_CHANNELS = 36
+#: copies of the output table a run holds at once (array, table, file buffers)
+OUTPUT_COPIES = 3
+
+# --- speed, time, rate -----------------------------------------------------------------
+
+#: towing speed [m/s]: above 0.01 m/s (0.036 km/h: slower, a run to a road's end lasts
+#: hours and the rolling rig's quasi-static test is the better tool), up to 200 km/h
+#: (the study spec's limit; the thesis drives at most 88 km/h and no off-road tyre
+#: test is faster; above it a step of 1 ms moves the wheel past a 50 mm cleat)
+MIN_SPEED, MAX_SPEED = 0.01, 200.0 / 3.6
+#: simulated time [s]: at most one hour (no rig test lasts longer; the 100 m tracks at
+#: 3 km/h take 2 min); at least :data:`MIN_STEPS` time steps and :data:`MIN_SAMPLES`
+#: output samples (a shorter run has no signal to write)
+MAX_DURATION = 3600.0
+MIN_STEPS, MIN_SAMPLES = 10, 2
+#: time step [s]: at least 1 us (smaller adds only round-off and hours of run time);
+#: at most 10 ms (the rigs' slowest stated accuracy: the peak force over the 50 mm cleat
+#: changes by 0.2 % from 1 ms to 0.1 ms) and the model's stable step (:func:`stable_step`)
+MIN_DT, MAX_DT = 1e-6, 0.01
+#: analytic models: dt <= STABILITY_FACTOR / omega, omega the wheel-hop mode
+#: sqrt(k_max / m_wheel): about 12 steps per period. Semi-implicit Euler is stable for
+#: omega dt < 2; at omega dt = 0.5 the quarter vehicle's peak force over the 50 mm cleat is
+#: within 1 % of the 1 ms value, at omega dt = 1 it is 36 % off (measured, XZL 300 kPa)
+STABILITY_FACTOR = 0.5
+#: models with their own dynamics (the ring): largest rig step [s] (measured: the ring on
+#: the quarter vehicle and the trailer over the 50 mm cleat is stable at 2 ms and
+#: diverges at 3 ms; its internal step is separate and always stable)
+DYNAMIC_MAX_DT = 2e-3
+#: output rate [Hz]: positive and at most 1/dt (one sample per time step)
+MAX_OUTPUT_RATE = 1.0 / MIN_DT
+
+# --- loads and pressures ---------------------------------------------------------------
+
+#: smallest wheel load [N]: 1 N (less is a number in the wrong unit; the rigs refuse loads
+#: their own masses cannot carry)
+MIN_LOAD = 1.0
+#: inflation pressure [Pa]: 20 kPa (a deflated off-road tyre) to 1.5 MPa (earthmover
+#: tyres run at 0.7-1.0 MPa)
+MIN_PRESSURE, MAX_PRESSURE = 20e3, 1.5e6
+#: a tyre file without RIM_RADIUS: rim contact is assumed at this fraction of R0 of
+#: deflection (no tyre's sidewall is taller than its rim radius)
+RIM_FALLBACK_DEFLECTION = 0.5
+#: warn when a run's peak normal force exceeds this multiple of the file's FZMAX
+PEAK_LOAD_FACTOR = 3.0
+
+# --- tyre property files ---------------------------------------------------------------
+
+#: unloaded radius [m]: up to 2.5 m (the largest mining tyres are 4 m in diameter)
+MAX_RADIUS = 2.5
+#: section width [m]: up to 2 m (mining tyres are 1.5 m wide)
+MAX_WIDTH = 2.0
+#: vertical stiffness [N/m]: up to 1e9 (a steel wheel on rail is about 1e9 N/m; tyres
+#: are 1e5-1e7); a stiffer spring only makes every step unstable
+MAX_STIFFNESS = 1e9
+#: vertical damping [N s/m]: up to 1e7 (tyres: 1e2-1e4)
+MAX_DAMPING = 1e7
+#: wheel mass [kg] and spin inertia [kg m^2]: up to 10 t and 1e4 kg m^2 (mining wheels:
+#: 5 t, about 5000 kg m^2)
+MAX_WHEEL_MASS, MAX_WHEEL_INERTIA = 1e4, 1e4
+#: any other number in a property file: its magnitude at most this (an absurd value is a
+#: typo or a damaged file; 1e12 leaves room for stiffnesses per m^2 and pressures in Pa)
+MAX_TIR_MAGNITUDE = 1e12
+
+# --- roads -----------------------------------------------------------------------------
+
+#: obstacle heights and depths [m]: up to 1 m (a cleat, bump, step or pothole taller than
+#: a large tyre's radius is no longer a road feature a tyre rolls over)
+MAX_OBSTACLE_HEIGHT = 1.0
+#: obstacle sizes along the road [m] (cleat width, pothole length, bump ramps and top):
+#: at least 1 mm (the grid resolves edges to 1 mm; finer means millions of nodes) and at
+#: most 50 m (longer is a change of road level: a step or a track)
+MIN_OBSTACLE_SIZE, MAX_OBSTACLE_LENGTH = 1e-3, 50.0
+#: obstacle sizes across the road [m] (pothole width): at most the 4 m road width
+MAX_OBSTACLE_WIDTH = 4.0
+#: an edge (height change between neighbouring grid nodes along the wheel's path) higher
+#: than this multiple of the tyre's unloaded radius is refused: the wheel centre would be
+#: below its top, which none of the models describes
+MAX_EDGE_TO_RADIUS = 1.0
+#: road grid spacing [m]: 1 mm to 10 m
+MIN_GRID_SPACING, MAX_GRID_SPACING = 1e-3, 10.0
+#: road heights in a file [m]: |z| at most 10 km (the highest road is at 5.8 km)
+MAX_ROAD_HEIGHT = 1e4
+#: synthesised random roads: at most 10 km long and 100 m wide
+MAX_ROAD_LENGTH, MAX_ROAD_WIDTH = 1e4, 100.0
+#: profiles averaged by ``road spectrum --lines``: at most 1000 (a 4 m road has 1000
+#: lanes 4 mm apart; more add nothing)
+MAX_SPECTRUM_LINES = 1000
+
+# --- other commands --------------------------------------------------------------------
+
+#: belt segments of the ring's modal analysis: 12 (fewer cannot show the modes of Table
+#: 3-3) to 600 (the dense eigenproblem grows as n^3: 100 take 6 s, 400 take 50 s)
+MIN_SEGMENTS, MAX_SEGMENTS = 12, 600
+#: deflections of the static press: 2 to 200
+MIN_STATIC_STEPS, MAX_STATIC_STEPS = 2, 200
+#: optimizer budget of ``fit ring``: 1 to 1000 evaluations (25 take several minutes)
+MAX_FIT_EVALUATIONS = 1000
+
+
+# --- checks ----------------------------------------------------------------------------
+
+def _g(value) -> str:
+    return f"{value:.6g}"
+
+
+def check_number(value, field: str, low=None, high=None, unit: str = "", low_open: bool = False,
+                 what: str | None = None, scale: float = 1.0, given: str | None = None) -> float:
+    """``value`` as a finite float inside ``[low, high]`` (``(low, ...`` with ``low_open``).
+
+    ``scale`` converts the bounds for the message (e.g. 3.6 to state m/s bounds in km/h);
+    ``given``, the text the user typed, is quoted in it as typed.
+    """
+    name = what or field
+    try:
+        v = float(value)
+    except (TypeError, ValueError):
+        raise InputError(f"{name} must be a number, got {value!r}", field=field) from None
+    unit_txt = f" {unit}" if unit else ""
+    if not math.isfinite(v):
+        raise InputError(f"{name} must be a finite number, got {value!r}", field=field)
+    lo_bad = low is not None and (v <= low if low_open else v < low)
+    hi_bad = high is not None and v > high
+    if lo_bad or hi_bad:
+        if low is not None and high is not None:
+            rng = f"{_g(low * scale)}{' <' if low_open else ' <='} {name} <= {_g(high * scale)}{unit_txt}"
+        elif low is not None:
+            rng = f"{'>' if low_open else '>='} {_g(low * scale)}{unit_txt}"
+        else:
+            rng = f"<= {_g(high * scale)}{unit_txt}"
+        shown = given if given is not None else _g(v * scale)
+        raise InputError(f"{name} {shown}{unit_txt} is out of range; allowed: {rng}",
+                         field=field)
+    return v
+
+
+def check_count(value, field: str, low: int, high: int, what: str | None = None) -> int:
+    """An integer in ``[low, high]``."""
+    name = what or field
+    if isinstance(value, bool) or not isinstance(value, int):
+        try:
+            if float(value) != int(value):
+                raise ValueError
+            value = int(value)
+        except (TypeError, ValueError, OverflowError):
+            raise InputError(f"{name} must be a whole number, got {value!r}", field=field) from None
+    if not low <= value <= high:
+        raise InputError(f"{name} {value} is out of range; allowed: {low} to {high}", field=field)
+    return int(value)
+
+
+def check_speed(speed, field: str = "speed") -> float:
+    """A towing speed [m/s] inside [MIN_SPEED, MAX_SPEED]."""
+    return check_number(speed, field, MIN_SPEED, MAX_SPEED, "m/s")
+
+
+def check_dt(dt, field: str = "dt") -> float:
+    """A time step [s] inside [MIN_DT, MAX_DT] (the model's stable step is checked apart)."""
+    return check_number(dt, field, MIN_DT, MAX_DT, "s", what="time step")
+
+
+def check_rate(rate, dt, field: str = "output_rate") -> float:
+    """An output rate [Hz]: positive and at most one sample per time step."""
+    r = check_number(rate, field, 0.0, None, "Hz", low_open=True, what="output rate")
+    if r * dt > 1.0 + 1e-9:
+        raise InputError(f"output rate {_g(r)} Hz is faster than the time step {_g(dt)} s allows; "
+                         f"allowed: at most {_g(1.0 / dt)} Hz (or a smaller time step)", field=field)
+    return r
+
+
+def check_duration(duration, dt, rate, field: str = "duration") -> float:
+    """A simulated time [s]: at most MAX_DURATION, at least MIN_STEPS steps and MIN_SAMPLES samples."""
+    low = max(MIN_STEPS * dt, MIN_SAMPLES / rate)
+    d = check_number(duration, field, None, MAX_DURATION, "s", what="duration")
+    if d < low * (1 - 1e-9):
+        raise InputError(f"duration {_g(d)} s is too short; allowed: at least {_g(low)} s "
+                         f"({MIN_STEPS} time steps of {_g(dt)} s and {MIN_SAMPLES} output samples "
+                         f"at {_g(rate)} Hz)", field=field)
+    return d
+
+
+def check_pressure(pressure, field: str = "pressure") -> float:
+    """An inflation pressure [Pa] inside [MIN_PRESSURE, MAX_PRESSURE]."""
+    return check_number(pressure, field, MIN_PRESSURE, MAX_PRESSURE, "kPa", what="pressure",
+                        scale=1e-3)
+
+
+def rim_deflection(tyre) -> tuple[float, str]:
+    """Deflection [m] at which the rim meets the road, and how it was found."""
+    r0 = float(tyre.unloaded_radius)
+    rim = None
+    try:
+        rim = tyre.tir.number("DIMENSION", "RIM_RADIUS", default=None)
+    except InputError:
+        rim = None
+    if rim is not None and 0 < rim < r0:
+        return r0 - rim, f"unloaded radius {r0:.4g} m less RIM_RADIUS {rim:.4g} m"
+    return RIM_FALLBACK_DEFLECTION * r0, (f"{RIM_FALLBACK_DEFLECTION:g} x the unloaded radius "
+                                          f"{r0:.4g} m (the file gives no RIM_RADIUS)")
+
+
+def max_wheel_load(tyre) -> float:
+    """The static load [N] that presses the tyre down to its rim (vertical law)."""
+    room, _ = rim_deflection(tyre)
+    law = tyre.vertical_law
+    return float(law.static_load([room])[0])
+
+
+def check_wheel_load(load, tyre, field: str = "load") -> float:
+    """A static wheel load [N]: at least MIN_LOAD and below the load that puts the rim on the road."""
+    v = check_number(load, field, MIN_LOAD, None, "N", what="wheel load")
+    top = max_wheel_load(tyre)
+    if v >= top:
+        room, how = rim_deflection(tyre)
+        raise InputError(f"wheel load {_g(v)} N would press {tyre.name} onto its rim (it reaches "
+                         f"the rim, {room * 1e3:.0f} mm = {how}, at {_g(top)} N); allowed: "
+                         f"{_g(MIN_LOAD)} N to below {_g(top)} N", field=field)
+    return v
+
+
+def fzmax(tyre) -> float | None:
+    """The file's FZMAX [N] ([VERTICAL_FORCE_RANGE]), if it states one."""
+    try:
+        v = tyre.tir.number("VERTICAL_FORCE_RANGE", "FZMAX", default=None)
+    except InputError:
+        return None
+    return v if v is not None and math.isfinite(v) and v > 0 else None
+
+
+def wheel_hop_omega(tyre, wheel_load: float) -> tuple[float, float, float]:
+    """``(omega, k_max, mass)`` of the wheel-hop mode: the stiffest tangent of the vertical
+    law up to rim contact over the wheel mass (or, without one in the file, a tenth of the
+    wheel load's mass, the quarter vehicle's rule)."""
+    import numpy as np
+
+    law = tyre.vertical_law
+    room, _ = rim_deflection(tyre)
+    if law.use_table:
+        rho = np.linspace(0.0, room, 257)
+        f = law.static_load(rho)
+        k_max = float(np.max(np.diff(f) / np.diff(rho)))
+        k_max = max(k_max, 0.0)
+    else:
+        k_max = float(law.stiffness)
+    mass = float(tyre.wheel_mass) if tyre.wheel_mass > 0 else 0.1 * float(wheel_load) / 9.80665
+    mass = max(mass, 1e-6)
+    return math.sqrt(max(k_max, 1e-9) / mass), k_max, mass
+
+
+def stable_step(model, wheel_load: float) -> tuple[float, str]:
+    """Largest rig time step [s] for ``model`` (a TyreModel) carrying ``wheel_load`` [N],
+    and the reason, for the message."""
+    if model.has_state:
+        return DYNAMIC_MAX_DT, (f"the {model.contact} model is stable up to "
+                                f"{DYNAMIC_MAX_DT * 1e3:g} ms (measured)")
+    omega, k_max, mass = wheel_hop_omega(model.tyre, wheel_load)
+    dt = STABILITY_FACTOR / omega
+    c = float(model.tyre.vertical_damping)
+    why = (f"wheel hop at {omega:.3g} rad/s from the stiffest {k_max:.3g} N/m of the vertical law "
+           f"and {mass:.3g} kg; stable step {STABILITY_FACTOR:g}/omega")
+    if c > 0:
+        dt_c = STABILITY_FACTOR * 2.0 * mass / c
+        if dt_c < dt:
+            dt = dt_c
+            why = f"damping {c:.3g} N s/m on {mass:.3g} kg; stable step {STABILITY_FACTOR:g} x 2 m/c"
+    return min(dt, MAX_DT), why
+
+
+def check_stable_step(dt: float, models, wheel_load: float, field: str = "dt") -> None:
+    """Refuse a time step above the stable step of any of ``models``."""
+    for model in models:
+        limit, why = stable_step(model, wheel_load)
+        if dt > limit * (1 + 1e-9):
+            raise InputError(f"time step {_g(dt)} s is above the stable step of the {model.contact} "
+                             f"model on {model.tyre.name} ({why}); allowed: at most {_g(limit)} s",
+                             field=field)
+
+
+def model_cost(model) -> float:
+    """Wall time [s] per simulated second at a 1 ms step (rough)."""
+    if model.contact in MODEL_COST:
+        return MODEL_COST[model.contact]
+    return DYNAMIC_COST if model.has_state else ANALYTIC_COST
+
+
+def run_wall_time(models, duration: float, dt: float) -> float:
+    """Estimated wall time [s] of a run of ``duration`` [s] at step ``dt`` (rough).
+
+    An analytic model costs the same per step, so its time grows as 1/dt; a model
+    with its own dynamics advances in internal steps of about
+    :data:`DYNAMIC_INTERNAL_STEP`, so only a rig step below that costs more.
+    """
+    total = 0.0
+    for m in models:
+        if m.has_state:
+            total += model_cost(m) * duration * max(1.0, DYNAMIC_INTERNAL_STEP / dt)
+        else:
+            total += model_cost(m) * duration * (1e-3 / dt)
+    return total
+
+
+def run_memory(duration: float, dt: float, rate: float, grid_cells: int = 0) -> float:
+    """Estimated peak memory [bytes] of a run: its output table and its road grid."""
+    out_every = max(1, int(round(1.0 / (rate * dt))))
+    n_steps = duration / dt
+    samples = n_steps / out_every + 1
+    return samples * OUTPUT_CHANNELS * 8 * OUTPUT_COPIES + grid_cells * 8 * 3
+
+
+def grid_cells(road, spacing=None) -> int:
+    """Nodes of ``road``'s grid at ``spacing`` (default its own), without building it."""
+    g = getattr(road, "_grid", None)
+    if g is not None and (spacing is None or tuple(spacing) == (g.dx, g.dy)):
+        return int(g.z.size)
+    dx, dy = spacing or road.default_spacing
+    xmin, xmax, ymin, ymax = road.extent()
+    nx = math.ceil((xmax - xmin) / dx - 1e-9) + 1
+    ny = 2 if not road.varies_in_y() else math.ceil((ymax - ymin) / dy - 1e-9) + 1
+    return int(nx) * int(ny)
+
+
+def _size(nbytes: float) -> str:
+    for unit, f in (("TB", 1e12), ("GB", 1e9), ("MB", 1e6)):
+        if nbytes >= f:
+            return f"{nbytes / f:.3g} {unit}"
+    return f"{nbytes / 1e3:.3g} kB"
+
+
+def _time(seconds: float) -> str:
+    if seconds >= 86400 * 2:
+        return f"{seconds / 86400:.3g} days"
+    if seconds >= 5400:
+        return f"{seconds / 3600:.3g} h"
+    if seconds >= 90:
+        return f"{seconds / 60:.3g} min"
+    return f"{seconds:.3g} s"
+
+
+def check_resources(what: str, memory: float = 0.0, wall_time: float = 0.0, force: bool = False,
+                    field: str | None = None, hint: str = "") -> None:
+    """Refuse a request estimated to need more than MAX_MEMORY or MAX_WALL_TIME, unless ``force``."""
+    if force:
+        return
+    extra = f"; {hint}" if hint else ""
+    if memory > MAX_MEMORY:
+        raise InputError(f"{what} needs about {_size(memory)} of memory, above the limit of "
+                         f"{_size(MAX_MEMORY)}{extra}; pass --force (force=True) to run it anyway",
+                         field=field)
+    if wall_time > MAX_WALL_TIME:
+        raise InputError(f"{what} would take about {_time(wall_time)}, above the limit of "
+                         f"{_time(MAX_WALL_TIME)}{extra}; pass --force (force=True) to run it anyway",
+                         field=field)
