@@ -1,10 +1,14 @@
 """Benchmark of the flexible ring model on one core (plain script, prints figures).
 
-The towed trailer with the ring model on both wheels over the 50 mm cleat at
-12 km/h (thesis 5.2), rig step 1 ms, for several numbers of belt segments
-and tread blocks per segment. Prints the internal (sub-)step, the wall time
-per simulated second and the real-time factor (wall / simulated; < 1 is
-faster than real time). Compilation is excluded (one warm-up run first).
+The towed trailer over the 50 mm cleat at 12 km/h (thesis 5.2) and over
+100 m of Belgian paving at 18 km/h, rig step 1 ms, for several numbers of
+belt segments and tread blocks per segment, with the ring on both wheels
+and with the point model (same vertical law) on the left wheel. Prints the
+internal step, the wall time per simulated second (wall / simulated: < 1 is
+faster than real time, 0.2 is five times faster) and the wall time per
+internal step and segment, which says how the cost grows with the
+discretisation. Compilation and the rigs' equilibrium search are excluded
+(one warm-up run first).
 
     NUMBA_NUM_THREADS=1 python benchmarks/bench_ring.py [--quick]
 """
@@ -18,42 +22,48 @@ import time
 os.environ.setdefault("NUMBA_NUM_THREADS", "1")
 
 from tyrelab.rig.trailer import Trailer  # noqa: E402
-from tyrelab.tyre.model import TyreModel  # noqa: E402
 from tyrelab.road.obstacles import Flat  # noqa: E402
 from tyrelab.tyre.library import load_tyre  # noqa: E402
+from tyrelab.tyre.model import TyreModel  # noqa: E402
 
-SPEED = 12 / 3.6
-ROAD = "cleat:50x50"
-# the wheel reaches the cleat (x = 5 m) after 1.5 s; simulate across it
-DURATION = 3.0
+#: (road, speed [m/s], simulated time [s]): the cleat is reached after 1.5 s
+CLEAT = ("cleat:50x50", 12 / 3.6, 3.0)
+PAVING = ("belgian-paving", 18 / 3.6, 100.0 / (18 / 3.6))
 
 
-def run(n_segments, n_blocks, contact="ring", duration=DURATION, pressure=300e3):
+def run(n_segments, n_blocks, case=CLEAT, contact="ring", left=None, pressure=300e3):
+    """Wall time [s] of one run, the internal step [s] and the signal table."""
+    road, speed, duration = case
     tyre = load_tyre("xzl-16.00R20", pressure)
     model = TyreModel(tyre, contact=contact,
                       options={"n_segments": n_segments, "n_blocks": n_blocks})
-    trailer = Trailer(model, "LC1")
-    trailer.run(ROAD, SPEED, 0.01)  # warm-up: compilation, initial state
+    left_model = None if left is None else TyreModel(tyre, contact=left)
+    trailer = Trailer(model, "LC1", left=left_model)
+    trailer.run(road, speed, 0.01, progress=False)  # warm-up: compilation, equilibrium
     t0 = time.perf_counter()
-    table = trailer.run(ROAD, SPEED, duration)
+    table = trailer.run(road, speed, duration, progress=False)
     wall = time.perf_counter() - t0
     return wall, model.contact_params(Flat().grid()).max_step, table
 
 
 def main(argv=None):
     quick = "--quick" in (argv or sys.argv[1:])
-    cases = [(100, 10)] if quick else [(50, 10), (100, 5), (100, 10), (100, 20), (150, 10),
-                                        (200, 10)]
-    print(f"trailer, {ROAD}, {SPEED * 3.6:.0f} km/h, rig step 1 ms, {DURATION:.1f} s simulated, "
-          "ring model on both wheels, one core")
-    print(f"{'segments':>8} {'blocks':>6} {'substep_us':>10} {'wall_s':>7} {'RT_factor':>9} "
-          f"{'FZW_max_kN':>10}")
-    for n, nb in cases:
-        wall, step, table = run(n, nb)
-        print(f"{n:8d} {nb:6d} {step * 1e6:10.1f} {wall:7.2f} {wall / DURATION:9.3f} "
-              f"{table['FZW'].max() / 1e3:10.1f}")
-    wall, step, table = run(100, 10, contact="ring-tp")
-    print(f"ring-tp  100 x 10: substep {step * 1e6:.1f} us, RT factor {wall / DURATION:.3f}")
+    grid = [(100, 10)] if quick else [(50, 10), (100, 5), (100, 10), (100, 20), (150, 10),
+                                       (200, 10)]
+    print("trailer, LC1, rig step 1 ms, one core; RT = wall / simulated")
+    print(f"{'segments':>8} {'blocks':>6} {'step_us':>7} {'cleat_RT':>8} {'paving_RT':>9} "
+          f"{'cleat_RT_left_point':>19} {'us_per_step_segment':>19}")
+    for n, nb in grid:
+        wall_c, step, _ = run(n, nb, CLEAT)
+        wall_p, _, _ = run(n, nb, PAVING)
+        wall_l, _, _ = run(n, nb, CLEAT, left="point")
+        steps = CLEAT[2] / step
+        # both wheels carry a ring: two rings' internal steps per simulated step
+        per = wall_c / steps / (2 * n) * 1e6
+        print(f"{n:8d} {nb:6d} {step * 1e6:7.1f} {wall_c / CLEAT[2]:8.3f} {wall_p / PAVING[2]:9.3f} "
+              f"{wall_l / CLEAT[2]:19.3f} {per:19.4f}")
+    wall, step, _ = run(100, 10, CLEAT, contact="ring-tp")
+    print(f"ring-tp 100 x 10 over the cleat: step {step * 1e6:.1f} us, RT {wall / CLEAT[2]:.3f}")
 
 
 if __name__ == "__main__":

@@ -17,6 +17,7 @@ import json
 from pathlib import Path
 
 
+from ..limits import MODEL_COST
 from .evaluate import evaluate_study
 from .results import Study
 from .spec import RunSpec, StudySpec, builtin_spec, example_spec, load_spec
@@ -37,9 +38,10 @@ def run_record(run: RunSpec) -> dict:
             if run.rig in ("trailer", "drop") else "", "dt": run.dt}
 
 
-#: rough wall time per simulated second of each contact model on the trailer (README
-#: benchmarks), only to start the longest runs first; results do not depend on it
-_COST = {"ring": 0.9, "ring-tp": 1.0, "volume": 0.015, "enveloping": 0.015}
+#: rough wall time per simulated second of each contact model on the trailer
+#: (:data:`tyrelab.limits.MODEL_COST`), only to start the longest runs first; results
+#: do not depend on it
+_COST = MODEL_COST
 #: length assumed for a road run to its end (the thesis tracks are 100 m)
 _TRACK_LENGTH = 100.0
 

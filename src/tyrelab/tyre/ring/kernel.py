@@ -21,10 +21,14 @@ The damper of the radial foundation's Maxwell branch relaxes exactly over
 each internal step, ``q += (u_r - q)(1 - exp(-h/tau_h))``.
 
 Integrator: symplectic (semi-implicit) Euler with a fixed internal step
-``h = dt / ceil(dt / h_max)``, ``h_max`` from the stiffest element (see
-:func:`tyrelab.tyre.ring.parameters.stable_step`); the Coriolis term is
-applied as an exact rotation of the in-plane velocity by ``2 omega h``
-between two half kicks (the Boris scheme), so it adds no energy drift. The hub loads written out are the
+``h = dt / ceil(dt / h_max)``; the Coriolis term is applied as an exact
+rotation of the in-plane velocity by ``2 omega h`` between two half kicks
+(the Boris scheme), so it adds no energy drift. The belt's stiffest terms
+(the chords' extension, its lateral bending and torsion) are linearly
+implicit after the kick (:mod:`.implicit`), so ``h_max`` is the smaller of
+the explicit terms' stability limit
+(:func:`tyrelab.tyre.ring.parameters.stable_step`) and the accuracy cap
+:data:`~.model.ACCURATE_STEP` (docs/ring.md, "Performance"). The hub loads written out are the
 averages over the internal steps of the foundation forces on the rim
 (``-sum F_foundation``) and their moment about the wheel centre.
 """
@@ -35,9 +39,10 @@ import math
 
 import numba as nb
 
-from ...road.grid import road_height
+from ...road.grid import local_zmax, road_height
 from ..wheel import WheelLoads, WheelPose
 from .belt import bending_forces, foundation_forces, membrane_forces, out_of_plane_forces
+from .implicit import chord_implicit, lateral_implicit
 from .records import KIN_OMEGA, KIN_PSI, KIN_TIME, KIN_VX, KIN_VY, KIN_VZ
 from .tread import (ACC_DEFL, ACC_FX, ACC_FY, ACC_FZ, ACC_NX, ACC_NY, ACC_NZ, ACC_PX, ACC_PY,
                     ACC_PZ, ACC_W, SegmentFrame, SegmentMotion, clear_segment, segment_can_touch,
@@ -135,15 +140,22 @@ def ring_substep(params, state, road, pose, arx, ary, arz, domega, h, decay, pat
     w0 = acc[ACC_W]
     px0, py0, pz0 = acc[ACC_PX], acc[ACC_PY], acc[ACC_PZ]
     nx0, ny0, nz0 = acc[ACC_NX], acc[ACC_NY], acc[ACC_NZ]
+    # the highest road under the whole wheel (every window segment_can_touch
+    # looks at for a twist up to 1 rad): segments above it, most of the belt,
+    # are passed over without a road query of their own
+    span = (params.unloaded_radius + params.tread_half_width * (abs(az) + 1.0)
+            + params.max_block_height + 0.06)
+    road_top = local_zmax(road, cx - span, cx + span) + params.max_block_height + 0.01
     for i in range(n):
         p1 = p1s[i]
         p2 = p2s[i]
         yi = ys[i]
         beta = bs[i]
+        pz = cz + p1 * e1z + p2 * e2z + yi * az
         px = cx + p1 * e1x + p2 * e2x + yi * ax
         py = cy + p1 * e1y + p2 * e2y + yi * ay
-        pz = cz + p1 * e1z + p2 * e2z + yi * az
-        if not segment_can_touch(params, road, px, py, pz, az, beta):
+        if ((abs(beta) <= 1.0 and pz - params.tread_half_width * (abs(az) + abs(beta)) > road_top)
+                or not segment_can_touch(params, road, px, py, pz, az, beta)):
             if in_reach[i]:  # else its blocks are clear already
                 clear_segment(params, state, i)
                 in_reach[i] = False
@@ -208,31 +220,31 @@ def ring_substep(params, state, road, pose, arx, ary, arz, domega, h, decay, pat
         acc[ACC_FX] += gx
         acc[ACC_FY] += gy
         acc[ACC_FZ] += gz
-    # symplectic Euler; Coriolis as an exact rotation of the in-plane velocity
+    # symplectic Euler; Coriolis as an exact rotation of the in-plane velocity;
+    # the stiff belt terms implicitly after the kick (.implicit)
     relax = 1.0 / (1.0 + h * params.relax_rate)
     cr = math.cos(2.0 * omega * h)
     sr = math.sin(2.0 * omega * h)
     hm = h / m
     hj = h / jt
-    # Maxwell branch: exact exponential relaxation of its damper over the step
-    relaxed = state.relaxed
-    rb = params.belt_radius
     for i in range(n):
         # Boris splitting: half kick, rotation, half kick (no energy drift)
         v1 = v1s[i] + 0.5 * hm * f1[i]
         v2 = v2s[i] + 0.5 * hm * f2[i]
-        w1 = (cr * v1 - sr * v2 + 0.5 * hm * f1[i]) * relax
-        w2_ = (sr * v1 + cr * v2 + 0.5 * hm * f2[i]) * relax
-        v1s[i] = w1
-        v2s[i] = w2_
-        p1s[i] += h * w1
-        p2s[i] += h * w2_
-        vyy = (vys[i] + hm * fy[i]) * relax
-        vys[i] = vyy
-        ys[i] += h * vyy
-        vb = (vbs[i] + hj * fb[i]) * relax
-        vbs[i] = vb
-        bs[i] += h * vb
+        v1s[i] = (cr * v1 - sr * v2 + 0.5 * hm * f1[i]) * relax
+        v2s[i] = (sr * v1 + cr * v2 + 0.5 * hm * f2[i]) * relax
+        vys[i] = (vys[i] + hm * fy[i]) * relax
+        vbs[i] = (vbs[i] + hj * fb[i]) * relax
+    chord_implicit(params, state, h)
+    lateral_implicit(params, state, h)
+    # Maxwell branch: exact exponential relaxation of its damper over the step
+    relaxed = state.relaxed
+    rb = params.belt_radius
+    for i in range(n):
+        p1s[i] += h * v1s[i]
+        p2s[i] += h * v2s[i]
+        ys[i] += h * vys[i]
+        bs[i] += h * vbs[i]
         ur = p1s[i] * cos_t[i] + p2s[i] * sin_t[i] - rb
         relaxed[i] += (ur - relaxed[i]) * decay
     kin[KIN_PSI] = psi + omega * h

@@ -20,6 +20,7 @@ from ..registry import ContactModel, register_contact
 from .kernel import ring_step
 from .parameters import ring_parameters, stable_step, tread_half_width
 from .pattern import default_pattern, even_blocks, pattern_blocks, read_pattern
+from .implicit import lateral_checksum, lateral_stiffness_matrix
 from .records import KIN_TIME, RingParams, RingState, copy_state, empty_state, params_key
 from .static import footprint_from_blocks, settle
 
@@ -28,6 +29,9 @@ N_SEGMENTS = 100
 N_BLOCKS = 10
 #: relaxation damping rate [1/s] used to find static equilibria
 RELAX_RATE = 250.0
+#: largest default internal step [s], set by accuracy where stability would allow
+#: more (docs/ring.md, "Performance": the cleat peak within 0.5 % of half the step)
+ACCURATE_STEP = 1.0 / 6000.0
 #: samples across a block's width in a static test on a road that varies across
 #: the wheel (a longitudinal cleat): one every ~10 mm
 STATIC_LATERAL_SAMPLES = 4
@@ -56,7 +60,9 @@ def ring_params(tyre, grid=None, tread_pattern=False, n_segments=N_SEGMENTS, n_b
     friction : float, optional
         Overrides FRICTION.
     dt_max : float, optional
-        Internal step [s]; default :func:`stable_step`.
+        Largest internal step [s]; default the smaller of :data:`ACCURATE_STEP`
+        and :func:`stable_step`; above twice the latter (its stability bound)
+        an :class:`InputError`.
     pattern : dict or path, optional
         Tread pattern (default: the tyre's built-in pattern).
     parameters : RingParameters, optional
@@ -100,7 +106,17 @@ def ring_params(tyre, grid=None, tread_pattern=False, n_segments=N_SEGMENTS, n_b
     half = tread_half_width(tyre, rp)
     m = rp.ring_mass / n
     seg = rb * dth  # arc length per segment, for the per-length quantities
-    step = stable_step(rp, tyre, n, nb) if dt_max is None else float(dt_max)
+    stable = stable_step(rp, tyre, n, nb)
+    if dt_max is None:
+        step = min(stable, ACCURATE_STEP)
+    else:
+        step = float(dt_max)
+        # stable_step keeps a safety factor of 2 below the stability bound
+        if not (math.isfinite(step) and 0.0 < step <= 2.0 * stable):
+            raise InputError(f"ring internal step dt_max = {step:g} s is outside (0, {2.0 * stable:.3g}] s, "
+                             f"the stability limit of these parameters ({n} segments: foundation, "
+                             f"tension, in-plane bending, tread); use at most {stable:.3g} s",
+                             field="dt_max")
     if relax > 0:
         step = min(step, 0.5 / relax)
     th = dth * np.arange(n)
@@ -108,7 +124,7 @@ def ring_params(tyre, grid=None, tread_pattern=False, n_segments=N_SEGMENTS, n_b
     def table(a):
         return np.ascontiguousarray(a, dtype=np.float64).copy()
 
-    return RingParams(
+    params = RingParams(
         n_segments=n, n_blocks=nb, lateral_samples=max(1, int(lateral_samples)),
         unloaded_radius=float(r0), belt_radius=float(rb), pressure=p,
         segment_mass=float(m), segment_twist_inertia=float(m * (2.0 * half) ** 2 / 12.0),
@@ -138,7 +154,10 @@ def ring_params(tyre, grid=None, tread_pattern=False, n_segments=N_SEGMENTS, n_b
         segment_angle=float(dth), max_block_height=float(h.max()),
         tread_half_width=float(half),
         cos_theta=table(np.cos(th)), sin_theta=table(np.sin(th)),
-        block_y=table(y), block_s=table(s), block_h=table(h), block_area=table(area))
+        block_y=table(y), block_s=table(s), block_h=table(h), block_area=table(area),
+        lateral_matrix=np.zeros((2 * n, 2 * n)), lateral_checksum=0.0)
+    k = lateral_stiffness_matrix(params)
+    return params._replace(lateral_matrix=k, lateral_checksum=lateral_checksum(k))
 
 
 def nominal_state(params: RingParams) -> RingState:

@@ -219,36 +219,42 @@ def ring_parameters(tyre) -> RingParameters:
 
 
 def stable_step(rp: RingParameters, tyre, n: int, nb: int, safety: float = 0.5) -> float:
-    """Largest internal step [s] for symplectic Euler, ``safety * 2 / omega_max``.
+    """Largest internal step [s] for the explicit part of the update, ``safety * 2 / omega_max``.
 
     ``omega_max^2`` is bounded (Gershgorin) by the sum of the stiffnesses that
-    act on one segment over its mass: foundation, chords ``4 (EA + T0)/L0``,
-    bending ``16 EI/L0^3``, and every block of the segment pressed to the
-    tread depth, ``sum k A (1 + 2 q) + k_s A``; likewise for twist.
+    act on one segment over its mass and are integrated explicitly: the radial
+    and tangential foundation (with its Maxwell branch), the transverse
+    stiffness of the chords' tension ``4 |T0| / L0``, in-plane bending
+    ``16 EI / L0^3`` and every block of the segment pressed to the tread
+    depth, ``sum k A (1 + 2 q) + k_s A`` (in plane, across and, with the
+    lever of the half width, in twist). The chords' extension (``EA``,
+    ``c_EA``), the belt's lateral bending and its torsion are implicit
+    (:mod:`.implicit`) and set no limit; across, the lateral foundation, the
+    tension's string stiffness ``4 |T0| / L0`` and the blocks do. The explicit
+    dampers do: ``h <= safety * 2 / c_max``.
     """
     r0 = tyre.unloaded_radius
     rb = r0 - rp.tread_depth
     p = max(float(tyre.pressure), 0.0) if math.isfinite(tyre.pressure) else 0.0
     l0 = 2.0 * math.pi * rb / n
-    dth = 2.0 * math.pi / n
     m = rp.ring_mass / n
     k = rp.at_pressure(p)
     t0 = k["pb"] * rb
     half = tread_half_width(tyre, rp)
     area = l0 * 2.0 * half
-    tread = area * (rp.tread_stiffness * (1.0 + 2.0 * rp.tread_progression)
-                    + rp.tread_shear_stiffness)
-    k_in = (k["kr"] + k["kt"] + rp.kh) * l0 + 4.0 * (rp.ea + abs(t0)) / l0 + 16.0 * rp.ei / l0 ** 3 + tread
-    k_lat = (k["ky"] * l0 + 16.0 * rp.eio * l0 / (dth ** 4 * rb ** 4)
-             + 4.0 * rp.gj * l0 / (rb * dth) ** 2 / rb ** 2 + 4.0 * abs(t0) / l0 + tread)
+    normal = area * rp.tread_stiffness * (1.0 + 2.0 * rp.tread_progression)
+    tread = normal + area * rp.tread_shear_stiffness
+    k_in = (k["kr"] + k["kt"] + rp.kh) * l0 + 4.0 * abs(t0) / l0 + 16.0 * rp.ei / l0 ** 3 + tread
     jt = m * (2.0 * half) ** 2 / 12.0
-    k_tw = k["kb"] * l0 + 4.0 * rp.gj * l0 / (rb * dth) ** 2 + area * rp.tread_stiffness * (
-        1.0 + 2.0 * rp.tread_progression) * half ** 2 + 2.0 * rp.eio * l0 / rb ** 2
+    k_lat = k["ky"] * l0 + 4.0 * abs(t0) / l0 + tread
+    k_tw = k["kb"] * l0 + normal * half ** 2
     w2 = max(k_in / m, k_lat / m, k_tw / jt)
-    c_in = (area * rp.tread_damping + (rp.cr + rp.ct) * l0 + 4.0 * rp.cea / l0) / m
+    c_in = (area * rp.tread_damping + (rp.cr + rp.ct) * l0) / m
+    c_lat = (area * rp.tread_shear_damping + rp.cy * l0) / m
     h = safety * 2.0 / math.sqrt(w2)
-    if c_in > 0:
-        h = min(h, safety * 2.0 / c_in)
+    c_max = max(c_in, c_lat, rp.cb * l0 / jt)
+    if c_max > 0:
+        h = min(h, safety * 2.0 / c_max)
     return h
 
 

@@ -15,6 +15,7 @@ from typing import NamedTuple
 
 import numpy as np
 
+from .implicit import LATERAL_BAND, LATERAL_BORDER
 from .tread import ACC_SIZE
 
 # --- RingState.kinematics: the rim's motion as the state last saw it -------------
@@ -116,6 +117,10 @@ class RingParams(NamedTuple):
     block_s: np.ndarray
     block_h: np.ndarray
     block_area: np.ndarray
+    #: the constant stiffness matrix of the out-of-plane degrees of freedom
+    #: (y, beta interleaved, 2N x 2N; :mod:`.implicit`) and a checksum of it
+    lateral_matrix: np.ndarray
+    lateral_checksum: float
 
 
 class RingState(NamedTuple):
@@ -137,7 +142,13 @@ class RingState(NamedTuple):
     known to be clear (out of the road's reach at the last internal step:
     no deflection, no force), so they need not be cleared again.
     Scratch: ``f1, f2, fy, fb`` the forces on the segments, ``patch`` the
-    contact-patch sums of the last step (indices ``ACC_*`` of :mod:`.tread`).
+    contact-patch sums of the last step (indices ``ACC_*`` of :mod:`.tread`);
+    for the implicit terms (:mod:`.implicit`): ``chord_1, chord_2`` the chord
+    directions, ``chord_rate`` their extension rates at the step's start,
+    ``chord_tension, chord_work, chord_aux`` the tridiagonal solve;
+    ``lateral_key`` (step length, matrix checksum) of the out-of-plane factor
+    in ``lateral_band`` (2N x (band + 1)) and ``lateral_border``
+    (border x 2N), ``lateral_work`` (2N) its solve.
     """
 
     p1: np.ndarray
@@ -161,6 +172,16 @@ class RingState(NamedTuple):
     fy: np.ndarray
     fb: np.ndarray
     patch: np.ndarray
+    chord_1: np.ndarray
+    chord_2: np.ndarray
+    chord_rate: np.ndarray
+    chord_tension: np.ndarray
+    chord_work: np.ndarray
+    chord_aux: np.ndarray
+    lateral_key: np.ndarray
+    lateral_band: np.ndarray
+    lateral_border: np.ndarray
+    lateral_work: np.ndarray
 
 
 #: the velocity arrays of :class:`RingState`, in the order of the positions p1, p2, y, beta
@@ -172,7 +193,10 @@ def empty_state(n: int, nb: int) -> RingState:
     seg = [np.zeros(n) for _ in range(9)]
     return RingState(*seg, np.zeros(1), np.zeros(n * nb), np.zeros(n * nb), np.zeros(n * nb),
                      np.zeros(KIN_SIZE), np.zeros(1, np.bool_), np.ones(n, np.bool_),
-                     np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(ACC_SIZE))
+                     np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(ACC_SIZE),
+                     *[np.zeros(n) for _ in range(6)], np.zeros(2),
+                     np.zeros((2 * n, LATERAL_BAND + 1)), np.zeros((LATERAL_BORDER, 2 * n)),
+                     np.zeros(2 * n))
 
 
 def copy_state(state: RingState) -> RingState:
