@@ -458,3 +458,27 @@ def test_left_wheel_of_the_trailer(tmp_path):
     assert old["A"] == new["A"] and old["B"] != new["B"]
     fails(edit(4, 'output_rate = 1000\nleft_wheel = "ring-x"'), tmp_path, 5, "study.left_wheel",
           "ring-x", "point")
+
+
+def test_run_keys_follow_rdf_roads_and_chrono_tyres(tmp_path):
+    """A study takes .rdf/.obj roads and Chrono .json tyres; the run keys follow
+    the files' content (a changed file is a new run), not their names."""
+    from tyrelab.cli.main import main
+    assert main(["road", "export", "cleat:50x50", "-o", str(tmp_path / "plank.rdf")]) == 0
+    json_text = (Path(__file__).parent / "data" / "tir" / "HMMWV_Pac89Tire.json").read_text()
+    (tmp_path / "hmmwv.json").write_text(json_text)
+    text = edit(22, 'road = "plank.rdf"', edit(9, "", edit(8, 'file = "hmmwv.json"')))
+    text = text.replace('loads = ["LC1"]', "loads = [15000.0]")
+    before = _keys(parse(text, tmp_path))
+    assert len(set(before.values())) == 4
+    assert _keys(parse(text, tmp_path)) == before
+    rdf = (tmp_path / "plank.rdf").read_text()
+    (tmp_path / "plank.rdf").write_text(rdf + "$ edited\n")
+    road_changed = _keys(parse(text, tmp_path))
+    assert all(road_changed[k] != before[k] for k in before)
+    (tmp_path / "plank.rdf").write_text(rdf)
+    assert _keys(parse(text, tmp_path)) == before
+    assert '"Vertical Damping": 3483.932502' in json_text
+    (tmp_path / "hmmwv.json").write_text(json_text.replace("3483.932502", "3600.0", 1))
+    tyre_changed = _keys(parse(text, tmp_path))
+    assert all(tyre_changed[k] != before[k] for k in before)

@@ -55,6 +55,7 @@ import math
 import numpy as np
 
 from ..errors import InputError
+from ..limits import MAX_ROAD_HEIGHT
 from .base import Road
 from .grid import RoadGrid
 
@@ -195,6 +196,9 @@ class MeshRoad(Road):
         if not np.all(np.isfinite(v)):
             raise bad(f"node {int(np.flatnonzero(~np.isfinite(v).all(axis=1))[0]) + 1} has a "
                       "non-finite coordinate")
+        if np.abs(v[:, 2]).max() > MAX_ROAD_HEIGHT:
+            raise bad(f"node {int(np.argmax(np.abs(v[:, 2]))) + 1} is {np.abs(v[:, 2]).max():.3g} m "
+                      f"from z = 0; road heights are at most {MAX_ROAD_HEIGHT:g} m")
         if t.ndim != 2 or t.shape[1] != 3 or len(t) < 1 or not np.issubdtype(t.dtype, np.integer):
             raise bad(f"a mesh needs at least one triangle of 3 integer node indices; got {t.shape}")
         out = np.flatnonzero(((t < 0) | (t >= len(v))).any(axis=1))

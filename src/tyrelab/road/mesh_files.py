@@ -3,18 +3,18 @@
 OBJ has no units and no up axis: coordinates are taken as metres in the
 road frame (x along the road, y to the left, z up); a y-up file must be
 turned first. Polygons are split into triangles (fans). Writers put the
-file in place only when it is complete (:func:`atomic_write_text`).
+file in place only when it is complete (:func:`tyrelab.io_atomic.atomic_write_text`).
 """
 
 from __future__ import annotations
 
 import math
-import os
 from pathlib import Path
 
 import numpy as np
 
 from ..errors import InputError
+from ..io_atomic import atomic_write_text
 from .base import Road
 from .grid import RoadGrid
 from .mesh import MeshRoad
@@ -122,14 +122,3 @@ def grid_triangles(grid: RoadGrid):
     n10, n01, n11 = n00 + ny, n00 + 1, n00 + ny + 1
     t = np.concatenate([np.column_stack([n00, n10, n11]), np.column_stack([n00, n11, n01])])
     return v, t
-
-
-def atomic_write_text(path: Path, text: str) -> None:
-    """Write ``text`` to a temporary file beside ``path``, then rename it into place."""
-    tmp = path.with_name(f".{path.name}.{os.getpid()}.part")
-    try:
-        tmp.write_text(text, encoding="utf-8")
-        os.replace(tmp, path)
-    finally:
-        if tmp.exists():
-            tmp.unlink()

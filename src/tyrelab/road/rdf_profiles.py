@@ -65,6 +65,8 @@ from abc import abstractmethod
 
 import numpy as np
 
+from ..errors import InputError
+from ..limits import MAX_ROAD_HEIGHT
 from .base import Road
 from .mesh import RUN_IN, fit_budget, lattice_spacing
 from .obstacles import EDGE_SPACING, HALF_WIDTH, RUN_OUT, Cleat
@@ -303,6 +305,10 @@ class PolyLine(RdfRoad):
 
     def __init__(self, x, z_left, z_right):
         self.x, self.zl, self.zr = (np.asarray(a, float) for a in (x, z_left, z_right))
+        top = max(np.abs(self.zl).max(), np.abs(self.zr).max())
+        if top > MAX_ROAD_HEIGHT:
+            raise InputError(f"a track height of {top:.3g} m; road heights are at most "
+                             f"{MAX_ROAD_HEIGHT:g} m", field="XZ_DATA")
         self.same = bool(np.array_equal(self.zl, self.zr))
         changes = np.flatnonzero((np.diff(self.zl) != 0) | (np.diff(self.zr) != 0))
         u0, u1 = (self.x[changes[0]], self.x[changes[-1] + 1]) if changes.size else (self.x[0], self.x[0])

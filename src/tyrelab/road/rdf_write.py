@@ -15,7 +15,8 @@ from ..errors import InputError
 from . import rdf_profiles as P
 from .base import Road
 from .mesh import MeshRoad
-from .mesh_files import atomic_write_text, grid_triangles
+from ..io_atomic import atomic_write_text
+from .mesh_files import grid_triangles
 
 
 def _rows(a: np.ndarray) -> str:

@@ -48,6 +48,12 @@ def _tyre_files(tyre: TyreSpec) -> list[tuple[str, bytes]]:
         for q in used:
             name = f"{tyre.file}_{q / 1e3:.0f}kPa.tir"
             files.append((name, _data_bytes("tyrelab.tyre", name)))
+    elif Path(tyre.file).suffix.lower() == ".json":
+        # a Chrono tyre may name a .tir beside it: the tyre as read is what counts
+        from ..tyre.chrono_json import read_chrono_json
+        from ..tyre.tir import format_tir
+        path = Path(tyre.file)
+        files.append((path.name, format_tir(read_chrono_json(path)).encode()))
     else:
         path = Path(tyre.file)
         files.append((path.name, path.read_bytes()))
@@ -90,10 +96,14 @@ def _file_digest_of(path: str, mtime_ns: int, size: int) -> str:
 
 
 def _road_identity(road: str):
-    """The road as it enters a run key: its name, or a .crg file's content digest and offset."""
+    """The road as it enters a run key: its name, or a road file's content digest and offset."""
     path_text, _, offset = road.partition("@")
-    if path_text.lower().endswith(".crg"):
+    suffix = Path(path_text).suffix.lower()
+    if suffix == ".crg":
         return {"crg_sha256": _file_digest(Path(path_text)), "offset": offset or "0"}
+    if suffix in (".rdf", ".obj"):
+        return {"road_file_sha256": _file_digest(Path(path_text)), "kind": suffix,
+                "offset": offset or "0"}
     return road
 
 

@@ -17,7 +17,7 @@ Schema (km/h, kPa, mm at this edge, as the command line; SI in the parsed object
 
     [[tyre]]                            # one or more
     name = "xzl"                        # label
-    file = "xzl-16.00R20"               # built-in tyre name, or a .tir path (relative to the spec)
+    file = "xzl-16.00R20"               # built-in name, or a .tir / Chrono .json path (relative to the spec)
     pressure_kpa = 300                  # optional, built-in tyres measured at several pressures only
 
     [[model]]                           # one or more model variants
@@ -29,7 +29,7 @@ Schema (km/h, kPa, mm at this edge, as the command line; SI in the parsed object
     [[test]]                            # one or more
     name = "cleat 50x50 perpendicular"  # obstacle/track label (the thesis's words)
     group = "discrete obstacles"        # or "rough tracks" (optional: from the road)
-    road = "cleat:50x50"                # a road name (tyrelab.road.spec) or a .crg path [@offset]
+    road = "cleat:50x50"                # a road name (tyrelab.road.spec) or a .crg/.rdf/.obj path [@offset]
     speeds_kmh = [12, 18, 42]           # 0 < v <= 200 km/h
     loads = ["LC1"]                     # "LC1".."LC3" (thesis Table 3-4) or a wheel load in N
     rig = "trailer"                     # optional (tyrelab.api.RIGS)
@@ -159,9 +159,9 @@ def _tyres(ck: Checker, doc) -> tuple[TyreSpec, ...]:
                                            f"{lo / 1e3:g}-{hi / 1e3:g} kPa of {builtin}",
                                            low=lo / 1e3, high=hi / 1e3, low_open=False)
         else:
-            if not file_text.strip().lower().endswith(".tir"):
+            if not file_text.strip().lower().endswith((".tir", ".json")):
                 ck.fail(path + ("file",), f"unknown tyre {json.dumps(file_text)}; expected a built-in tyre "
-                        f"({', '.join([*BUILT_IN, *SINGLE_FILE])}) or a .tir file")
+                        f"({', '.join([*BUILT_IN, *SINGLE_FILE])}), a .tir or a Chrono .json file")
             file = str(ck.path(file_text, path + ("file",), "tyre property file"))
             if "pressure_kpa" in t:
                 ck.fail(path + ("pressure_kpa",), "a .tir file describes one pressure; pressure_kpa is "
@@ -217,10 +217,11 @@ def _road(ck: Checker, value, path) -> tuple[str, str]:
     if lower in _tracks():  # built-in tracks are large: known by name, built when run
         return lower, "discrete obstacles" if lower in _DISCRETE_TRACKS else "rough tracks"
     path_text, _, offset = text.partition("@")
-    if path_text.lower().endswith(".crg"):
+    if path_text.lower().endswith((".crg", ".rdf", ".obj")):
         if offset and not re.fullmatch(_NUM, offset):
             ck.fail(path, f"cannot read lateral offset '{offset}' in road '{text}'; expected metres")
-        file = ck.path(path_text, path, "OpenCRG file")
+        what = {".crg": "OpenCRG file", ".rdf": "Adams road data file", ".obj": "OBJ mesh file"}
+        file = ck.path(path_text, path, what[Path(path_text).suffix.lower()])
         return f"{file}@{offset}" if offset else str(file), "rough tracks"
     kind, _, args = text.partition(":")
     kind = kind.lower()
