@@ -188,3 +188,33 @@ def test_every_writer_goes_through_the_atomic_writer(tmp_path, monkeypatch):
     write_page(tmp_path / "a.html", "<html></html>")
     assert seen == ["a.parquet", "a.tdx", "a.tir", "a.crg", "a.png", "a.html"]
     assert _temporaries(tmp_path) == []
+
+
+@linux
+@pytest.mark.parametrize("command, output", [
+    (["fit", "ring", "--max-evaluations", "50"], "ring.tir"),
+    (["study", "--workers", "1"], "results"),
+], ids=["fit-ring", "study"])
+def test_sigterm_to_a_long_command_leaves_nothing_that_looks_complete(tmp_path, command, output):
+    """SIGTERM during the ring's identification (minutes) and during the built-in
+    campaign: one line, exit 143, no output file (fit), no report (study)."""
+    out = tmp_path / output
+    p = subprocess.Popen([sys.executable, "-m", "tyrelab.cli.main", *command, "-o", str(out)],
+                         stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, cwd=tmp_path)
+    t0 = time.monotonic()
+    while not _handler_installed(p.pid, signal.SIGTERM):
+        assert p.poll() is None and time.monotonic() - t0 < 60
+        time.sleep(0.05)
+    time.sleep(3.0)                                       # well into the work
+    assert p.poll() is None
+    p.send_signal(signal.SIGTERM)
+    _, err = p.communicate(timeout=120)
+    lines = [ln for ln in err.splitlines() if ln.strip() and "%|" not in ln]
+    assert p.returncode == 143, err
+    assert lines[-1:] == ["tyrelab: terminated"], err
+    assert "Traceback" not in err
+    if output == "ring.tir":
+        assert not out.exists()
+    else:
+        assert not (out / "report.html").exists() and not (out / "metrics.parquet").exists()
+    assert _temporaries(tmp_path) == []

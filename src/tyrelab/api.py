@@ -169,7 +169,7 @@ def simulate(tyre: str | Tyre = DEFAULT_TYRE, model: str = "point", road="cleat:
     cells = 0
     if not drop:
         from .road.spec import road_from_spec
-        road = road_from_spec(road)
+        road = road_from_spec(road, force=force)
         run_time = _default_duration(road, speed) if duration is None else duration
         if duration is None and run_time > limits.MAX_DURATION:
             raise InputError(f"the run to the road's end at {speed:.6g} m/s would last {run_time:.6g} s, "

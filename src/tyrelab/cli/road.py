@@ -73,7 +73,7 @@ def _road(text, force: bool = False):
     from ..limits import check_resources, grid_cells
     from ..road.spec import road_from_spec
 
-    road = road_from_spec(text)
+    road = road_from_spec(text, force=force)
     cells = grid_cells(road)
     check_resources(f"the grid of {road.name} ({cells:.3g} nodes)", memory=8.0 * 3 * cells, force=force,
                     field="ROAD")

@@ -11,6 +11,8 @@ Grammar (sizes in millimetres, angles in degrees, as engineers say them)::
     powerlaw:A,N[@SEED]         random road with S = A phi^-N (thesis eq. 3.8)
     <track name>                a built-in test track (see :func:`road_names`)
     path/to/file.crg[@V]        an OpenCRG road, driven at lateral offset V [m]
+    path/to/file.rdf[@V]        an Adams road data file (2D road types, 3D shell)
+    path/to/file.obj[@V]        a triangle mesh (Wavefront OBJ, metres, z up)
 
 Every obstacle starts at x = 5 m so a run can settle first.
 """
@@ -43,7 +45,7 @@ def road_names() -> list[str]:
     """Names accepted by :func:`road_from_spec` besides the obstacle grammar."""
     return ["flat", "cleat:WxH[@ANGLE]", "bump:H[xRAMPxTOP]", "step:H",
             "pothole:DEPTHxLENGTH[xWIDTH]", "iso8608:CLASS[@SEED]", "powerlaw:A,N[@SEED]",
-            *sorted(_tracks()), "FILE.crg[@V]"]
+            *sorted(_tracks()), "FILE.crg[@V]", "FILE.rdf[@V]", "FILE.obj[@V]"]
 
 
 def _numbers(text: str, spec: str, count_min: int, count_max: int) -> list[float]:
@@ -54,8 +56,12 @@ def _numbers(text: str, spec: str, count_min: int, count_max: int) -> list[float
     return [float(p) for p in parts]
 
 
-def road_from_spec(spec: str | Road) -> Road:
-    """A :class:`Road` from its name (see the module docstring)."""
+def road_from_spec(spec: str | Road, force: bool = False) -> Road:
+    """A :class:`Road` from its name (see the module docstring).
+
+    ``force`` lifts the memory limit (:data:`tyrelab.limits.MAX_MEMORY`) of the
+    roads built from data, a random road's or an OpenCRG file's grid.
+    """
     if isinstance(spec, Road):
         return spec
     from . import obstacles as ob
@@ -113,7 +119,7 @@ def road_from_spec(spec: str | Road) -> Road:
                 raise InputError(f"cannot read '{body}' in road '{text}'; expected A,N with A > 0 "
                                  "(A in m^2/(cycles/m), N the road exponent)", field="road")
             spec_ = (float(parts[0]), float(parts[1]))
-        return RandomRoad(spec_, seed=seed, start=OBSTACLE_START, taper=2.0)
+        return RandomRoad(spec_, seed=seed, start=OBSTACLE_START, taper=2.0, force=force)
     tracks = _tracks()
     if text.lower() in tracks:
         return tracks[text.lower()]()
@@ -137,6 +143,6 @@ def road_from_spec(spec: str | Road) -> Road:
             from .mesh_files import read_obj
             return read_obj(path, y_offset=v)
         from .crg import CrgRoad
-        return CrgRoad(path, v_offset=v)
+        return CrgRoad(path, v_offset=v, force=force)
     raise InputError(f"unknown road '{text}'; expected one of: {', '.join(road_names())}",
                      field="road")
