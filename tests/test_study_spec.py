@@ -9,7 +9,7 @@ from pathlib import Path
 import pytest
 
 from tyrelab.errors import InputError
-from tyrelab.study.toml_lines import TomlLocator
+from tyrelab.core.toml_lines import TomlLocator
 from tyrelab.study.spec import (GROUPS, ModelSpec, RunSpec, StudySpec, TyreSpec, builtin_spec,
                                 example_spec, load_spec, parse_spec, run_key, tyre_digest)
 

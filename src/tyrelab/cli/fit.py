@@ -1,9 +1,28 @@
-"""``tyrelab fit``: parameter identification from test data."""
+"""``tyrelab fit``: parameter identification from test data.
+
+``fit vertical|damping|patch|shape FILES -o tyre.tir`` fits one step of
+thesis chapter 4 (:mod:`tyrelab.fit.workflow`) from test files (CSV or TYDEX
+named as :mod:`tyrelab.fit.lab_files` says, or a campaign folder whose tests
+of that kind are used); ``fit all CAMPAIGN -o tyre.tir`` runs every step on a
+campaign (:mod:`tyrelab.fit.campaign`). An existing output file is updated
+(its other sections and its units kept); ``--into BASE.tir`` starts from
+another file. A fit report (HTML) is written beside the output unless
+``--no-report``. ``fit ring`` identifies the built-in tyre's ring.
+"""
 
 from __future__ import annotations
 
 from ..limits import MAX_FIT_EVALUATIONS
-from ._common import count
+from ._common import count, positive_float
+
+#: step -> (test kind its loose files are, help)
+STEPS = {"vertical": ("load_deflection", "linear stiffness and load-deflection table from plate presses "
+                                         "(thesis 3.3.1, 4.2)"),
+         "damping": ("drop_test", "tyre damping from a trailer drop test: the rig fitted to the trace, "
+                                  "beside eqs. 3.1-3.7"),
+         "patch": ("contact_patch", "PA1/PA2 (eq. 2.3), PB1-PB3 (eq. 2.4) and the half-width table from "
+                                    "contact-patch sizes (4.4)"),
+         "shape": ("carcass_profile", "the [SHAPE] table from the carcass profile (4.3)")}
 
 
 def register(sub):
@@ -19,7 +38,44 @@ def register(sub):
     r.add_argument("-o", "--output", default="ring.tir",
                    help="ring property file to write (.tir; checked before the fit starts)")
     r.set_defaults(func=run_ring)
+    for step, (kind, text) in STEPS.items():
+        s = fsub.add_parser(step, help=text, description=text + ". FILES: test files (CSV or TYDEX, "
+                            "columns named by quantity and unit, e.g. deflection_mm, load_N), or a "
+                            "campaign folder / campaign.toml whose tests of this kind are used.")
+        s.add_argument("files", nargs="+", metavar="FILE", help=f"{kind} files or a campaign")
+        if step == "vertical":
+            s.add_argument("--table-step", type=positive_float("--table-step", 1e-3), default=None,
+                           help="deflection step of the table a raw loop is averaged onto, mm "
+                                "(default 5)")
+        if step == "damping":
+            from ._common import load_value
+            s.add_argument("--load", type=load_value, default=None,
+                           help="trailer load case of the drop (LC1-LC3) or wheel load in N (default LC1)")
+        _outputs(s)
+        s.set_defaults(func=run_step, step=step)
+    a = fsub.add_parser("all", help="every step of thesis chapter 4 from a test campaign",
+                        description="Fit vertical, damping, patch and shape from a campaign folder "
+                                    "(campaign.toml and its files); steps without tests are skipped "
+                                    "with a note; the ring is not identified (see 'fit ring').")
+    a.add_argument("campaign", metavar="CAMPAIGN", help="campaign folder or its campaign.toml")
+    _outputs(a)
+    a.set_defaults(func=run_all)
     p.set_defaults(func=lambda args: (p.print_help(), 1)[1])
+
+
+def _outputs(p):
+    p.add_argument("-o", "--output", default="tyre.tir",
+                   help="property file to write (.tir); an existing file is updated, its other "
+                        "sections and units kept")
+    p.add_argument("--into", metavar="BASE", default=None,
+                   help="start from this property file (or built-in tyre) instead")
+    p.add_argument("--radius", type=positive_float("--radius", 1e-3), default=None,
+                   help="unloaded radius, mm (a new file without a campaign [tyre] table)")
+    p.add_argument("--width", type=positive_float("--width", 1e-3), default=None,
+                   help="section width, mm (likewise)")
+    p.add_argument("--report", default=None,
+                   help="fit report to write (.html; default: beside the output, NAME_fit.html)")
+    p.add_argument("--no-report", action="store_true", help="write no report")
 
 
 def run_ring(args) -> int:
@@ -53,3 +109,99 @@ def run_ring(args) -> int:
     print(f"\n{args.output}: ring parameters")
     return 0
 
+
+
+def _paths(args, inputs):
+    """Checked output and report paths, before any work."""
+    from pathlib import Path
+
+    from ..io_atomic import check_output_path
+    out = check_output_path(args.output, (".tir",), "-o", inputs)
+    report = None
+    if not args.no_report:
+        report = args.report or str(Path(args.output).with_name(Path(args.output).stem + "_fit.html"))
+        report = check_output_path(report, (".html",), "--report", [*inputs, args.output])
+    return out, report
+
+
+def _base(args, campaign):
+    """The file the fit starts from: --into, else an existing output, else none (a new file)."""
+    from pathlib import Path
+
+    from ..errors import InputError
+    from ..tyre.tir import read_tir
+    if args.into:
+        if Path(args.into).is_file():
+            return read_tir(args.into)
+        from ..tyre.library import BUILT_IN, SINGLE_FILE, load_tyre
+        if args.into in BUILT_IN or args.into in SINGLE_FILE:
+            return load_tyre(args.into).tir
+        raise InputError(f"no such property file or built-in tyre '{args.into}'", field="--into")
+    if Path(args.output).is_file():
+        return read_tir(args.output)
+    if campaign.base is None:
+        for key in ("radius", "width"):
+            if getattr(args, key) is not None:
+                campaign.tyre[{"radius": "unloaded_radius"}.get(key, key)] = getattr(args, key)
+        if "unloaded_radius" not in campaign.tyre or "width" not in campaign.tyre:
+            raise InputError("a new property file needs the tyre's unloaded radius and width: give "
+                             "--radius and --width (mm), --into BASE.tir, or a campaign whose "
+                             "campaign.toml has them in [tyre]", field="-o")
+    return None
+
+
+def _fit(args, campaign, steps, inputs) -> int:
+    """Fit ``steps`` of ``campaign``, write the file and the report, print the summary."""
+    from tqdm import tqdm
+
+    from ..fit.workflow import fit_campaign
+    from ..tyre.tir import write_tir
+    out, report = _paths(args, inputs + [t.source for t in campaign.tests])
+    base = _base(args, campaign)
+    if base is not None:
+        for key in ("radius", "width"):
+            if getattr(args, key) is not None:
+                campaign.tyre[{"radius": "unloaded_radius"}.get(key, key)] = getattr(args, key)
+    with tqdm(total=len(steps) + 1, desc="fitting", unit="step", leave=False) as bar:
+        result = fit_campaign(campaign, steps, base, progress=lambda name: bar.update(1))
+    write_tir(result.tir, out, units=result.tir.units or None)
+    if report is not None:
+        from ..report.fit_report import figure_count, write_report
+        with tqdm(total=figure_count(result), desc="report", unit="figure", leave=False) as bar:
+            write_report(result, report, progress=lambda: bar.update(1))
+    print(summary(result))
+    print(f"\n{out}: property file" + (f"\n{report}: fit report" if report else ""))
+    return 0
+
+
+def summary(result) -> str:
+    """The fitted parameters and notes as Markdown text."""
+    from ..fit.workflow import shown
+    lines = ["| parameter | value | RMS, fitted | error, held out | equation |", "|---|---|---|---|---|"]
+    for step in result.steps.values():
+        for r in step.rows:
+            held = "; ".join(f"{k}: {shown(v, r['error_unit'])}" for k, v in (r["held_out"] or {}).items())
+            lines.append(f"| {r['parameter']} | {shown(r['value'], r['unit'])} | "
+                         f"{shown(r['rms'], r['error_unit'])} | {held} | {r['equation']} |")
+    return "\n".join(lines + [""] + [f"- {n}" for n in result.notes])
+
+
+def run_step(args) -> int:
+    from ..fit.campaign import loose_files
+    kind = STEPS[args.step][0]
+    options = {}
+    if args.step == "vertical" and args.table_step is not None:
+        options["step"] = args.table_step
+    if args.step == "damping" and args.load is not None:
+        options["load_case"] = args.load
+    _paths(args, [*args.files, args.into])
+    campaign = loose_files(args.files, kind, **options)
+    return _fit(args, campaign, (args.step,), [*args.files, args.into])
+
+
+def run_all(args) -> int:
+    from ..fit.campaign import read_campaign
+    from ..fit.workflow import STEPS as ALL
+    _paths(args, [args.campaign, args.into])
+    campaign = read_campaign(args.campaign)
+    return _fit(args, campaign, ALL, [campaign.source, args.into])

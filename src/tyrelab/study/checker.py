@@ -1,5 +1,5 @@
 """Checking a parsed TOML document field by field, each failure one line naming the
-file, the line (:mod:`tyrelab.study.toml_lines`) and the key path."""
+file, the line (:mod:`tyrelab.core.toml_lines`) and the key path."""
 
 from __future__ import annotations
 
@@ -8,7 +8,7 @@ import math
 from pathlib import Path
 
 from ..errors import InputError
-from .toml_lines import BARE_KEY, TomlLocator
+from ..core.toml_lines import BARE_KEY, TomlLocator
 
 
 def describe_value(value) -> str:

@@ -1,4 +1,4 @@
-"""Where things are in a TOML text: tomllib gives no line numbers, a study spec's errors need them."""
+"""Where things are in a TOML text: tomllib gives no line numbers; study specs and fit campaigns need them."""
 
 from __future__ import annotations
 

@@ -1,0 +1,398 @@
+"""Thesis chapter 4 as a workflow: a campaign's tests in, a complete property file out.
+
+Steps, in order (each reads what the earlier ones wrote into the file):
+
+========  ======================================================  ==============================
+step      tests fitted                                            writes
+========  ======================================================  ==============================
+vertical  load_deflection (:mod:`.vertical`: eq. 4.1, Table 3-2)  [VERTICAL] VERTICAL_STIFFNESS,
+                                                                  [DEFLECTION_LOAD_CURVE]
+damping   drop_test (:mod:`.damping`: the rig's drop test fitted  [VERTICAL] VERTICAL_DAMPING
+          to the trace; eqs. 3.1-3.7 beside it)
+patch     contact_patch, footprint_image (:mod:`.patch`:          [CONTACT_PATCH] PA1, PA2,
+          eqs. 2.3, 2.4 and the half-width table)                 PB1-PB3; [CONTACT_WIDTH_CURVE]
+shape     carcass_profile (:mod:`.shape`)                         [SHAPE]
+========  ======================================================  ==============================
+
+Tests marked ``use = "held_out"`` are predicted, never fitted; static cleat
+tests are always held out (the analytic models' cleat loads follow from
+the plate and the carcass: predicted with every analytic model). The fit's
+record -- sources, RMS errors, the pendulum's damping -- goes into
+``[TYRELAB_FIT]``, tyrelab's own section (SI, the unit in each key's name),
+which ADAMS/Tire does not read. The ring is not identified here (module
+:mod:`tyrelab.fit.ring`, ``tyrelab fit ring``, for the built-in XZL).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..errors import InputError
+from ..tyre.tir import TirFile
+from . import lab_files as lf
+from .campaign import Campaign
+from .property_file import FIT_SECTION, start_tir, tidy
+
+STEPS = ("vertical", "damping", "patch", "shape")
+#: analytic models whose cleat loads are predicted
+MODELS = ("point", "volume", "enveloping")
+RING_NOTE = ("ring: not identified by 'fit all' (tyrelab fit ring identifies the built-in XZL's "
+             "ring from Table 3-2, Table 3-3 and eq. 2.3 in minutes); modal and dynamic cleat files "
+             "are read and reported only")
+
+
+@dataclass
+class StepResult:
+    """What one step fitted: rows of the summary, notes, and the arrays its figures draw."""
+
+    name: str
+    rows: list = field(default_factory=list)      # dicts: parameter, value, unit, rms, held_out, source
+    notes: list = field(default_factory=list)
+    data: dict = field(default_factory=dict)
+
+
+@dataclass
+class FitResult:
+    """The fitted property file and each step's result."""
+
+    campaign: Campaign
+    tir: TirFile
+    steps: dict = field(default_factory=dict)
+    notes: list = field(default_factory=list)
+
+
+#: unit of each step's errors (fitted RMS and held-out errors)
+ERROR_UNITS = {"vertical": "N", "damping": "m", "patch": "m", "shape": "-", "cleats": "N"}
+
+
+def _row(step, parameter, value, unit, rms=None, held_out=None, source="", equation=""):
+    """A summary row: ``held_out`` maps a held-out file to its error (RMS, in the step's unit)."""
+    return {"parameter": parameter, "value": value, "unit": unit, "rms": rms, "held_out": held_out,
+            "source": source, "equation": equation, "error_unit": ERROR_UNITS[step]}
+
+
+def shown(value, unit="") -> str:
+    """A value as a person reads it: N/mm, N s/mm and mm for the SI N/m, N s/m and m."""
+    if value is None:
+        return ""
+    if isinstance(value, str):
+        return value
+    scale, word = {"N/m": (1e-3, "N/mm"), "N s/m": (1e-3, "N s/mm"), "m": (1e3, "mm"),
+                   "-": (1.0, "")}.get(unit, (1.0, unit))
+    return f"{value * scale:.4g} {word}".strip()
+
+
+def _names(tests) -> str:
+    return ", ".join(t.name for t in tests)
+
+
+def _dimension(tir: TirFile, key: str, step: str) -> float:
+    value = tir.number("DIMENSION", key, None)
+    if value is None or not value > 0:
+        raise InputError(f"the {step} fit needs the tyre's {key}: give it in the manifest's [tyre] "
+                         "table, or a base property file (--into)", source=tir.source, field=key)
+    return value
+
+
+def _tyre(tir: TirFile, step: str):
+    from ..tyre.params import Tyre
+    _dimension(tir, "UNLOADED_RADIUS", step)
+    if not (tir.has("VERTICAL", "VERTICAL_STIFFNESS") or tir.table("DEFLECTION_LOAD_CURVE") is not None):
+        raise InputError(f"the {step} fit needs the tyre's vertical law: fit the vertical step first "
+                         "(a load_deflection test) or start from a property file (--into)",
+                         source=tir.source, field="VERTICAL")
+    return Tyre.from_tir(tir, name="fitted")
+
+
+# --- the steps -----------------------------------------------------------------------------
+
+def fit_vertical_step(campaign: Campaign, tir: TirFile) -> StepResult:
+    """Linear stiffness and load-deflection table (:mod:`tyrelab.fit.vertical`) into ``tir``."""
+    from .vertical import hysteresis, linear_stiffness, load_deflection_table, table_rms
+    tests = campaign.of(lf.LoadDeflection)
+    fit = [t for t in tests if t.use == "fit"]
+    if not fit:
+        raise InputError("no load_deflection test to fit", source=campaign.source, field="vertical")
+    d = np.concatenate([t.deflection for t in fit])
+    f = np.concatenate([t.load for t in fit])
+    lin = linear_stiffness(d, f)
+    tables = [load_deflection_table(t.deflection, t.load, t.step) for t in fit]
+    rows_d = tables[0].deflection
+    inside = [np.where(rows_d <= tb.deflection[-1] + 1e-9, np.interp(rows_d, tb.deflection, tb.load),
+                       np.nan) for tb in tables]
+    rows_f = np.maximum.accumulate(np.nan_to_num(np.nanmean(inside, axis=0)))
+    law_rms = table_rms(rows_d, rows_f, d, f)
+    src = _names(fit)
+    tir.set("VERTICAL", "VERTICAL_STIFFNESS", lin.stiffness)
+    tir.set_table("DEFLECTION_LOAD_CURVE", np.column_stack([rows_d, rows_f]), ["pen", "fz"])
+    tir.set(FIT_SECTION, "VERTICAL_SOURCE", src)
+    tir.set(FIT_SECTION, "LINEAR_STIFFNESS_RMS_N", lin.rms)
+    tir.set(FIT_SECTION, "TABLE_RMS_N", law_rms)
+    res = StepResult("vertical", data={"tests": tests, "linear": lin, "tables": tables,
+                                       "table": np.column_stack([rows_d, rows_f])})
+    held = {}
+    for t in (t for t in tests if t.use == "held_out"):
+        held[t.name] = (float(np.sqrt(np.mean((lin.stiffness * t.deflection - t.load) ** 2))),
+                        table_rms(rows_d, rows_f, t.deflection, t.load))
+    res.rows.append(_row("vertical", "VERTICAL_STIFFNESS", lin.stiffness, "N/m", lin.rms,
+                         {k: v[0] for k, v in held.items()} or None, src, "eq. 4.1, F = k rho (4.2)"))
+    res.rows.append(_row("vertical", "DEFLECTION_LOAD_CURVE",
+                         f"{rows_d.size} rows to {rows_d[-1] * 1e3:.0f} mm", "", law_rms,
+                         {k: v[1] for k, v in held.items()} or None, src,
+                         "mean of loading and unloading (Table 3-2), spline eq. 2.2"))
+    loop = [tb for tb in tables if tb.branches]
+    if loop:
+        res.notes.append(f"vertical: {sum(tb.branches for tb in loop)} loading/unloading branches "
+                         f"averaged; largest half hysteresis {max(hysteresis(tb) for tb in loop):.0f} N")
+    if any(tb.raised for tb in tables):
+        res.notes.append("vertical: some table rows fell below the row before and were raised to it")
+    return res
+
+
+def _trailer_pendulum(trace: lf.DropTrace, tyre):
+    from ..rig.trailer import Trailer, TrailerGeometry
+    from ..tyre.model import TyreModel
+    geometry = TrailerGeometry(**trace.trailer)
+    trailer = Trailer(TyreModel(tyre, "point"), trace.load_case, geometry)
+    inertia = trace.inertia or float(trailer.setup.inertia[1, 1])
+    lever = trace.lever or float(geometry.hitch_to_axle)
+    return geometry, inertia, lever
+
+
+def fit_damping_step(campaign: Campaign, tir: TirFile) -> StepResult:
+    """Tyre damping from drop tests by the rig fit (written) and the pendulum (compared)."""
+    from .damping import drop_test_damping, fit_drop_trace, lowpass, simulated_drop
+    tests = campaign.of(lf.DropTrace)
+    fit = [t for t in tests if t.use == "fit"]
+    if not fit:
+        raise InputError("no drop_test to fit", source=campaign.source, field="damping")
+    tyre = _tyre(tir, "damping")
+    res = StepResult("damping", data={"fits": [], "pendulum": [], "tests": tests})
+    rig, pend = [], []
+    for t in fit:
+        geometry, inertia, lever = _trailer_pendulum(t, tyre)
+        p = drop_test_damping(t.time, lowpass(t.time, t.displacement, t.lowpass), inertia, lever, t.wheels)
+        r = fit_drop_trace(t.time, t.displacement, tyre, t.load_case, geometry)
+        rig.append(r.damping)
+        pend.append(float(p.damping))
+        res.data["fits"].append(r)
+        res.data["pendulum"].append(p)
+    c = float(np.mean(rig))
+    c_pend = float(np.mean(pend))
+    tir.set("VERTICAL", "VERTICAL_DAMPING", c)
+    tir.set(FIT_SECTION, "DAMPING_SOURCE", _names(fit))
+    tir.set(FIT_SECTION, "DAMPING_RIG_FIT_NS_PER_M", c)
+    tir.set(FIT_SECTION, "DAMPING_PENDULUM_NS_PER_M", c_pend)
+    scale = float(np.mean([r.stiffness_scale for r in res.data["fits"]]))
+    tir.set(FIT_SECTION, "DROP_STIFFNESS_SCALE", scale)
+    rms = float(np.sqrt(np.mean([r.rms ** 2 for r in res.data["fits"]])))
+    tir.set(FIT_SECTION, "DROP_RMS_M", rms)
+    held = {}
+    fitted_tyre = _tyre(tir, "damping")
+    for t in (t for t in tests if t.use == "held_out"):
+        geometry, _, _ = _trailer_pendulum(t, fitted_tyre)
+        miss = simulated_drop(fitted_tyre, t.time, t.load_case, geometry) - t.displacement
+        held[t.name] = float(np.std(miss))          # the trace's zero is arbitrary, as in the fit
+    res.rows.append(_row("damping", "VERTICAL_DAMPING", c, "N s/m", rms, held or None, _names(fit),
+                         "trailer drop test simulated and fitted to the trace (3.4.1)"))
+    res.rows.append(_row("damping", "pendulum damping (not written)", c_pend, "N s/m", None, None,
+                         _names(fit), "eqs. 3.1-3.7, log decrement"))
+    res.notes.append(f"damping: the pendulum route gives {c_pend:.0f} N s/m, {100 * (c_pend / c - 1):+.1f} % "
+                     f"from the rig fit's {c:.0f} N s/m (the pendulum assumption's error on this trailer); "
+                     f"the trace fits best with the load-deflection law times {scale:.3f}")
+    return res
+
+
+def _patch_points(campaign: Campaign, tir: TirFile, use: str):
+    """(deflection, length, width, source) of every patch measurement of ``use``."""
+    tyre = None
+    out = []
+    for t in campaign.of(lf.PatchPoints, lf.FootprintImage):
+        if t.use != use:
+            continue
+        if isinstance(t, lf.FootprintImage):
+            d, ll, w = np.array([t.deflection or np.nan]), np.array([t.footprint.length]), \
+                np.array([t.footprint.width])
+            loads = np.array([t.load or np.nan])
+        else:
+            n = len(t.lines)
+            d = t.deflection if t.deflection is not None else np.full(n, np.nan)
+            loads = t.load if t.load is not None else np.full(n, np.nan)
+            ll = t.length if t.length is not None else np.full(n, np.nan)
+            w = t.width if t.width is not None else np.full(n, np.nan)
+        d = np.array(d, float)
+        need = ~np.isfinite(d)
+        if need.any():
+            tyre = tyre or _tyre(tir, "contact patch (a load given without its deflection)")
+            d[need] = [tyre.static_deflection(float(x)) for x in loads[need]]
+        out.append((d, ll, w, t.name))
+    return out
+
+
+def fit_patch_step(campaign: Campaign, tir: TirFile) -> StepResult:
+    """PA1, PA2 (eq. 2.3), PB1-PB3 (eq. 2.4) and the half-width table into ``tir``."""
+    from ..tyre.contact.cams import DEFAULTS
+    from .patch import (contact_half_length, contact_half_width, contact_width_table, fit_contact_length,
+                        fit_contact_width, width_from_table)
+    r0 = _dimension(tir, "UNLOADED_RADIUS", "contact patch")
+    w0 = _dimension(tir, "WIDTH", "contact patch")
+    pts = _patch_points(campaign, tir, "fit")
+    if not pts:
+        raise InputError("no contact_patch or footprint_image test to fit", source=campaign.source,
+                         field="patch")
+    d = np.concatenate([p[0] for p in pts])
+    a = 0.5 * np.concatenate([p[1] for p in pts])
+    b = 0.5 * np.concatenate([p[2] for p in pts])
+    src = ", ".join(dict.fromkeys(p[3] for p in pts))
+    res = StepResult("patch", data={"deflection": d, "half_length": a, "half_width": b, "R0": r0, "W0": w0})
+    held = _patch_points(campaign, tir, "held_out")
+    hd, ha, hb = (np.concatenate([p[k] for p in held]) * (1.0 if k == 0 else 0.5) if held else np.zeros(0)
+                  for k in (0, 1, 2))
+    res.data.update(held_deflection=hd, held_half_length=ha, held_half_width=hb)
+
+    def errors(predict, k):
+        """RMS error of ``predict(deflection)`` on each held-out file's half sizes (column k)."""
+        out = {}
+        for p in held:
+            meas = 0.5 * p[k]
+            ok = np.isfinite(meas)
+            if ok.any():
+                out[p[3]] = float(np.sqrt(np.mean((predict(p[0][ok]) - meas[ok]) ** 2)))
+        return out or None
+
+    ok = np.isfinite(a)
+    if ok.any():
+        fl = fit_contact_length(d[ok], a[ok], r0)
+        tir.set("CONTACT_PATCH", "PA1", fl.pa1)
+        tir.set("CONTACT_PATCH", "PA2", fl.pa2)
+        tir.set(FIT_SECTION, "CONTACT_LENGTH_RMS_M", fl.rms)
+        res.data["length_fit"] = fl
+        res.rows.append(_row("patch", "PA1, PA2", f"{fl.pa1:.4g}, {fl.pa2:.4g}", "-", fl.rms,
+                             errors(lambda x: contact_half_length(x, fl.pa1, fl.pa2, r0), 1), src,
+                             "eq. 2.3 on the half length a"))
+    ok = np.isfinite(b)
+    if ok.any():
+        wt = contact_width_table(d[ok], b[ok])
+        tir.set_table("CONTACT_WIDTH_CURVE", wt.table, ["pen", "half_width"])
+        tir.set(FIT_SECTION, "WIDTH_TABLE_RMS_M", wt.rms)
+        tir.set(FIT_SECTION, "WIDTH_LINE_INTERCEPT_M", wt.intercept)
+        tir.set(FIT_SECTION, "WIDTH_LINE_SLOPE", wt.slope)
+        res.data["width_table"] = wt
+        res.rows.append(_row("patch", "CONTACT_WIDTH_CURVE", f"{wt.table.shape[0]} rows", "", wt.rms,
+                             errors(lambda x: np.minimum(width_from_table(wt.table, x), 0.5 * w0), 2), src,
+                             "half width vs deflection (4.4's recommendation)"))
+        if np.unique(np.round(d[ok], 6)).size >= 2:
+            wf = fit_contact_width(d[ok], b[ok], r0, w0)
+            for k, v in zip(("PB1", "PB2", "PB3"), wf[:3]):
+                tir.set("CONTACT_PATCH", k, v)
+            tir.set(FIT_SECTION, "CONTACT_WIDTH_RMS_M", wf.rms)
+            res.data["width_fit"] = wf
+            res.rows.append(_row("patch", "PB1, PB2, PB3", f"{wf.pb1:.4g}, {wf.pb2:.4g}, {wf.pb3:.4g}", "-",
+                                 wf.rms, errors(lambda x: contact_half_width(x, *wf[:3], r0, w0), 2), src,
+                                 "eq. 2.4 on the half width b (clipped to W0/2 as the model)"))
+        else:
+            res.notes.append("patch: widths at one deflection only: PB1-PB3 not fitted")
+    for key, value in DEFAULTS.items():
+        if key not in ("PA1", "PA2") and not tir.has("CONTACT_PATCH", key):
+            tir.set("CONTACT_PATCH", key, value)
+    tir.set(FIT_SECTION, "PATCH_SOURCE", src)
+    res.notes.append("patch: cam shape and count (PAE, PBE, PCE, PLS, N_WIDTH, N_LENGTH) are not fitted "
+                     "(kept from the base file, else thesis 4.4's values)")
+    return res
+
+
+def fit_shape_step(campaign: Campaign, tir: TirFile) -> StepResult:
+    """The ``[SHAPE]`` table of the carcass profile(s) into ``tir``."""
+    from .shape import fit_carcass_shape, fold_profile, shape_rms
+    tests = [t for t in campaign.of(lf.CarcassProfile) if t.use == "fit"]
+    if not tests:
+        raise InputError("no carcass_profile test to fit", source=campaign.source, field="shape")
+    r0 = tir.number("DIMENSION", "UNLOADED_RADIUS", None)
+    w0 = tir.number("DIMENSION", "WIDTH", None)
+    y, r = [], []
+    for t in tests:
+        if t.radius is None and not r0:
+            raise InputError("a profile given as drop below the crown needs the unloaded radius",
+                             source=t.source, field="drop")
+        y.append(t.y)
+        r.append(t.radius if t.radius is not None else r0 - t.drop)
+    y, r = np.concatenate(y), np.concatenate(r)
+    before = tir.table("SHAPE")
+    shape = fit_carcass_shape(y, r, r0, 0.5 * w0 if w0 else None)
+    tir.set_table("SHAPE", shape.table, ["radial", "width"])
+    tir.set(FIT_SECTION, "SHAPE_SOURCE", _names(tests))
+    tir.set(FIT_SECTION, "SHAPE_RMS", shape.rms)
+    res = StepResult("shape", data={"fit": shape, "before": before})
+    res.rows.append(_row("shape", "SHAPE", f"{shape.table.shape[0]} points", "-", shape.rms, None,
+                         _names(tests), "least-squares polyline, equal steps (4.3)"))
+    if before is not None:
+        prof = fold_profile(y, r, r0, 0.5 * w0 if w0 else None)
+        old = shape_rms(before, prof.width_ratio, prof.radius_ratio)
+        res.notes.append(f"shape: the base file's [SHAPE] as the models resample it is {old:.4f} RMS "
+                         f"from the profile, the fitted table {shape.rms:.4f}")
+    if np.isfinite(shape.profile.asymmetry):
+        res.notes.append(f"shape: the two halves differ by {shape.profile.asymmetry:.4f} RMS (radius ratio)")
+    return res
+
+
+def predict_cleats(campaign: Campaign, tir: TirFile) -> StepResult:
+    """Held-out static cleat tests predicted by every analytic model of the fitted tyre."""
+    from ..rig.static_press import static_press
+    from ..tyre.model import TyreModel
+    res = StepResult("cleats", data={"predictions": []})
+    tests = campaign.of(lf.StaticCleat)
+    if not tests:
+        return res
+    tyre = _tyre(tir, "cleat prediction")
+    for t in tests:
+        spec = f"cleat:{t.cleat[0] * 1e3:g}x{t.cleat[1] * 1e3:g}"
+        pred = {}
+        for m in MODELS:
+            loads = static_press(TyreModel(tyre, m), t.deflection, spec, t.direction)["load"].to_numpy()
+            pred[m] = loads
+            rms = float(np.sqrt(np.mean((loads - t.load) ** 2)))
+            res.rows.append(_row("cleats", f"{m}: {spec} {t.direction}", "-", "", None, {t.name: rms},
+                                 t.name, "static press (3.3.4), predicted"))
+        res.data["predictions"].append((t, pred))
+    return res
+
+
+FITS = {"vertical": fit_vertical_step, "damping": fit_damping_step, "patch": fit_patch_step,
+        "shape": fit_shape_step}
+
+
+def fit_campaign(campaign: Campaign, steps=STEPS, base=None, progress=None) -> FitResult:
+    """Run ``steps`` of the workflow on ``campaign``; returns the property file and the results.
+
+    ``base`` is the property file to update (a TirFile or a path; default: the
+    manifest's base, else a new file); ``progress(name)`` is called after each step.
+    A step asked for whose tests are missing is an error; with every step
+    asked for (``fit all``) a step without tests is skipped with a note.
+    """
+    tir = start_tir(campaign, base)
+    result = FitResult(campaign, tir)
+    everything = tuple(steps) == STEPS
+    for name in steps:
+        needs = {"vertical": (lf.LoadDeflection,), "damping": (lf.DropTrace,),
+                 "patch": (lf.PatchPoints, lf.FootprintImage), "shape": (lf.CarcassProfile,)}[name]
+        if everything and not [t for t in campaign.of(*needs) if t.use == "fit"]:
+            result.notes.append(f"{name}: no test in the campaign, skipped (the base file's values stay)")
+        else:
+            step = FITS[name](campaign, tir)
+            result.steps[name] = step
+            result.notes += step.notes
+        if progress:
+            progress(name)
+    if campaign.of(lf.StaticCleat):
+        result.steps["cleats"] = predict_cleats(campaign, tir)
+    if progress:
+        progress("predictions")
+    if everything:
+        result.notes.append(RING_NOTE)
+    tidy(tir, new=base is None and campaign.base is None)
+    if tir.has("DIMENSION", "UNLOADED_RADIUS"):
+        from ..tyre.params import check_physics
+        check_physics(tir)  # what is written must read back
+    return result
