@@ -160,17 +160,21 @@ def segment_contact(params, road, state, i, seg, motion, pose, fwx, fwy, fwz, h)
         tipx = bx + hj * nx
         tipy = by + hj * ny
         tipz = bz + hj * nz
-        g, gx, gy = road_height_gradient(road, tipx, tipy)
-        pen = g - tipz
         # a block stands for a strip of tread one segment long: where the
         # road under that strip rises above the height at the tip (a cleat
         # narrower than the block pitch), the strip is sampled every <= 10 mm
-        # and the deepest point is the block's contact point
+        # and the deepest point is the block's contact point; else the tip
+        # alone is queried
         lz = local_zmax(road, tipx - half_l, tipx + half_l)
-        if lz > zmin + 1e-4 and lz > tipz:
+        strip = lz > zmin + 1e-4 and lz > tipz
+        if not strip:
+            g, gx, gy = road_height_gradient(road, tipx, tipy)
+            pen = g - tipz
+        else:
             # distributed strip: the block's area is shared by the samples;
             # it presses with the mean penetration, at the penetration-
             # weighted mean point and road gradient
+            g = gx = gy = 0.0
             bx0 = tipx
             by0 = tipy
             bz0 = tipz
