@@ -7,7 +7,11 @@ of that kind are used); ``fit all CAMPAIGN -o tyre.tir`` runs every step on a
 campaign (:mod:`tyrelab.fit.campaign`). An existing output file is updated
 (its other sections and its units kept); ``--into BASE.tir`` starts from
 another file. A fit report (HTML) is written beside the output unless
-``--no-report``. ``fit ring`` identifies the built-in tyre's ring.
+``--no-report``. ``fit ring`` identifies the built-in tyre's ring. ``fit cams``
+runs the enveloping model's cam-count study (:mod:`tyrelab.fit.cams`, thesis
+6.2): a CSV table, an error-against-cost PNG beside it, the recommended
+N_LENGTH x N_WIDTH printed (and, with ``--into BASE``, written into a copy of
+BASE named after the output, ``NAME.tir``).
 """
 
 from __future__ import annotations
@@ -60,7 +64,55 @@ def register(sub):
     a.add_argument("campaign", metavar="CAMPAIGN", help="campaign folder or its campaign.toml")
     _outputs(a)
     a.set_defaults(func=run_all)
+    _register_cams(fsub)
     p.set_defaults(func=lambda args: (p.print_help(), 1)[1])
+
+
+def _register_cams(fsub):
+    from ..fit.cams import ABS_TOL, COST_TOL, MAX_CAMS, MIN_CAMS, REL_TOL
+    from ..limits import MAX_SPEED, MIN_SPEED
+    from ._common import bounded_float, load_value, pressure_kpa
+    c = fsub.add_parser("cams", help="cam-count study of the enveloping model: error against cost "
+                                     "(thesis 6.2)",
+                        description="Run the enveloping model at every N_LENGTH x N_WIDTH on the "
+                                    "trailer over each road and speed, compare its FZW with a reference "
+                                    "over the disturbance (RMS error, %% of the reference's peak), time it "
+                                    "and recommend the cheapest pair within the tolerance of the best. "
+                                    "Writes the table (CSV) and a plot (PNG, same name).")
+    c.add_argument("--tyre", default="xzl-16.00R20", help="built-in tyre name or .tir file "
+                                                          "(default: xzl-16.00R20)")
+    c.add_argument("--pressure", type=pressure_kpa(), default=None, metavar="KPA",
+                   help="inflation pressure in kPa (built-in tyres; default 300)")
+    cams = count("cam count", MIN_CAMS, MAX_CAMS)
+    c.add_argument("--lengths", type=cams, nargs="+", default=[1, 3, 5, 7], metavar="N",
+                   help=f"cams along the patch, {MIN_CAMS} to {MAX_CAMS} (default 1 3 5 7)")
+    c.add_argument("--widths", type=cams, nargs="+", default=[1, 3, 6], metavar="N",
+                   help=f"cams across the patch, {MIN_CAMS} to {MAX_CAMS} (default 1 3 6)")
+    c.add_argument("--road", nargs="+", action="extend", default=None, metavar="R",
+                   help="roads (default cleat:50x50)")
+    c.add_argument("--speed", nargs="+", action="extend", default=None, metavar="KMH",
+                   type=bounded_float("speed", MIN_SPEED * 3.6, MAX_SPEED * 3.6, "km/h", scale=1 / 3.6),
+                   help="towing speeds in km/h (default 12)")
+    c.add_argument("--load", type=load_value, default="LC1",
+                   help="load case LC1-LC3 or a wheel load in N (default LC1)")
+    c.add_argument("--reference", default="ring",
+                   help="a contact model (ring, ring-tp, volume ...), enveloping:NLxNW, or a measured "
+                        "run (.tdx, .csv, .parquet; one road and speed) (default ring)")
+    c.add_argument("--duration", type=positive_float("--duration"), default=None,
+                   help="simulated seconds per run (default: to the road's end)")
+    c.add_argument("--repeat", type=count("--repeat", 1, 100), default=5,
+                   help="timed runs per configuration, the fastest counts (default 5)")
+    c.add_argument("--rel-tol", type=bounded_float("--rel-tol", 0.0, 10.0), default=REL_TOL,
+                   help=f"tolerance relative to the best error (default {REL_TOL:g})")
+    c.add_argument("--abs-tol", type=bounded_float("--abs-tol", 0.0, 100.0), default=ABS_TOL,
+                   help=f"tolerance in percentage points (default {ABS_TOL:g}); the larger counts")
+    c.add_argument("--cost-tol", type=bounded_float("--cost-tol", 0.0, 10.0), default=COST_TOL,
+                   help=f"costs within this fraction of the cheapest count as equal (default {COST_TOL:g})")
+    c.add_argument("--into", metavar="BASE", default=None,
+                   help="also write a copy of this property file (or built-in tyre) with the "
+                        "recommended N_LENGTH / N_WIDTH, named after the output (NAME.tir)")
+    c.add_argument("-o", "--output", default="cams.csv", help="table to write (.csv)")
+    c.set_defaults(func=run_cams)
 
 
 def _outputs(p):
@@ -205,3 +257,63 @@ def run_all(args) -> int:
     _paths(args, [args.campaign, args.into])
     campaign = read_campaign(args.campaign)
     return _fit(args, campaign, ALL, [campaign.source, args.into])
+
+
+def run_cams(args) -> int:
+    from pathlib import Path
+
+    from tqdm import tqdm
+
+    from ..errors import InputError
+    from ..fit.cams import cam_count_study, check_reference, study_runs, tir_lines
+    from ..io_atomic import atomic_write, check_output_path
+    from ..report.cam_study import plot_cam_study
+    from ._common import input_files
+
+    roads = args.road or ["cleat:50x50"]
+    speeds = args.speed or [12 / 3.6]
+    inputs = input_files(args.tyre, args.reference, args.into, *roads)
+    out = check_output_path(args.output, (".csv",), "-o", inputs)
+    png = check_output_path(out.with_suffix(".png"), (".png",), "-o", inputs)
+    tir_out = base = None
+    if args.into:
+        from ..tyre.tir import read_tir
+        tir_out = check_output_path(out.with_suffix(".tir"), (".tir",), "--into", inputs)
+        if Path(args.into).is_file():
+            base = read_tir(args.into)
+        else:
+            from ..tyre.library import BUILT_IN, SINGLE_FILE, load_tyre
+            if args.into not in BUILT_IN and args.into not in SINGLE_FILE:
+                raise InputError(f"no such property file or built-in tyre '{args.into}'", field="--into")
+            base = load_tyre(args.into).tir
+    check_reference(args.reference)  # before the progress bar
+    total = study_runs(args.lengths, args.widths, roads, speeds, args.reference)
+    with tqdm(total=total, desc="cam study", unit="config", leave=False) as bar:
+        def step(label):
+            bar.set_postfix_str(label)
+            bar.update(1)
+        study = cam_count_study(args.tyre, args.lengths, args.widths, roads, speeds, load=args.load,
+                                reference=args.reference, pressure=args.pressure,
+                                duration=args.duration, repeat=args.repeat, rel_tol=args.rel_tol,
+                                abs_tol=args.abs_tol, cost_tol=args.cost_tol, progress=step)
+    table = study.table.copy()
+    table.insert(table.columns.get_loc("speed") + 1, "speed_kmh", table["speed"] * 3.6)
+    atomic_write(out, lambda tmp: table.to_csv(tmp, index=False, float_format="%.6g"))
+    plot_cam_study(study, png)
+    nl, nw = study.recommended
+    shown = study.summary.assign(**{"wall_ms_per_s": study.summary["wall_s_per_sim_s"] * 1e3})
+    print(shown[["n_length", "n_width", "error_pct", "wall_ms_per_s", "qualifies"]]
+          .to_string(index=False, float_format=lambda v: f"{v:.4g}"))
+    print(f"\nmetric: {study.metric}; reference: {study.reference}")
+    print(f"rule: {study.rule}")
+    print(f"recommended: N_LENGTH = {nl}, N_WIDTH = {nw}")
+    if tir_out is not None:
+        from ..tyre.tir import write_tir
+        base.set("CONTACT_PATCH", "N_LENGTH", int(nl))
+        base.set("CONTACT_PATCH", "N_WIDTH", int(nw))
+        write_tir(base, tir_out, units=base.units or None)
+        print(f"{tir_out}: {args.into} with the recommended counts")
+    else:
+        print("add to the property file:\n" + tir_lines(study.recommended))
+    print(f"\n{out}: table\n{png}: plot")
+    return 0
