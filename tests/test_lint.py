@@ -8,7 +8,7 @@ from pathlib import Path
 import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
-PATHS = ["src", "tests", "tools", "benchmarks"]
+PATHS = ["src", "tests", "tools", "benchmarks", "examples", "docs"]
 
 
 @pytest.mark.skipif(importlib.util.find_spec("ruff") is None,

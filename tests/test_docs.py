@@ -1,0 +1,190 @@
+"""The documentation builds, and every command it shows runs as written.
+
+* ``mkdocs build --strict`` (mkdocs.yml at the repository root; warnings
+  are errors, among them a broken link, a page missing from the navigation
+  and a docstring the API reference cannot parse).
+* Every shell command in a fenced code block (``bash``, ``sh``, ``shell``,
+  ``console`` or unlabelled) of README.md and docs/ that starts with
+  ``tyrelab `` or ``python examples/``, and every ``python`` block, runs in
+  a fresh temporary folder holding a copy of ``examples/`` (nothing else is
+  substituted), the blocks of one page in their order (a page may use a
+  file an earlier command of it wrote), and exits 0. Commands that take many
+  minutes are skipped only through :data:`SKIP`, each with its reason.
+"""
+
+from __future__ import annotations
+
+import importlib.util
+import os
+import re
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[1]
+#: pages whose commands are run: the README and every documentation page
+PAGES = [ROOT / "README.md", *sorted((ROOT / "docs").rglob("*.md"))]
+#: fence languages whose lines are shell commands ("" = no language given, as in the README)
+SHELL = {"", "bash", "sh", "shell", "console"}
+#: a command that has not finished in this time has hung [s]
+TIMEOUT = 600
+
+#: commands shown in the documentation that this test does not run: pattern -> why
+SKIP = {
+    r"^tyrelab study\s*(#.*)?$":
+        "the thesis's whole campaign: 160 runs, about 12 minutes on 2 cores (README benchmarks); "
+        "the study machinery runs in tests/test_study_*.py, the example spec via "
+        "'tyrelab study spec.toml --workers 2' and examples/small_campaign.py",
+    r"^tyrelab fit ring\b":
+        "identifies the flexible ring: several minutes of ring simulations; tests/test_ring_fit.py "
+        "covers the identification",
+    r"--scheduler tcp://HEAD:":
+        "needs a Dask scheduler running on a machine named HEAD (the README's multi-machine "
+        "set-up); the runner's scheduler path is tested in tests/test_study_runner.py",
+}
+
+FENCE = re.compile(r"^(?P<indent>[ \t]*)(?P<fence>```+|~~~+)[ \t]*(?P<lang>[\w+-]*)[^\n]*$")
+
+
+def blocks(text: str):
+    """(language, body lines) of every fenced code block of a Markdown text, in order."""
+    lines = text.splitlines()
+    i = 0
+    while i < len(lines):
+        m = FENCE.match(lines[i])
+        if not m:
+            i += 1
+            continue
+        fence, indent, lang = m.group("fence"), len(m.group("indent")), m.group("lang").lower()
+        body, i = [], i + 1
+        while i < len(lines) and not lines[i].strip().startswith(fence):
+            body.append(lines[i][indent:] if lines[i][:indent].strip() == "" else lines[i])
+            i += 1
+        i += 1
+        yield lang, body
+
+
+def steps(page: Path):
+    """The page's runnable steps in order: ("shell", command) and ("python", source)."""
+    out = []
+    for lang, body in blocks(page.read_text(encoding="utf-8")):
+        if lang in SHELL:
+            for line in body:
+                cmd = line.strip()
+                if lang == "console" and cmd.startswith("$ "):
+                    cmd = cmd[2:].strip()
+                if cmd.startswith(("tyrelab ", "python examples/")) or cmd == "tyrelab":
+                    out.append(("shell", cmd))
+        elif lang == "python" and not any(line.startswith("--8<--") for line in body):
+            out.append(("python", "\n".join(body) + "\n"))
+    return out
+
+
+def skip_reason(cmd: str) -> str | None:
+    for pattern, why in SKIP.items():
+        if re.search(pattern, cmd):
+            return why
+    return None
+
+
+def _env() -> dict:
+    env = dict(os.environ)
+    env["MPLBACKEND"] = "Agg"
+    env["NO_MKDOCS_2_WARNING"] = "1"
+    return env
+
+
+def _page_id(page: Path) -> str:
+    return str(page.relative_to(ROOT))
+
+
+# -- the site ------------------------------------------------------------------------------
+def test_mkdocs_build_strict(tmp_path):
+    missing = [m for m in ("mkdocs", "mkdocstrings", "mkdocstrings_handlers.python", "material")
+               if importlib.util.find_spec(m.split(".")[0]) is None]
+    if missing:
+        pytest.skip(f"documentation tools not installed ({', '.join(missing)}): pip install '.[test]'")
+    site = tmp_path / "site"
+    proc = subprocess.run([sys.executable, "-m", "mkdocs", "build", "--strict", "--site-dir", str(site)],
+                          cwd=ROOT, env=_env(), capture_output=True, text=True, timeout=TIMEOUT)
+    assert proc.returncode == 0, f"mkdocs build --strict failed:\n{proc.stdout}\n{proc.stderr[-5000:]}"
+    assert "WARNING" not in proc.stderr, proc.stderr
+    # the pages are there, with the API reference generated and the examples' figures and sources
+    api = (site / "api" / "index.html").read_text(encoding="utf-8")
+    assert "Run a tyre model on a rig over a road" in api          # tyrelab.simulate's docstring
+    assert "drop_test_damping" in api and "Notes" in api
+    page = (site / "examples" / "cleat_run" / "index.html").read_text(encoding="utf-8")
+    assert "img/cleat_run.png" in page and "plot_runs" in page     # figure and included script
+    assert (site / "examples" / "img" / "cleat_run.png").is_file()
+    assert (site / "ring" / "index.html").is_file()
+    assert "--8&lt;--" not in page and "--8<--" not in page         # every snippet was included
+
+
+def test_every_page_is_in_the_navigation():
+    nav = (ROOT / "mkdocs.yml").read_text(encoding="utf-8")
+    for page in (ROOT / "docs").rglob("*.md"):
+        assert str(page.relative_to(ROOT / "docs")) in nav, page
+
+
+def test_the_channel_table_lists_every_signal_channel():
+    from tyrelab.signal import CHANNELS
+
+    text = (ROOT / "docs" / "formats.md").read_text(encoding="utf-8")
+    listed = re.findall(r"^\| `([A-Z_]+)` \|", text, re.M)
+    assert listed == list(CHANNELS)
+
+
+# -- the commands --------------------------------------------------------------------------
+def test_commands_are_found_and_every_skip_is_used():
+    """The extraction sees the commands (README's unlabelled blocks included), and each
+    entry of SKIP still matches a command somewhere (a stale entry would hide nothing)."""
+    commands = [cmd for page in PAGES for kind, cmd in steps(page) if kind == "shell"]
+    assert len(commands) > 40
+    assert any(c.startswith("python examples/") for c in commands)
+    for pattern in SKIP:
+        assert any(re.search(pattern, c) for c in commands), f"SKIP entry matches nothing: {pattern}"
+
+
+def run_page(page: Path, folder: Path) -> tuple[str | None, list[str]]:
+    """Run the page's steps in ``folder`` (a copy of examples/ is put there first); return
+    the first failure (or None) and the commands skipped through :data:`SKIP`."""
+    shutil.copytree(ROOT / "examples", folder / "examples", ignore=shutil.ignore_patterns("__pycache__"))
+    skipped = []
+    for n, (kind, text) in enumerate(steps(page)):
+        if kind == "shell":
+            why = skip_reason(text)
+            if why:
+                skipped.append(f"{_page_id(page)}: {text}: {why}")
+                continue
+            argv = ["bash", "-c", text]
+        else:
+            script = folder / f"_block{n}.py"
+            script.write_text(text, encoding="utf-8")
+            argv = [sys.executable, script.name]
+        try:
+            proc = subprocess.run(argv, cwd=folder, env=_env(), capture_output=True, text=True,
+                                  timeout=TIMEOUT, stdin=subprocess.DEVNULL)
+        except subprocess.TimeoutExpired:
+            return f"{_page_id(page)}: no end after {TIMEOUT} s:\n{text}", skipped
+        if proc.returncode != 0:
+            return (f"{_page_id(page)}: exit {proc.returncode} from\n{text}\n"
+                    f"stdout:\n{proc.stdout[-2000:]}\nstderr:\n{proc.stderr[-3000:]}"), skipped
+    return None, skipped
+
+
+def test_commands_run_as_written(tmp_path):
+    """Every page in its own fresh folder, two pages at a time (each page's steps in order):
+    the commands are mostly process start-up (1.3 s of imports each), about 90 of them."""
+    from concurrent.futures import ThreadPoolExecutor
+
+    pages = [p for p in PAGES if steps(p)]
+    with ThreadPoolExecutor(max_workers=2) as pool:
+        results = list(pool.map(lambda ip: run_page(ip[1], tmp_path / f"page{ip[0]}"), enumerate(pages)))
+    for _, skipped in results:  # listed with their reasons in the test's output (-rA or -s)
+        for line in skipped:
+            print(f"skipped (SKIP): {line}")
+    failures = [failure for failure, _ in results if failure]
+    assert not failures, "\n\n".join(failures)
