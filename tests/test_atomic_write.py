@@ -87,8 +87,11 @@ def test_output_checks_name_the_argument_and_what_is_allowed(tmp_path):
         check_output_path(tmp_path / "in.csv", (".csv",), "-o", inputs=[str(tmp_path / "in.csv")])
 
 
+# a process started in the background by a non-interactive shell (as CI may start
+# the tests) inherits SIGINT ignored: the writer restores Python's own handler
 WRITER = textwrap.dedent("""
-    import sys, time
+    import signal, sys, time
+    signal.signal(signal.SIGINT, signal.default_int_handler)
     from tyrelab.io_atomic import atomic_write
     def slow(tmp):
         with open(tmp, "w") as fh:
