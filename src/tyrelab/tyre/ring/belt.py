@@ -12,10 +12,7 @@ Forces on segment i (per segment; "per length" stiffnesses times L0 = Rb dth):
 * foundation (sidewall) springs and dampers to the rim, in the nominal radial
   and tangential directions, laterally and in torsion:
   ``F = -k u - c u'``, with ``k_r = (k_r0 + k_rp p) L0`` (stiffer with
-  inflation pressure p); radially also a Maxwell branch, a spring ``k_h`` in
-  series with a damper ``k_h tau_h``: ``F_h = -k_h (u - q)``,
-  ``q' = (u - q) / tau_h`` (a standard linear solid: viscous below
-  ``1/(2 pi tau_h)``, a spring above; docs/ring.md, "Damping"),
+  inflation pressure p),
 * membrane: chords between neighbours carry ``T = T0 + EA (L - L0)/L0`` with
   the pressure pre-tension ``T0 = p b Rb cos(dth/2)`` (exact equilibrium of
   the discrete ring), and the inflation pressure acts on the polygon as the
@@ -55,9 +52,7 @@ def foundation_forces(params, state):
     rb = params.belt_radius
     cos_t = params.cos_theta
     sin_t = params.sin_theta
-    kh = params.hysteresis_stiffness
     p1s, p2s, v1s, v2s = state.p1, state.p2, state.v1, state.v2
-    relaxed = state.relaxed
     f1, f2, fy, fb = state.f1, state.f2, state.fy, state.fb
     for i in range(n):
         c = cos_t[i]
@@ -70,8 +65,7 @@ def foundation_forces(params, state):
         ut = -p1 * s + p2 * c
         vr = v1 * c + v2 * s
         vt = -v1 * s + v2 * c
-        # spring, damper, and the Maxwell branch (spring kh in series with a damper)
-        fr = -kr * ur - cr * vr - kh * (ur - relaxed[i])
+        fr = -kr * ur - cr * vr
         ft = -kt * ut - ct * vt
         f1[i] = fr * c - ft * s
         f2[i] = fr * s + ft * c

@@ -17,9 +17,6 @@ rim (rotating frame, angular velocity ``Omega = omega a``)::
 and spin between calls. The belt's weight is not applied: the rigs carry the
 whole wheel's weight.
 
-The damper of the radial foundation's Maxwell branch relaxes exactly over
-each internal step, ``q += (u_r - q)(1 - exp(-h/tau_h))``.
-
 Integrator: symplectic (semi-implicit) Euler with a fixed internal step
 ``h = dt / ceil(dt / h_max)``; the Coriolis term is applied as an exact
 rotation of the in-plane velocity by ``2 omega h`` between two half kicks
@@ -50,13 +47,14 @@ from .tread import (ACC_DEFL, ACC_FX, ACC_FY, ACC_FZ, ACC_NX, ACC_NY, ACC_NZ, AC
 
 
 @nb.njit(cache=True)
-def ring_substep(params, state, road, pose, arx, ary, arz, domega, h, decay, patch_decay):
+def ring_substep(params, state, road, pose, arx, ary, arz, domega, h, patch_decay):
     """One internal step of length h at ``pose`` (centre at this step's start).
 
     ``ar`` the rim's acceleration [m/s^2], ``domega`` its spin acceleration
-    [rad/s^2], ``decay = 1 - exp(-h / tau_h)`` the relaxation of the
-    foundation's Maxwell branch over the step. Returns the loads on the rim ``(Fx, Fy, Fz, Mx, My, Mz)``
-    (world, moment about the centre) at the start of the step.
+    [rad/s^2], ``patch_decay = 1 - exp(-h / tau_p)`` the relaxation of the
+    contact patch's Maxwell element over the step. Returns the loads on the
+    rim ``(Fx, Fy, Fz, Mx, My, Mz)`` (world, moment about the centre) at the
+    start of the step.
     """
     n = params.n_segments
     m = params.segment_mass
@@ -237,16 +235,11 @@ def ring_substep(params, state, road, pose, arx, ary, arz, domega, h, decay, pat
         vbs[i] = (vbs[i] + hj * fb[i]) * relax
     chord_implicit(params, state, h)
     lateral_implicit(params, state, h)
-    # Maxwell branch: exact exponential relaxation of its damper over the step
-    relaxed = state.relaxed
-    rb = params.belt_radius
     for i in range(n):
         p1s[i] += h * v1s[i]
         p2s[i] += h * v2s[i]
         ys[i] += h * vys[i]
         bs[i] += h * vbs[i]
-        ur = p1s[i] * cos_t[i] + p2s[i] * sin_t[i] - rb
-        relaxed[i] += (ur - relaxed[i]) * decay
     kin[KIN_PSI] = psi + omega * h
     return rim_fx, rim_fy, rim_fz, rim_mx, rim_my, rim_mz
 
@@ -294,7 +287,6 @@ def ring_advance(params, state, road, pose, dt):
     if n_sub < 1:
         n_sub = 1
     h = dt / n_sub
-    decay = 1.0 - math.exp(-h / params.hysteresis_time)
     patch_decay = 1.0 - math.exp(-h / params.patch_hysteresis_time)
     cx, cy, cz = pose.cx, pose.cy, pose.cz
     vx, vy, vz = pose.vx, pose.vy, pose.vz
@@ -325,7 +317,7 @@ def ring_advance(params, state, road, pose, dt):
         at = WheelPose(cx + vx * t, cy + vy * t, cz + vz * t, pose.ax, pose.ay, pose.az,
                        vx, vy, vz, omega)
         rfx, rfy, rfz, rmx, rmy, rmz = ring_substep(params, state, road, at, arx, ary, arz,
-                                                    dom, h, decay, patch_decay)
+                                                    dom, h, patch_decay)
         fx += rfx
         fy += rfy
         fz += rfz

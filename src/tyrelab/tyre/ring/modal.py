@@ -118,34 +118,14 @@ def linearize(params, state, omega=0.0, contact=None):
     return M, C, K
 
 
-def eigenmodes(M, C, K, params=None):
-    """Frequencies [Hz], damping ratios [-] and DOF shapes of the damped system.
-
-    With ``params`` whose radial foundation has a Maxwell branch
-    (``hysteresis_stiffness`` > 0), its N damper extensions ``q`` join the
-    state: ``K`` (differenced with ``q`` held) already holds its spring
-    ``k_h``, the spring pulls the segment with ``+k_h q e_r`` and
-    ``q' = (u_r - q) / tau_h``.
-    """
+def eigenmodes(M, C, K):
+    """Frequencies [Hz], damping ratios [-] and DOF shapes of the damped system."""
     ndof = M.shape[0]
-    kh = 0.0 if params is None else params.hysteresis_stiffness
-    nq = params.n_segments if kh > 0 else 0
     Minv = np.diag(1.0 / np.diag(M))
-    A = np.zeros((2 * ndof + nq, 2 * ndof + nq))
+    A = np.zeros((2 * ndof, 2 * ndof))
     A[:ndof, ndof:2 * ndof] = np.eye(ndof)
     A[ndof:2 * ndof, :ndof] = -Minv @ K
     A[ndof:2 * ndof, ndof:2 * ndof] = -Minv @ C
-    if nq:
-        n = nq
-        i = np.arange(n)
-        tau = params.hysteresis_time
-        c, s = params.cos_theta, params.sin_theta
-        m = np.diag(M)[:n]
-        A[ndof + i, 2 * ndof + i] = kh * c / m        # p1'' from q
-        A[ndof + n + i, 2 * ndof + i] = kh * s / m    # p2'' from q
-        A[2 * ndof + i, i] = c / tau                   # q' from u_r
-        A[2 * ndof + i, n + i] = s / tau
-        A[2 * ndof + i, 2 * ndof + i] = -1.0 / tau
     lam, vec = np.linalg.eig(A)
     keep = lam.imag > 1e-6
     lam = lam[keep]
@@ -219,14 +199,14 @@ def ring_modal(tyre, pressure=None, load=0.0, omega=0.0, **options) -> pd.DataFr
     else:
         state = nominal_state(params)
     M, C, K = linearize(params, state, omega, contact)
-    freq, zeta, vec = eigenmodes(M, C, K, params)
+    freq, zeta, vec = eigenmodes(M, C, K)
     return table_modes(params, freq, zeta, vec)
 
 
 #: the fields of :class:`~.records.RingParams` zeroed to isolate the tread contact
 STRUCTURE = ("radial_stiffness", "tangential_stiffness", "lateral_stiffness",
              "torsion_stiffness", "radial_damping", "tangential_damping", "lateral_damping",
-             "torsion_damping", "hysteresis_stiffness", "pretension", "extension_stiffness",
+             "torsion_damping", "pretension", "extension_stiffness",
              "extension_damping",
              "bending_stiffness", "lateral_bending_stiffness", "belt_torsion_stiffness",
              "pressure_load", "tread_damping", "tread_shear_damping", "relax_rate")

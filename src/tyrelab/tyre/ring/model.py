@@ -130,9 +130,6 @@ def ring_params(tyre, grid=None, tread_pattern=False, n_segments=N_SEGMENTS, n_b
         segment_mass=float(m), segment_twist_inertia=float(m * (2.0 * half) ** 2 / 12.0),
         radial_stiffness=float(ks["kr"] * seg), tangential_stiffness=float(ks["kt"] * seg),
         lateral_stiffness=float(ks["ky"] * seg), torsion_stiffness=float(ks["kb"] * seg),
-        # static builds (relaxation) are quasi-static: the Maxwell branch has relaxed
-        hysteresis_stiffness=float(rp.kh * seg) if relax == 0 else 0.0,
-        hysteresis_time=float(rp.tau_h),
         # the patch element's damper c = g tau k on the deflection rate, k the
         # tyre's linear vertical stiffness (eq. 2.2); static builds leave it out
         patch_hysteresis_gain=(float(rp.cp / (tyre.vertical_stiffness * rp.tau_p))
@@ -220,9 +217,7 @@ def ring_static_equilibrium(tyre, load, tread_pattern=False, **options):
 def _at_rest(state, rp):
     for velocity in (state.v1, state.v2, state.vy, state.vbeta):
         velocity[:] = 0.0
-    # at rest the foundation's Maxwell branch has relaxed: its spring carries nothing
-    state.relaxed[:] = (state.p1 * rp.cos_theta + state.p2 * rp.sin_theta - rp.belt_radius)
-    # and so has the contact patch's element
+    # at rest the contact patch's Maxwell element has relaxed
     state.patch_relaxed[0] = float(state.block_force.sum())
     state.initialised[0] = False
     state.kinematics[KIN_TIME] = 0.0

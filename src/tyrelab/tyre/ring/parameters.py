@@ -17,11 +17,6 @@ FOUNDATION_TANGENTIAL(_P)      N/m^2     tangential foundation stiffness (per Pa
 FOUNDATION_LATERAL(_P)         N/m^2     lateral foundation stiffness (per Pa)
 FOUNDATION_TORSION(_P)         N        torsional foundation stiffness per length (per Pa)
 DAMPING_RADIAL ... _TORSION    N s/m^2   foundation dampers per length (torsion N s)
-HYSTERESIS_RADIAL              N/m^2     spring of the radial foundation's Maxwell branch
-                                         (in series with a damper of time constant
-                                         HYSTERESIS_TIME): the sidewall rubber's loss at
-                                         the trailer's 2-3 Hz (docs/ring.md, "Damping")
-HYSTERESIS_TIME                s         relaxation time of that branch
 PATCH_DAMPING                  N s/m     damping of the contact patch's normal force
                                          below 1/(2 pi PATCH_DAMPING_TIME): a Maxwell
                                          element acting where the tyre meets the road,
@@ -84,8 +79,6 @@ KEYS = {
     "ct": ("DAMPING_TANGENTIAL", _d(F=1, T=1, L=-2)),
     "cy": ("DAMPING_LATERAL", _d(F=1, T=1, L=-2)),
     "cb": ("DAMPING_TORSION", _d(F=1, T=1)),
-    "kh": ("HYSTERESIS_RADIAL", _d(F=1, L=-2)),
-    "tau_h": ("HYSTERESIS_TIME", _d(T=1)),
     "cp": ("PATCH_DAMPING", _d(F=1, T=1, L=-1)),
     "tau_p": ("PATCH_DAMPING_TIME", _d(T=1)),
     "pressure_width": ("PRESSURE_WIDTH", _d(L=1)),
@@ -122,8 +115,6 @@ class RingParameters:
     ct: float = 200.0
     cy: float = 120.0
     cb: float = 5.0
-    kh: float = 0.0
-    tau_h: float = 0.06
     cp: float = 0.0
     tau_p: float = 0.04
     pressure_width: float = 0.25
@@ -169,9 +160,6 @@ class RingParameters:
             if not math.isfinite(v):
                 raise InputError(f"{KEYS[f.name][0]} must be finite", source=source,
                                  field=KEYS[f.name][0])
-        if self.kh < 0 or not self.tau_h > 0:
-            raise InputError("HYSTERESIS_RADIAL must be >= 0 and HYSTERESIS_TIME > 0",
-                             source=source, field="HYSTERESIS_RADIAL")
         if self.cp < 0 or not self.tau_p > 0:
             raise InputError("PATCH_DAMPING must be >= 0 and PATCH_DAMPING_TIME > 0",
                              source=source, field="PATCH_DAMPING")
@@ -223,7 +211,7 @@ def stable_step(rp: RingParameters, tyre, n: int, nb: int, safety: float = 0.5) 
 
     ``omega_max^2`` is bounded (Gershgorin) by the sum of the stiffnesses that
     act on one segment over its mass and are integrated explicitly: the radial
-    and tangential foundation (with its Maxwell branch), the transverse
+    and tangential foundation, the transverse
     stiffness of the chords' tension ``4 |T0| / L0``, in-plane bending
     ``16 EI / L0^3`` and every block of the segment pressed to the tread
     depth, ``sum k A (1 + 2 q) + k_s A`` (in plane, across and, with the
@@ -244,7 +232,7 @@ def stable_step(rp: RingParameters, tyre, n: int, nb: int, safety: float = 0.5) 
     area = l0 * 2.0 * half
     normal = area * rp.tread_stiffness * (1.0 + 2.0 * rp.tread_progression)
     tread = normal + area * rp.tread_shear_stiffness
-    k_in = (k["kr"] + k["kt"] + rp.kh) * l0 + 4.0 * abs(t0) / l0 + 16.0 * rp.ei / l0 ** 3 + tread
+    k_in = (k["kr"] + k["kt"]) * l0 + 4.0 * abs(t0) / l0 + 16.0 * rp.ei / l0 ** 3 + tread
     jt = m * (2.0 * half) ** 2 / 12.0
     k_lat = k["ky"] * l0 + 4.0 * abs(t0) / l0 + tread
     k_tw = k["kb"] * l0 + normal * half ** 2

@@ -68,10 +68,6 @@ class RingParams(NamedTuple):
     tangential_damping: float
     lateral_damping: float
     torsion_damping: float
-    #: Maxwell branch of the radial foundation: spring [N/m] per segment (0 in
-    #: static builds, where it has relaxed) and relaxation time [s]
-    hysteresis_stiffness: float
-    hysteresis_time: float
     #: contact patch's Maxwell element (road to rim): gain g [-] (its force is
     #: g (Fn - r), Fn the patch's normal force, r its relaxed value; 0 in
     #: static builds) and relaxation time [s] of r
@@ -129,8 +125,6 @@ class RingState(NamedTuple):
     Per segment (N): in-plane centre ``p1, p2`` [m] and velocity ``v1, v2``
     [m/s] in the rotating wheel-plane axes, lateral displacement ``y`` [m]
     and velocity ``vy``, twist ``beta`` [rad] and its rate ``vbeta``;
-    ``relaxed`` [m], the radial displacement at which the spring of the
-    foundation's Maxwell branch is relaxed (its damper's extension).
     ``patch_relaxed[0]`` [N], the relaxed normal force ``r`` of the
     contact patch's Maxwell element (:func:`~.kernel.patch_hysteresis`).
     Per block (N*NB): tangential tip deflections ``s1, s2`` [m] in the road
@@ -159,7 +153,6 @@ class RingState(NamedTuple):
     vy: np.ndarray
     beta: np.ndarray
     vbeta: np.ndarray
-    relaxed: np.ndarray
     patch_relaxed: np.ndarray
     s1: np.ndarray
     s2: np.ndarray
@@ -190,7 +183,7 @@ VELOCITIES = ("v1", "v2", "vy", "vbeta")
 
 def empty_state(n: int, nb: int) -> RingState:
     """A zeroed :class:`RingState` for ``n`` segments of ``nb`` blocks."""
-    seg = [np.zeros(n) for _ in range(9)]
+    seg = [np.zeros(n) for _ in range(8)]
     return RingState(*seg, np.zeros(1), np.zeros(n * nb), np.zeros(n * nb), np.zeros(n * nb),
                      np.zeros(KIN_SIZE), np.zeros(1, np.bool_), np.ones(n, np.bool_),
                      np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(ACC_SIZE),
