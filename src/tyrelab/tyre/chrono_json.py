@@ -152,6 +152,7 @@ that is not rows of increasing deflection, an unknown template, a missing
 from __future__ import annotations
 
 import json
+from importlib import resources
 import math
 import re
 from pathlib import Path
@@ -176,48 +177,12 @@ GUESS_DEFLECTION_RATIO = 0.16
 GUESS_DAMPING_RATIO = 0.5
 GUESS_GRAVITY = 9.81
 
-#: load capacity [kg] per load index 0..279 as Project Chrono's TMeasy tables it: the ISO 4000-1 /
-#: ETRTO load-index table but for a few entries (e.g. 46.5 kg at index 1 and 5850 kg at 169, where
-#: the standard lists 46.2 and 5800). Ten indices a row, the first index of the row on the left.
-_LOAD_INDEX_TABLE = """
-  0  45 46.5 47.5 48.7 50 51.5 53 54.5 56 58
- 10  60 61.5 63 65 67 69 71 73 75 77.5
- 20  80 82.5 85 87.5 90 92.5 95 97.5 100 103
- 30  106 109 112 115 118 121 125 128 132 136
- 40  140 145 150 155 160 165 170 175 180 185
- 50  190 195 200 206 212 218 224 230 236 243
- 60  250 257 265 272 280 290 300 307 315 325
- 70  335 345 355 365 375 387 400 412 425 437
- 80  450 462 475 487 500 515 530 545 560 580
- 90  600 615 630 650 670 690 710 730 750 775
-100  800 825 850 875 900 925 950 975 1000 1030
-110  1060 1090 1120 1150 1180 1215 1250 1285 1320 1360
-120  1400 1450 1500 1550 1600 1650 1700 1750 1800 1850
-130  1900 1950 2000 2060 2120 2180 2240 2300 2360 2430
-140  2500 2575 2650 2725 2800 2900 3000 3075 3150 3250
-150  3350 3450 3550 3650 3750 3875 4000 4125 4250 4375
-160  4500 4625 4750 4875 5000 5150 5300 5450 5600 5850
-170  6000 6150 6300 6500 6700 6900 7100 7300 7500 7750
-180  8000 8250 8500 8750 9000 9250 9500 9750 10000 10300
-190  10600 10900 11200 11500 11800 12150 12500 12850 13200 13600
-200  14000 14500 15000 15550 16000 16500 17000 17500 18000 18500
-210  19000 19500 20000 20600 21200 21800 22400 23000 23600 24300
-220  25000 25750 26500 27250 28000 29000 30000 30750 31500 32500
-230  33500 34500 35500 36500 37500 38750 40000 41250 42500 43750
-240  45000 46250 47500 48750 50000 51500 53000 54500 56000 58000
-250  60000 61500 63000 65000 67000 69000 71000 73000 75000 77500
-260  80000 82500 85000 87500 90000 92500 95000 97500 100000 103000
-270  106000 109000 112000 115000 118000 121000 125000 128500 132000 136000
-"""
-
-
 def _load_index_table() -> tuple[float, ...]:
-    values: list[float] = []
-    for row in _LOAD_INDEX_TABLE.strip().splitlines():
-        first, *loads = row.split()
-        assert int(first) == len(values) and len(loads) == 10
-        values += [float(v) for v in loads]
-    return tuple(values)
+    """Load capacity [kg] per load index, from ``data/load_index_kg.csv`` (Chrono's table)."""
+    text = resources.files("tyrelab.tyre").joinpath("data", "load_index_kg.csv").read_text()
+    rows = [line.split(",") for line in text.splitlines() if line and not line.startswith(("#", "load"))]
+    assert [int(r[0]) for r in rows] == list(range(len(rows)))
+    return tuple(float(r[1]) for r in rows)
 
 
 #: load capacity [kg] of each load index (index = position)
