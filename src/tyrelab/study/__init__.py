@@ -38,10 +38,6 @@ def run_record(run: RunSpec) -> dict:
             if run.rig in ("trailer", "drop") else "", "dt": run.dt}
 
 
-#: rough wall time per simulated second of each contact model on the trailer
-#: (:data:`tyrelab.limits.MODEL_COST`), only to start the longest runs first; results
-#: do not depend on it
-_COST = MODEL_COST
 #: length assumed for a road run to its end (the thesis tracks are 100 m)
 _TRACK_LENGTH = 100.0
 
@@ -49,7 +45,8 @@ _TRACK_LENGTH = 100.0
 def expected_cost(run: RunSpec) -> float:
     """A rough estimate of a run's wall time [s]: simulated time x the model's cost."""
     simulated = run.duration if run.duration is not None else _TRACK_LENGTH / run.speed
-    return simulated * _COST.get(run.model.contact, 0.002)
+    # the models' cost per simulated second (limits.MODEL_COST) only orders the runs
+    return simulated * MODEL_COST.get(run.model.contact, 0.002)
 
 
 def tasks(spec: StudySpec) -> list[dict]:
