@@ -7,7 +7,10 @@ of that kind are used); ``fit all CAMPAIGN -o tyre.tir`` runs every step on a
 campaign (:mod:`tyrelab.fit.campaign`). An existing output file is updated
 (its other sections and its units kept); ``--into BASE.tir`` starts from
 another file. A fit report (HTML) is written beside the output unless
-``--no-report``. ``fit ring`` identifies the built-in tyre's ring. ``fit cams``
+``--no-report``. ``fit ring CAMPAIGN`` identifies the flexible ring from a
+campaign (:mod:`tyrelab.fit.ring_step`; ``fit all`` runs it too unless
+``--skip ring``); ``fit ring`` without a campaign identifies a built-in
+tyre's ring from the thesis's tables. ``fit cams``
 runs the enveloping model's cam-count study (:mod:`tyrelab.fit.cams`, thesis
 6.2): a CSV table, an error-against-cost PNG beside it, the recommended
 N_LENGTH x N_WIDTH printed (and, with ``--into BASE``, written into a copy of
@@ -32,15 +35,17 @@ STEPS = {"vertical": ("load_deflection", "linear stiffness and load-deflection t
 def register(sub):
     p = sub.add_parser("fit", help="identify model parameters from test data")
     fsub = p.add_subparsers(dest="fit_kind", metavar="MODEL")
-    r = fsub.add_parser("ring", help="identify the flexible ring of a built-in tyre from its lab data",
-                        description="Fit the ring model to the tyre's flat-plate load-deflection and "
-                                    "modal frequencies at 300 and 550 kPa and the eq. 2.3 contact "
-                                    "length; reports fitted and held-out errors (several minutes).")
-    r.add_argument("--tyre", default="xzl-16.00R20", help="built-in tyre with lab data")
-    r.add_argument("--max-evaluations", type=count("--max-evaluations", 1, MAX_FIT_EVALUATIONS), default=25,
-                   help=f"optimizer budget, 1 to {MAX_FIT_EVALUATIONS} (default 25)")
-    r.add_argument("-o", "--output", default="ring.tir",
-                   help="ring property file to write (.tir; checked before the fit starts)")
+    r = fsub.add_parser("ring", help="identify the flexible ring from a campaign (or a built-in tyre)",
+                        description="Fit the ring model to a campaign's flat-plate presses (one or "
+                                    "more pressures), modal results (Table 3-3 form), the file's drop-"
+                                    "test damping and eq. 2.3 contact length, and its dynamic cleat "
+                                    "runs marked use = \"fit\"; reports fitted and held-out errors "
+                                    "(minutes). Without CAMPAIGN: a built-in tyre's thesis data.")
+    r.add_argument("campaign", nargs="?", metavar="CAMPAIGN", default=None,
+                   help="campaign folder or its campaign.toml (default: the built-in --tyre)")
+    r.add_argument("--tyre", default="xzl-16.00R20", help="built-in tyre with lab data (without CAMPAIGN)")
+    _evaluations(r)
+    _outputs(r, default=None)
     r.set_defaults(func=run_ring)
     for step, (kind, text) in STEPS.items():
         s = fsub.add_parser(step, help=text, description=text + ". FILES: test files (CSV or TYDEX, "
@@ -58,10 +63,14 @@ def register(sub):
         _outputs(s)
         s.set_defaults(func=run_step, step=step)
     a = fsub.add_parser("all", help="every step of thesis chapter 4 from a test campaign",
-                        description="Fit vertical, damping, patch and shape from a campaign folder "
-                                    "(campaign.toml and its files); steps without tests are skipped "
-                                    "with a note; the ring is not identified (see 'fit ring').")
+                        description="Fit vertical, damping, patch, shape and the flexible ring from "
+                                    "a campaign folder (campaign.toml and its files); steps without "
+                                    "tests are skipped with a note.")
     a.add_argument("campaign", metavar="CAMPAIGN", help="campaign folder or its campaign.toml")
+    a.add_argument("--skip", action="append", default=[], metavar="STEP",
+                   choices=("vertical", "damping", "patch", "shape", "ring"),
+                   help="a step not to run (repeatable), e.g. --skip ring for a fit in seconds")
+    _evaluations(a)
     _outputs(a)
     a.set_defaults(func=run_all)
     _register_cams(fsub)
@@ -115,10 +124,15 @@ def _register_cams(fsub):
     c.set_defaults(func=run_cams)
 
 
-def _outputs(p):
-    p.add_argument("-o", "--output", default="tyre.tir",
+def _evaluations(p):
+    p.add_argument("--max-evaluations", type=count("--max-evaluations", 1, MAX_FIT_EVALUATIONS), default=25,
+                   help=f"the ring's optimizer budget, 1 to {MAX_FIT_EVALUATIONS} (default 25)")
+
+
+def _outputs(p, default="tyre.tir"):
+    p.add_argument("-o", "--output", default=default,
                    help="property file to write (.tir); an existing file is updated, its other "
-                        "sections and units kept")
+                        "sections and units kept (default tyre.tir; ring.tir for a built-in ring)")
     p.add_argument("--into", metavar="BASE", default=None,
                    help="start from this property file (or built-in tyre) instead")
     p.add_argument("--radius", type=positive_float("--radius", 1e-3), default=None,
@@ -131,29 +145,23 @@ def _outputs(p):
 
 
 def run_ring(args) -> int:
+    if args.campaign is not None:
+        from ..fit.campaign import read_campaign
+        args.output = args.output or "tyre.tir"
+        _paths(args, [args.campaign, args.into])
+        campaign = read_campaign(args.campaign)
+        return _fit(args, campaign, ("ring",), [campaign.source, args.into])
     from ..errors import InputError
     from ..fit.ring import fit_ring, markdown_table, write_ring_file
     from ..io_atomic import check_output_path
     from ..tyre.library import BUILT_IN
 
+    args.output = args.output or "ring.tir"
     out = check_output_path(args.output, (".tir",), "-o")
     if args.tyre not in BUILT_IN:
-        raise InputError(f"ring identification needs the lab data of a built-in tyre "
-                         f"({', '.join(BUILT_IN)}), got '{args.tyre}'", field="--tyre")
-    if args.max_evaluations < 1:
-        raise InputError("--max-evaluations must be at least 1", field="--max-evaluations")
-    from tqdm import tqdm
-
-    from ..fit.ring import FREE
-
-    # least_squares evaluates the residuals once per step and once per free
-    # parameter for each finite-difference Jacobian: an upper bound
-    with tqdm(total=args.max_evaluations * (len(FREE) + 1), unit="model", desc="identifying ring",
-              leave=False) as bar:
-        def step(cost):
-            bar.update(1)
-            bar.set_postfix(cost=f"{cost:.4g}")
-
+        raise InputError(f"ring identification without a campaign needs the lab data of a built-in "
+                         f"tyre ({', '.join(BUILT_IN)}), got '{args.tyre}'", field="--tyre")
+    with _ring_bar(args) as step:
         params, fitted, held = fit_ring(args.tyre, max_nfev=args.max_evaluations, progress=step)
     write_ring_file(params, out)
     print("fitted data:\n" + markdown_table(fitted))
@@ -161,6 +169,26 @@ def run_ring(args) -> int:
     print(f"\n{args.output}: ring parameters")
     return 0
 
+
+def _ring_bar(args):
+    """A context giving the ring's progress callback (a bar of model evaluations)."""
+    from contextlib import contextmanager
+
+    from tqdm import tqdm
+
+    from ..fit.ring import FREE
+
+    @contextmanager
+    def bar():
+        # least_squares evaluates the residuals once per step and once per free
+        # parameter for each finite-difference Jacobian: an upper bound
+        with tqdm(total=args.max_evaluations * (len(FREE) + 1), unit="model", desc="identifying ring",
+                  leave=False, position=1) as b:
+            def step(cost):
+                b.update(1)
+                b.set_postfix(cost=f"{cost:.4g}")
+            yield step
+    return bar()
 
 
 def _paths(args, inputs):
@@ -202,7 +230,7 @@ def _base(args, campaign):
     return None
 
 
-def _fit(args, campaign, steps, inputs) -> int:
+def _fit(args, campaign, steps, inputs, **skip) -> int:
     """Fit ``steps`` of ``campaign``, write the file and the report, print the summary."""
     from tqdm import tqdm
 
@@ -214,8 +242,15 @@ def _fit(args, campaign, steps, inputs) -> int:
         for key in ("radius", "width"):
             if getattr(args, key) is not None:
                 campaign.tyre[{"radius": "unloaded_radius"}.get(key, key)] = getattr(args, key)
+    ring = "ring" in steps and getattr(args, "max_evaluations", None)
     with tqdm(total=len(steps) + 1, desc="fitting", unit="step", leave=False) as bar:
-        result = fit_campaign(campaign, steps, base, progress=lambda name: bar.update(1))
+        if ring:
+            with _ring_bar(args) as step:
+                result = fit_campaign(campaign, steps, base, progress=lambda name: bar.update(1),
+                                      ring_evaluations=args.max_evaluations, ring_progress=step,
+                                      **skip)
+        else:
+            result = fit_campaign(campaign, steps, base, progress=lambda name: bar.update(1), **skip)
     write_tir(result.tir, out, units=result.tir.units or None)
     if report is not None:
         from ..report.fit_report import figure_count, write_report
@@ -256,7 +291,9 @@ def run_all(args) -> int:
     from ..fit.workflow import STEPS as ALL
     _paths(args, [args.campaign, args.into])
     campaign = read_campaign(args.campaign)
-    return _fit(args, campaign, ALL, [campaign.source, args.into])
+    steps = tuple(s for s in ALL if s not in args.skip)
+    return _fit(args, campaign, steps, [campaign.source, args.into], skip_missing=True,
+                skipped=tuple(dict.fromkeys(args.skip)))
 
 
 def run_cams(args) -> int:

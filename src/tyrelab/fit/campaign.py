@@ -23,7 +23,8 @@ The manifest names the tyre and lists the tests, each with its kind, its file
     note = "thesis Table 3-2"
 
 Keys of each kind: ``columns``, ``units``, ``use``, ``note`` for all files;
-``step`` (load_deflection); ``load_case``, ``inertia``, ``lever``, ``wheels``,
+``step``, ``pressure`` (load_deflection: the tyre's by default; presses at
+other pressures are for the ring only); ``load_case``, ``inertia``, ``lever``, ``wheels``,
 ``lowpass``, ``positive``, ``trailer`` (drop_test); ``load`` or
 ``deflection``, ``calibration`` (default "100 mm"), ``travel``
 ("vertical"/"horizontal": the image axis along the wheel's travel)
@@ -52,7 +53,7 @@ from . import lab_files as lf
 MANIFEST = "campaign.toml"
 #: kind -> reader and the manifest keys it takes beyond file/kind/use/note
 KINDS = {
-    "load_deflection": ("columns", "units", "step"),
+    "load_deflection": ("columns", "units", "step", "pressure"),
     "drop_test": ("columns", "units", "load_case", "inertia", "lever", "wheels", "lowpass", "positive",
                   "trailer"),
     "contact_patch": ("columns", "units"),
@@ -66,7 +67,7 @@ KINDS = {
 TYRE_KEYS = {"name": None, "base": None, "unloaded_radius": "m", "width": "m", "rim_radius": "m",
              "pressure": "Pa", "mass": "kg", "wheel_mass": "kg", "wheel_iyy": "kg m^2", "fnomin": "N"}
 #: SI unit of each scalar test key
-TEST_UNITS = {"step": "m", "inertia": "kg m^2", "lever": "m", "lowpass": "Hz", "load": "N",
+TEST_UNITS = {"step": "m", "pressure": "Pa", "inertia": "kg m^2", "lever": "m", "lowpass": "Hz", "load": "N",
               "deflection": "m", "calibration": "m", "angle": "rad", "speed": "m/s"}
 #: units no unit word converts to: the value is a plain number in them
 PLAIN = ("kg m^2", "Hz")

@@ -82,6 +82,8 @@ class LoadDeflection(LabTest):
     time: np.ndarray | None = None
     #: table step [m] a raw loop is averaged onto
     step: float = 0.005
+    #: inflation pressure [Pa] of the press (None: the tyre's)
+    pressure: float | None = None
 
 
 @dataclass
@@ -288,7 +290,7 @@ def _finite(path, lines, kind, data, names):
 # --- readers, one per kind ---------------------------------------------------
 
 def read_load_deflection(path, columns=None, units=None, step=0.005, use="fit",
-                         note="") -> LoadDeflection:
+                         note="", pressure=None) -> LoadDeflection:
     """A plate press: a table or a raw loop (:class:`LoadDeflection`)."""
     data, lines, kind = _read(path, ("deflection", "load"), ("time",), columns, units)
     _finite(path, lines, kind, data, ("deflection", "load", "time"))
@@ -300,7 +302,8 @@ def read_load_deflection(path, columns=None, units=None, step=0.005, use="fit",
            "(deflection is counted from first touch, positive in compression)", "deflection")
     if not np.max(d) > 0:
         raise InputError("the deflection never rises above zero", source=str(path), field="deflection")
-    return LoadDeflection(str(path), use, note, d, f, data.get("time"), float(step))
+    return LoadDeflection(str(path), use, note, d, f, data.get("time"), float(step),
+                          None if pressure is None else float(pressure))
 
 
 def read_drop_trace(path, columns=None, units=None, positive="up", **options) -> DropTrace:

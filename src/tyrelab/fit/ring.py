@@ -32,6 +32,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+from typing import NamedTuple
 
 import numpy as np
 import pandas as pd
@@ -143,31 +144,104 @@ def contact_half_length(tyre, rp, deflection):
     return float(half)
 
 
-def _with(rp, x):
-    return dataclasses.replace(rp, **{k: float(v) * s for (k, s), v in zip(FREE.items(), x)})
+#: with one pressure the pressure rates cannot be told from the constant parts:
+#: each foundation is one free factor on its total, split as in the start
+PAIRS = {"kr0": "krp", "kt0": "ktp", "ky0": "kyp"}
 
 
-def evaluate(name, rp, pressures, modes, contact=True):
-    """Model vs data rows for ``pressures`` (load-deflection, ``modes``, contact)."""
+def free_parameters(n_pressures: int) -> dict:
+    """The free parameters and their scales for presses at ``n_pressures`` pressures."""
+    return dict(FREE) if n_pressures >= 2 else {k: s for k, s in FREE.items() if k not in PAIRS.values()}
+
+
+def _with(rp, x, free=None):
+    free = FREE if free is None else free
+    values = {k: float(v) * s for (k, s), v in zip(free.items(), x)}
+    for k0, kp in PAIRS.items():
+        if k0 in values and kp not in free:
+            # one pressure: the factor on the constant part scales the rate too
+            values[kp] = getattr(rp, kp) * (values[k0] / getattr(rp, k0))
+    return dataclasses.replace(rp, **values)
+
+
+class RingData(NamedTuple):
+    """What the ring is identified from (SI): one record for a built-in tyre
+    (:func:`builtin_data`) and for a user's test campaign
+    (:mod:`tyrelab.fit.ring_step`)."""
+
+    #: pressure [Pa] -> the tyre at that pressure (geometry, [SHAPE], PA1/PA2, masses)
+    tyres: dict
+    #: pressure [Pa] -> flat-plate press ``(n, 2)``: deflection [m], load [N] (fitted)
+    loads: dict
+    #: pressure [Pa] -> flat-plate press never fitted, only predicted
+    held_loads: dict
+    #: measured modes: ``mode`` (Table 3-3 numbering), ``pressure`` [Pa], ``frequency`` [Hz],
+    #: ``damping`` (ratio, NaN where not measured)
+    modes: pd.DataFrame
+    #: pressure [Pa] of the damping targets (modal damping, drop test)
+    reference: float
+    #: bounds of the free parameters, in their scales (:data:`BOUNDS` for the XZL)
+    bounds: tuple = BOUNDS
+
+    @property
+    def pressures(self) -> list:
+        """The fitted pressures, in order."""
+        return sorted(self.loads)
+
+
+def builtin_data(name="xzl-16.00R20") -> RingData:
+    """The thesis's data of built-in tyre ``name``: Table 3-2 at 300 and 550 kPa
+    (fitted) and 100 kPa (held out), Table 3-3, damping targets at 300 kPa."""
+    tyres = {p: load_tyre(name, p) for p in (*FIT_PRESSURES, HELD_OUT_PRESSURE)}
+    wide = modal_table(name)
     rows = []
-    table = modal_table(name)
+    for p in FIT_PRESSURES:
+        col = f"freq_Hz_{p / 1e3:.0f}kPa"
+        if col not in wide:
+            continue
+        for r in wide.itertuples():
+            f = getattr(r, col)
+            if np.isfinite(f):
+                rows.append((int(r.mode), p, float(f),
+                             float(getattr(r, f"damping_pct_{p / 1e3:.0f}kPa")) / 100))
+    modes = pd.DataFrame(rows, columns=["mode", "pressure", "frequency", "damping"])
+    return RingData(tyres, {p: tyres[p].load_deflection[1:] for p in FIT_PRESSURES},
+                    {HELD_OUT_PRESSURE: tyres[HELD_OUT_PRESSURE].load_deflection[1:]}, modes, 300e3)
+
+
+def _data(data) -> RingData:
+    return data if isinstance(data, RingData) else builtin_data(data)
+
+
+def measured_mode(data: RingData, mode: int, pressure: float, column="frequency") -> float:
+    """A measured frequency [Hz] or damping ratio of ``mode`` at ``pressure`` (NaN if none)."""
+    m = data.modes
+    sel = m[(m["mode"] == mode) & np.isclose(m["pressure"], pressure)]
+    return float(sel[column].iloc[0]) if len(sel) else float("nan")
+
+
+def evaluate(data, rp, pressures, modes, contact=True, held_out=False):
+    """Model vs data rows for ``pressures`` (load-deflection, ``modes``, contact);
+    ``data`` a :class:`RingData` or a built-in tyre's name; ``held_out`` takes
+    the presses from ``data.held_loads``."""
+    data = _data(data)
+    rows = []
     for p in pressures:
-        tyre = load_tyre(name, p)
-        data = tyre.load_deflection
-        d = data[1:, 0]
+        tyre = data.tyres[p]
+        press = (data.held_loads if held_out else data.loads)[p]
+        d = press[:, 0]
         loads, _ = press_plate(tyre, rp, d)
-        for dk, fm, ft in zip(d, loads, data[1:, 1]):
+        for dk, fm, ft in zip(d, loads, press[:, 1]):
             rows.append({"quantity": "load", "pressure_kPa": p / 1e3, "at": f"{dk * 1e3:.0f} mm",
                          "measured": ft, "model": fm})
         if modes:
             mod = ring_modal(tyre, parameters=rp).set_index("mode")
             for m in modes:
-                col = f"freq_Hz_{p / 1e3:.0f}kPa"
-                if col in table:
-                    meas = float(table.set_index("mode").loc[m, col])
+                meas = measured_mode(data, m, p)
+                if np.isfinite(meas):
                     rows.append({"quantity": "mode", "pressure_kPa": p / 1e3, "at": f"mode {m}",
                                  "measured": meas, "model": float(mod.loc[m, "freq_Hz"])})
-        if contact:
+        if contact and _has_eq23(tyre):
             for dk in CONTACT_DEFLECTIONS:
                 rows.append({"quantity": "contact", "pressure_kPa": p / 1e3,
                              "at": f"{dk * 1e3:.0f} mm",
@@ -178,14 +252,18 @@ def evaluate(name, rp, pressures, modes, contact=True):
     return df
 
 
-def _residuals(x, name, rp0, progress=None):
-    rp = _with(rp0, x)
-    df = evaluate(name, rp, FIT_PRESSURES, FIT_MODES)
+def _has_eq23(tyre) -> bool:
+    return tyre.tir.has("CONTACT_PATCH", "PA1") and tyre.tir.has("CONTACT_PATCH", "PA2")
+
+
+def _residuals(x, data, rp0, progress=None, free=None):
+    rp = _with(rp0, x, free)
+    df = evaluate(data, rp, data.pressures, FIT_MODES)
     w = df["quantity"].map(WEIGHTS).to_numpy()
     # loads: relative to the point's load, but not below a fifth of the
     # curve's largest (the first points are small and uncertain)
     ref = df["measured"].to_numpy().copy()
-    for p in FIT_PRESSURES:
+    for p in data.pressures:
         sel = ((df["quantity"] == "load") & (df["pressure_kPa"] == p / 1e3)).to_numpy()
         ref[sel] = np.maximum(ref[sel], LOAD_FLOOR * ref[sel].max())
     r = w * (df["model"].to_numpy() - df["measured"].to_numpy()) / ref
@@ -245,52 +323,59 @@ def fit_patch_damping(tyre, rp, target, tol=0.01, progress=None):
 
 def fit_ring(name="xzl-16.00R20", start: RingParameters | None = None, max_nfev=25,
              verbose=0, ftol=2e-3, progress=None):
-    """Identify the ring of built-in tyre ``name``; returns ``(params, fitted, held_out)``.
+    """Identify the ring; returns ``(params, fitted, held_out)``.
 
+    ``name`` is a built-in tyre's name (the thesis's data, :func:`builtin_data`)
+    or a :class:`RingData` (a user's campaign, :mod:`tyrelab.fit.ring_step`).
     ``fitted`` and ``held_out`` are tables of measured vs model values with
     errors in percent (see the module doc for what is which). ``progress``,
     if given, is called with the cost after every model evaluation.
     """
     from scipy.optimize import least_squares
+    data = _data(name)
+    free = free_parameters(len(data.pressures))
     rp0 = start or dataclasses.replace(RingParameters(), **START)
-    x0 = np.array([getattr(rp0, k) / s for k, s in FREE.items()])
-    lower, upper = np.array(BOUNDS[0]), np.array(BOUNDS[1])
+    keep = [k in free for k in FREE]
+    lower = np.array(data.bounds[0], float)[keep]
+    upper = np.array(data.bounds[1], float)[keep]
+    x0 = np.array([getattr(rp0, k) / s for k, s in free.items()])
     x0 = np.clip(x0, lower + 1e-3, upper - 1e-3)
-    sol = least_squares(_residuals, x0, args=(name, rp0, progress), bounds=(lower, upper),
+    sol = least_squares(_residuals, x0, args=(data, rp0, progress, free), bounds=(lower, upper),
                         diff_step=0.02, max_nfev=max_nfev, verbose=verbose, x_scale=1.0,
                         ftol=ftol, xtol=1e-3)
-    rp = _with(rp0, sol.x)
-    table = modal_table(name).set_index("mode")
-    tyre300 = load_tyre(name, 300e3)
-    targets = {m: float(table.loc[m, "damping_pct_300kPa"]) / 100 for m in DAMPING_MODES}
-    rp = modal_damping(tyre300, rp, targets)
+    rp = _with(rp0, sol.x, free)
+    ref = data.tyres[data.reference]
+    targets = {m: measured_mode(data, m, data.reference, "damping") for m in DAMPING_MODES}
+    rp = modal_damping(ref, rp, {m: z for m, z in targets.items() if np.isfinite(z)})
     # the drop test (thesis 3.4.1) sets the contact patch's damping; modes keep theirs
-    rp, drop = fit_patch_damping(tyre300, rp, tyre300.vertical_damping)
-    fitted = evaluate(name, rp, FIT_PRESSURES, FIT_MODES)
+    rp, drop = fit_patch_damping(ref, rp, ref.vertical_damping)
+    fitted = evaluate(data, rp, data.pressures, FIT_MODES)
     fitted = pd.concat([fitted, pd.DataFrame([{
-        "quantity": "drop", "pressure_kPa": 300.0, "at": "LC1 trailer",
-        "measured": tyre300.vertical_damping / 1e3, "model": drop.damping / 1e3,
-        "error_pct": 100 * (drop.damping / tyre300.vertical_damping - 1)}])], ignore_index=True)
-    held = evaluate(name, rp, [HELD_OUT_PRESSURE], (), contact=False)
-    held = pd.concat([held, modal_comparison(name, rp, HELD_OUT_MODES)], ignore_index=True)
+        "quantity": "drop", "pressure_kPa": data.reference / 1e3, "at": "LC1 trailer",
+        "measured": ref.vertical_damping / 1e3, "model": drop.damping / 1e3,
+        "error_pct": 100 * (drop.damping / ref.vertical_damping - 1)}])], ignore_index=True)
+    parts = [modal_comparison(data, rp, HELD_OUT_MODES)]
+    if data.held_loads:
+        parts.insert(0, evaluate(data, rp, sorted(data.held_loads), (), contact=False, held_out=True))
+    held = pd.concat(parts, ignore_index=True)
     return rp, fitted, held
 
 
-def modal_comparison(name, rp, modes, pressures=FIT_PRESSURES):
-    """Model vs Table 3-3 frequencies and damping ratios for ``modes``."""
-    table = modal_table(name).set_index("mode")
+def modal_comparison(data, rp, modes, pressures=None):
+    """Model vs measured (Table 3-3) frequencies and damping ratios for ``modes``."""
+    data = _data(data)
     rows = []
-    for p in pressures:
-        mod = ring_modal(load_tyre(name, p), parameters=rp).set_index("mode")
+    for p in data.pressures if pressures is None else pressures:
+        mod = ring_modal(data.tyres[p], parameters=rp).set_index("mode")
         for m in modes:
-            for q, col, mcol in (("mode", f"freq_Hz_{p / 1e3:.0f}kPa", "freq_Hz"),
-                                 ("damping", f"damping_pct_{p / 1e3:.0f}kPa", "damping_pct")):
-                meas = table.loc[m, col]
+            for q, col, mcol, scale in (("mode", "frequency", "freq_Hz", 1.0),
+                                        ("damping", "damping", "damping_pct", 100.0)):
+                meas = measured_mode(data, m, p, col) * scale
                 if not np.isfinite(meas):
                     continue
                 rows.append({"quantity": q, "pressure_kPa": p / 1e3, "at": f"mode {m}",
                              "measured": float(meas), "model": float(mod.loc[m, mcol])})
-    df = pd.DataFrame(rows)
+    df = pd.DataFrame(rows, columns=["quantity", "pressure_kPa", "at", "measured", "model"])
     df["error_pct"] = 100 * (df["model"] - df["measured"]) / df["measured"]
     return df
 

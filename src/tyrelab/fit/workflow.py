@@ -12,6 +12,9 @@ damping   drop_test (:mod:`.damping`: the rig's drop test fitted  [VERTICAL] VER
 patch     contact_patch, footprint_image (:mod:`.patch`:          [CONTACT_PATCH] PA1, PA2,
           eqs. 2.3, 2.4 and the half-width table)                 PB1-PB3; [CONTACT_WIDTH_CURVE]
 shape     carcass_profile (:mod:`.shape`)                         [SHAPE]
+ring      load_deflection at one or more pressures, modal, the    [FLEXIBLE_RING]
+          file's VERTICAL_DAMPING, PA1/PA2, [SHAPE], MASS;
+          dynamic_cleat runs (:mod:`.ring_step`, thesis 4.5)
 ========  ======================================================  ==============================
 
 Tests marked ``use = "held_out"`` are predicted, never fitted; static cleat
@@ -19,8 +22,8 @@ tests are always held out (the analytic models' cleat loads follow from
 the plate and the carcass: predicted with every analytic model). The fit's
 record -- sources, RMS errors, the pendulum's damping -- goes into
 ``[TYRELAB_FIT]``, tyrelab's own section (SI, the unit in each key's name),
-which ADAMS/Tire does not read. The ring is not identified here (module
-:mod:`tyrelab.fit.ring`, ``tyrelab fit ring``, for the built-in XZL).
+which ADAMS/Tire does not read. Presses at a pressure other than the
+tyre's feed the ring only.
 """
 
 from __future__ import annotations
@@ -35,13 +38,9 @@ from . import lab_files as lf
 from .campaign import Campaign
 from .property_file import FIT_SECTION, start_tir, tidy
 
-STEPS = ("vertical", "damping", "patch", "shape")
+STEPS = ("vertical", "damping", "patch", "shape", "ring")
 #: analytic models whose cleat loads are predicted
 MODELS = ("point", "volume", "enveloping")
-RING_NOTE = ("ring: not identified by 'fit all' (tyrelab fit ring identifies the built-in XZL's "
-             "ring from Table 3-2, Table 3-3 and eq. 2.3 in minutes); modal and dynamic cleat files "
-             "are read and reported only")
-
 
 @dataclass
 class StepResult:
@@ -64,7 +63,7 @@ class FitResult:
 
 
 #: unit of each step's errors (fitted RMS and held-out errors)
-ERROR_UNITS = {"vertical": "N", "damping": "m", "patch": "m", "shape": "-", "cleats": "N"}
+ERROR_UNITS = {"vertical": "N", "damping": "m", "patch": "m", "shape": "-", "cleats": "N", "ring": "%"}
 
 
 def _row(step, parameter, value, unit, rms=None, held_out=None, source="", equation=""):
@@ -110,11 +109,14 @@ def _tyre(tir: TirFile, step: str):
 
 def fit_vertical_step(campaign: Campaign, tir: TirFile) -> StepResult:
     """Linear stiffness and load-deflection table (:mod:`tyrelab.fit.vertical`) into ``tir``."""
+    from .ring_step import at_tyre_pressure
     from .vertical import hysteresis, linear_stiffness, load_deflection_table, table_rms
-    tests = campaign.of(lf.LoadDeflection)
+    every = campaign.of(lf.LoadDeflection)
+    tests = at_tyre_pressure(every, tir.number("OPERATING_CONDITIONS", "INFLPRES", None))
     fit = [t for t in tests if t.use == "fit"]
     if not fit:
-        raise InputError("no load_deflection test to fit", source=campaign.source, field="vertical")
+        raise InputError("no load_deflection test at the tyre's pressure to fit", source=campaign.source,
+                         field="vertical")
     d = np.concatenate([t.deflection for t in fit])
     f = np.concatenate([t.load for t in fit])
     lin = linear_stiffness(d, f)
@@ -142,6 +144,9 @@ def fit_vertical_step(campaign: Campaign, tir: TirFile) -> StepResult:
                          f"{rows_d.size} rows to {rows_d[-1] * 1e3:.0f} mm", "", law_rms,
                          {k: v[1] for k, v in held.items()} or None, src,
                          "mean of loading and unloading (Table 3-2), spline eq. 2.2"))
+    if len(tests) < len(every):
+        res.notes.append(f"vertical: {len(every) - len(tests)} press(es) at other pressures are for the "
+                         "ring only")
     loop = [tb for tb in tables if tb.branches]
     if loop:
         res.notes.append(f"vertical: {sum(tb.branches for tb in loop)} loading/unloading branches "
@@ -361,26 +366,38 @@ def predict_cleats(campaign: Campaign, tir: TirFile) -> StepResult:
 
 FITS = {"vertical": fit_vertical_step, "damping": fit_damping_step, "patch": fit_patch_step,
         "shape": fit_shape_step}
+#: tests a step needs (a step of ``fit all`` without them is skipped)
+NEEDS = {"vertical": (lf.LoadDeflection,), "damping": (lf.DropTrace,),
+         "patch": (lf.PatchPoints, lf.FootprintImage), "shape": (lf.CarcassProfile,),
+         "ring": (lf.ModalResults,)}
 
 
-def fit_campaign(campaign: Campaign, steps=STEPS, base=None, progress=None) -> FitResult:
+def fit_campaign(campaign: Campaign, steps=STEPS, base=None, progress=None, skip_missing=None,
+                 ring_evaluations=None, ring_progress=None, skipped=()) -> FitResult:
     """Run ``steps`` of the workflow on ``campaign``; returns the property file and the results.
 
     ``base`` is the property file to update (a TirFile or a path; default: the
     manifest's base, else a new file); ``progress(name)`` is called after each step.
-    A step asked for whose tests are missing is an error; with every step
-    asked for (``fit all``) a step without tests is skipped with a note.
+    A step asked for whose tests are missing is an error, unless
+    ``skip_missing`` (default: when every step is asked for, ``fit all``):
+    then it is skipped with a note. ``ring_evaluations`` is the ring's
+    optimiser budget, ``ring_progress(cost)`` is called after each of its
+    model evaluations; ``skipped`` names steps left out on purpose (noted).
     """
+    from .ring_step import MAX_EVALUATIONS, fit_ring_step
     tir = start_tir(campaign, base)
-    result = FitResult(campaign, tir)
-    everything = tuple(steps) == STEPS
+    result = FitResult(campaign, tir, notes=[f"{name}: skipped on request (the base file's values "
+                                             f"stay)" for name in skipped])
+    if skip_missing is None:
+        skip_missing = tuple(steps) == STEPS
     for name in steps:
-        needs = {"vertical": (lf.LoadDeflection,), "damping": (lf.DropTrace,),
-                 "patch": (lf.PatchPoints, lf.FootprintImage), "shape": (lf.CarcassProfile,)}[name]
-        if everything and not [t for t in campaign.of(*needs) if t.use == "fit"]:
+        if skip_missing and not [t for t in campaign.of(*NEEDS[name]) if t.use == "fit"]:
             result.notes.append(f"{name}: no test in the campaign, skipped (the base file's values stay)")
         else:
-            step = FITS[name](campaign, tir)
+            if name == "ring":
+                step = fit_ring_step(campaign, tir, ring_evaluations or MAX_EVALUATIONS, ring_progress)
+            else:
+                step = FITS[name](campaign, tir)
             result.steps[name] = step
             result.notes += step.notes
         if progress:
@@ -389,8 +406,6 @@ def fit_campaign(campaign: Campaign, steps=STEPS, base=None, progress=None) -> F
         result.steps["cleats"] = predict_cleats(campaign, tir)
     if progress:
         progress("predictions")
-    if everything:
-        result.notes.append(RING_NOTE)
     tidy(tir, new=base is None and campaign.base is None)
     if tir.has("DIMENSION", "UNLOADED_RADIUS"):
         from ..tyre.params import check_physics

@@ -7,7 +7,8 @@ against deflection (Figures 4-2, 4-3), static cleats predicted (Figures
 4-13 to 4-15) -- each with its residuals; the drop-test trace and the
 simulated drop fitted to it; footprint images with the extracted outline;
 the carcass profile and its ``[SHAPE]`` table; modal results and dynamic
-cleat runs as read. Figures are matplotlib PNGs embedded as base64.
+cleat runs as read; the identified ring on the plate at every pressure, its
+modes, contact lengths and cleat-run errors. Figures are matplotlib PNGs embedded as base64.
 """
 
 from __future__ import annotations
@@ -202,9 +203,53 @@ def dynamic_figure(test) -> str:
     ax.plot(run["RUNTIME"], run[col] / 1e3, color="k", lw=0.8)
     ax.set_xlabel("time [s]")
     ax.set_ylabel(f"{col} [kN]")
-    ax.set_title(f"{test.name} (read; used by the ring's damping fit, not by this workflow)", fontsize=9)
+    use = "fits the ring's patch damping" if test.use == "fit" else "held out: predicted by the ring"
+    ax.set_title(f"{test.name} ({use} when the ring step runs)", fontsize=9)
     ax.grid(alpha=0.3)
     return _png(fig)
+
+
+def ring_figure(step) -> str:
+    """The identified ring pressed on the plate at every pressure against the presses,
+    fitted and held out; residuals in % (thesis 4.5)."""
+    fig, ax, rx = _pair("Flexible ring on the flat plate (thesis 4.5)")
+    for df, held in ((step.data["fitted"], False), (step.data["held"], True)):
+        df = df[df["quantity"] == "load"]
+        for k, (p, g) in enumerate(df.groupby("pressure_kPa")):
+            d = np.array([float(a.split()[0]) for a in g["at"]])
+            color = "tab:orange" if held else ("C0", "C2", "C4", "C5")[k % 4]
+            style = dict(HELD, color=color) if held else dict(DATA, color=color)
+            style["label"] = f"{p:g} kPa " + ("(held out)" if held else "(fitted)")
+            ax.plot(d, g["measured"] / 1e3, **style)
+            ax.plot(d, g["model"] / 1e3, color=color, lw=1.2, ls="--" if held else "-")
+            rx.plot(d, g["error_pct"], color=color, marker="s" if held else "o", ms=4,
+                    ls="--" if held else "-")
+    ax.set_ylabel("load [kN]")
+    ax.legend(fontsize=8, title="points: measured, lines: ring", title_fontsize=8)
+    rx.set_ylabel("ring - measured [%]")
+    rx.set_xlabel("deflection [mm]")
+    return _png(fig)
+
+
+def ring_table(step) -> str:
+    """The ring's modes and contact lengths, fitted and held out, and the cleat runs."""
+    rows = []
+    for label, df in (("fitted", step.data["fitted"]), ("held out", step.data["held"])):
+        for r in df[df["quantity"] != "load"].itertuples():
+            rows.append(f"<tr><td>{label}</td><td>{html.escape(r.quantity)}</td><td>{r.pressure_kPa:g}</td>"
+                        f"<td>{html.escape(r.at)}</td><td>{r.measured:.4g}</td><td>{r.model:.4g}</td>"
+                        f"<td>{r.error_pct:+.1f}</td></tr>")
+    out = ("<table><tr><th>set</th><th>quantity</th><th>kPa</th><th>at</th><th>measured</th>"
+           "<th>ring</th><th>error %</th></tr>" + "".join(rows) + "</table>")
+    runs = step.data.get("cleat_runs")
+    if runs is not None and len(runs):
+        out += ("<p>Trailer runs over cleats: RMS error of FZW in % of the measured peak, with the "
+                "drop test's patch damping (before) and after the runs' fit</p><table><tr><th>road</th>"
+                "<th>km/h</th><th>set</th><th>before</th><th>after</th></tr>")
+        out += "".join(f"<tr><td>{html.escape(r.road)}</td><td>{r.speed_kmh:.0f}</td><td>{r.set}</td>"
+                       f"<td>{r.rms_before_pct:.2f}</td><td>{r.rms_after_pct:.2f}</td></tr>"
+                       for r in runs.itertuples()) + "</table>"
+    return out
 
 
 def summary_table(result) -> str:
@@ -263,6 +308,8 @@ def report_html(result, title=None, progress=None) -> str:
             add("Static cleat", cleat_figure(t, pred))
     for t in c.of(lf.DynamicCleat):
         add("Dynamic cleat run", dynamic_figure(t))
+    if "ring" in steps:
+        add("Flexible ring", ring_figure(steps["ring"]))
     parts = ["<!DOCTYPE html><html><head><meta charset='utf-8'>", f"<title>{html.escape(title)}</title>",
              "<style>body{font-family:sans-serif;max-width:62em;margin:auto}table{border-collapse:collapse}"
              "td,th{border:1px solid #999;padding:2px 6px;vertical-align:top}</style></head><body>",
@@ -273,6 +320,8 @@ def report_html(result, title=None, progress=None) -> str:
               f"{': ' + html.escape(t.note) if t.note else ''}</li>" for t in c.tests] + ["</ul>"]
     for t in c.of(lf.ModalResults):
         parts.append("<h2>Modal results</h2>" + modal_table(t))
+    if "ring" in steps:
+        parts.append("<h2>Flexible ring: modes and contact length</h2>" + ring_table(steps["ring"]))
     for caption, png in figs:
         parts.append(f"<h2>{html.escape(caption)}</h2><img alt='{html.escape(caption)}' "
                      f"src='data:image/png;base64,{png}'>")
@@ -284,7 +333,7 @@ def figure_count(result) -> int:
     """How many figures :func:`report_html` draws (for a progress bar)."""
     from ..fit import lab_files as lf
     s, c = result.steps, result.campaign
-    n = ("vertical" in s) + ("shape" in s) + len(c.of(lf.FootprintImage)) + len(c.of(lf.DynamicCleat))
+    n = ("vertical" in s) + ("shape" in s) + ("ring" in s) + len(c.of(lf.FootprintImage)) + len(c.of(lf.DynamicCleat))
     n += len(s["damping"].data["fits"]) if "damping" in s else 0
     n += (("length_fit" in s["patch"].data) + ("width_table" in s["patch"].data)) if "patch" in s else 0
     n += len(s["cleats"].data["predictions"]) if "cleats" in s else 0

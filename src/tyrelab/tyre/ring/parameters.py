@@ -167,9 +167,11 @@ class RingParameters:
             raise InputError("FRICTION must be >= 0", source=source, field="FRICTION")
 
     def to_tir(self, tir: TirFile) -> TirFile:
-        """Write the parameters into ``tir``'s [FLEXIBLE_RING] section (SI)."""
-        for name, (key, _) in KEYS.items():
-            tir.set(SECTION, key, float(getattr(self, name)))
+        """Write the parameters into ``tir``'s [FLEXIBLE_RING] section, in the file's
+        [UNITS] (SI without them), so :meth:`from_tir` reads back the same values."""
+        for name, (key, dim) in KEYS.items():
+            factor = _units_factor(tir.units, dim, tir.source, None)
+            tir.set(SECTION, key, float(getattr(self, name)) / factor)
         return tir
 
     def at_pressure(self, p: float) -> dict:
