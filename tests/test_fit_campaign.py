@@ -6,6 +6,7 @@ Table 3-2, and the stand-in files give back what made them. Manifests and
 test files with mistakes are refused in one line naming file, line and key.
 """
 
+import copy
 import shutil
 import subprocess
 import sys
@@ -268,3 +269,23 @@ def test_held_out_drop_at_another_load_is_predicted(tmp_path, xzl):
     row = result.steps["damping"].rows[0]
     assert row["held_out"]["lc2.csv"] < 1.5e-4
     assert result.tir.number("VERTICAL", "VERTICAL_DAMPING") == pytest.approx(2660.0, rel=0.005)
+
+
+def test_static_cleats_are_predicted_by_the_ring_once_identified(tmp_path, xzl):
+    """A base file with a [FLEXIBLE_RING] (the shipped XZL ring): its static cleat press is one
+    of the held-out predictions, and on a press the ring itself made it is exact."""
+    from tyrelab.rig.static_press import static_press
+    from tyrelab.tyre.model import TyreModel
+    from tyrelab.tyre.ring.parameters import ring_parameters
+    d = np.arange(1, 7) / 100
+    loads = static_press(TyreModel(xzl, "ring"), d, "cleat:51x51")["load"].to_numpy()
+    (tmp_path / "cleat.csv").write_text("deflection_mm,load_N\n" + "".join(
+        f"{a * 1e3:g},{float(b)!r}\n" for a, b in zip(d, loads)))
+    tir = ring_parameters(xzl).to_tir(copy.deepcopy(xzl.tir))
+    write_tir(tir, tmp_path / "base.tir", units=tir.units or None)
+    body = '[tyre]\nbase = "base.tir"\n' + LD + \
+        '[[test]]\nkind = "static_cleat"\nfile = "cleat.csv"\ncleat = "51x51"\n'
+    result = fit_campaign(read_campaign(_campaign(tmp_path, body)), skip_missing=True)
+    rms = {r["parameter"].split(":")[0]: r["held_out"]["cleat.csv"] for r in result.steps["cleats"].rows}
+    assert set(rms) == {"point", "volume", "enveloping", "ring"}
+    assert rms["ring"] < 1.0 < rms["volume"]

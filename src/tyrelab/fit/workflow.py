@@ -19,7 +19,8 @@ ring      load_deflection at one or more pressures, modal, the    [FLEXIBLE_RING
 
 Tests marked ``use = "held_out"`` are predicted, never fitted; static cleat
 tests are always held out (the analytic models' cleat loads follow from
-the plate and the carcass: predicted with every analytic model). The fit's
+the plate and the carcass: predicted with every analytic model, and with
+the ring once the file has one). The fit's
 record -- sources, RMS errors, the pendulum's damping -- goes into
 ``[TYRELAB_FIT]``, tyrelab's own section (SI, the unit in each key's name),
 which ADAMS/Tire does not read. Presses at a pressure other than the
@@ -343,7 +344,7 @@ def fit_shape_step(campaign: Campaign, tir: TirFile) -> StepResult:
 
 
 def predict_cleats(campaign: Campaign, tir: TirFile) -> StepResult:
-    """Held-out static cleat tests predicted by every analytic model of the fitted tyre."""
+    """Held-out static cleat tests predicted by every analytic model of the fitted tyre (and the ring)."""
     from ..rig.static_press import static_press
     from ..tyre.model import TyreModel
     res = StepResult("cleats", data={"predictions": []})
@@ -351,10 +352,12 @@ def predict_cleats(campaign: Campaign, tir: TirFile) -> StepResult:
     if not tests:
         return res
     tyre = _tyre(tir, "cleat prediction")
+    # the ring too once identified (held out: thesis 4.5 fitted FTire to them, tyrelab predicts)
+    models = MODELS + (("ring",) if tir.has("FLEXIBLE_RING") else ())
     for t in tests:
         spec = f"cleat:{t.cleat[0] * 1e3:g}x{t.cleat[1] * 1e3:g}"
         pred = {}
-        for m in MODELS:
+        for m in models:
             loads = static_press(TyreModel(tyre, m), t.deflection, spec, t.direction)["load"].to_numpy()
             pred[m] = loads
             rms = float(np.sqrt(np.mean((loads - t.load) ** 2)))
