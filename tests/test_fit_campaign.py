@@ -122,6 +122,8 @@ def test_cli_into_a_builtin_keeps_its_units(tmp_path):
 @pytest.mark.parametrize("args, words", [
     (["fit", "vertical", "{tmp}/press.csv", "-o", "{tmp}/new.tir"], "needs the tyre's unloaded radius"),
     (["fit", "all", "{tmp}", "-o", "{tmp}/x.tir"], "no campaign manifest"),
+    (["fit", "ring", "{tmp}", "-o", "{tmp}/x.tir"], "no campaign manifest"),
+    (["fit", "ring", str(EXAMPLE), "-o", "{tmp}/x.tir"], "needs the tyre's vertical law"),
     (["fit", "all", str(EXAMPLE), "-o", "{tmp}/x.txt"], "must end in .tir"),
     (["fit", "patch", "{tmp}/fp.png", "-o", "{tmp}/x.tir"], "list it in a campaign.toml"),
     (["fit", "vertical", "{tmp}/bad.csv", "--radius", "600", "--width", "400", "-o", "{tmp}/x.tir"],

@@ -183,7 +183,7 @@ def _ring_bar(args):
         # least_squares evaluates the residuals once per step and once per free
         # parameter for each finite-difference Jacobian: an upper bound
         with tqdm(total=args.max_evaluations * (len(FREE) + 1), unit="model", desc="identifying ring",
-                  leave=False, position=1) as b:
+                  leave=False, position=1, delay=1.0) as b:
             def step(cost):
                 b.update(1)
                 b.set_postfix(cost=f"{cost:.4g}")
@@ -243,7 +243,8 @@ def _fit(args, campaign, steps, inputs, **skip) -> int:
             if getattr(args, key) is not None:
                 campaign.tyre[{"radius": "unloaded_radius"}.get(key, key)] = getattr(args, key)
     ring = "ring" in steps and getattr(args, "max_evaluations", None)
-    with tqdm(total=len(steps) + 1, desc="fitting", unit="step", leave=False) as bar:
+    # delay: a mistake found at once is one line, with no bar drawn before it
+    with tqdm(total=len(steps) + 1, desc="fitting", unit="step", leave=False, delay=1.0) as bar:
         if ring:
             with _ring_bar(args) as step:
                 result = fit_campaign(campaign, steps, base, progress=lambda name: bar.update(1),
