@@ -40,8 +40,13 @@ import pandas as pd
 
 from ..errors import InputError
 from . import lab_files as lf
-from .ring import BOUNDS, FREE, START, RingData, fit_ring, free_parameters
+from .ring import BOUNDS, FREE, START, RingData, fit_ring
+from .property_file import FIT_SECTION
 from .ring_dynamic import CleatRun, fit_ring_damping, run_table
+from .step_result import StepResult
+from .step_result import fitted_tyre as _tyre
+from .step_result import summary_row as _row
+from .step_result import test_names as _names
 
 #: the XZL's vertical stiffness at 300 kPa [N/m] (thesis 4.2), its width [m],
 #: carcass mass [kg] and the pressure [Pa] the start values belong to
@@ -81,7 +86,6 @@ def _press(tests) -> np.ndarray:
 def campaign_ring_data(campaign, tir) -> RingData:
     """:class:`~tyrelab.fit.ring.RingData` of a campaign and the property file written so far."""
     from .vertical import linear_stiffness
-    from .workflow import _tyre
     reference = tir.number("OPERATING_CONDITIONS", "INFLPRES", None)
     if not reference or not reference > 0:
         raise InputError("the ring fit needs the tyre's inflation pressure: give 'pressure' in the "
@@ -170,7 +174,6 @@ def fit_ring_step(campaign, tir, max_evaluations=MAX_EVALUATIONS, progress=None)
     """Identify the ring of ``campaign`` into ``tir`` (module doc); returns a
     :class:`~tyrelab.fit.workflow.StepResult`. ``progress(cost)`` after every model
     evaluation."""
-    from .workflow import FIT_SECTION, StepResult, _names, _row
     data = campaign_ring_data(campaign, tir)
     start = ring_start(data)
     rp, fitted, held = fit_ring(data, start=start, max_nfev=max_evaluations, progress=progress)
@@ -187,9 +190,9 @@ def fit_ring_step(campaign, tir, max_evaluations=MAX_EVALUATIONS, progress=None)
         return float(np.sqrt(np.mean(e ** 2))) if e.size else None
 
     held_loads = {f"{p / 1e3:g} kPa press": rms(held, "load", p) for p in sorted(data.held_loads)}
-    res.rows.append(_row("ring", "plate load-deflection", ", ".join(f"{p / 1e3:g}" for p in data.pressures)
-                         + " kPa", "-", rms(fitted, "load"), held_loads or None, src,
-                         "static press on a plate (3.3.1), % of the load"))
+    pressures = ", ".join(f"{p / 1e3:g}" for p in data.pressures) + " kPa"
+    res.rows.append(_row("ring", "plate load-deflection", pressures, "-", rms(fitted, "load"),
+                         held_loads or None, src, "static press on a plate (3.3.1), % of the load"))
     res.rows.append(_row("ring", "modes 2, 3 (fitted), 4-6 (held out)", "frequency", "-",
                          rms(fitted, "mode"), {"modes 4-6": rms(held, "mode")}, _names(modal),
                          "ring modal analysis vs Table 3-3, % of the frequency"))

@@ -38,19 +38,15 @@ from ..tyre.tir import TirFile
 from . import lab_files as lf
 from .campaign import Campaign
 from .property_file import FIT_SECTION, start_tir, tidy
+from .step_result import ERROR_UNITS, StepResult, shown  # noqa: F401  (the report imports shown here)
+from .step_result import fitted_tyre as _tyre
+from .step_result import summary_row as _row
+from .step_result import test_names as _names
+from .step_result import tyre_dimension as _dimension
 
 STEPS = ("vertical", "damping", "patch", "shape", "ring")
 #: analytic models whose cleat loads are predicted
 MODELS = ("point", "volume", "enveloping")
-
-@dataclass
-class StepResult:
-    """What one step fitted: rows of the summary, notes, and the arrays its figures draw."""
-
-    name: str
-    rows: list = field(default_factory=list)      # dicts: parameter, value, unit, rms, held_out, source
-    notes: list = field(default_factory=list)
-    data: dict = field(default_factory=dict)
 
 
 @dataclass
@@ -61,49 +57,6 @@ class FitResult:
     tir: TirFile
     steps: dict = field(default_factory=dict)
     notes: list = field(default_factory=list)
-
-
-#: unit of each step's errors (fitted RMS and held-out errors)
-ERROR_UNITS = {"vertical": "N", "damping": "m", "patch": "m", "shape": "-", "cleats": "N", "ring": "%"}
-
-
-def _row(step, parameter, value, unit, rms=None, held_out=None, source="", equation=""):
-    """A summary row: ``held_out`` maps a held-out file to its error (RMS, in the step's unit)."""
-    return {"parameter": parameter, "value": value, "unit": unit, "rms": rms, "held_out": held_out,
-            "source": source, "equation": equation, "error_unit": ERROR_UNITS[step]}
-
-
-def shown(value, unit="") -> str:
-    """A value as a person reads it: N/mm, N s/mm and mm for the SI N/m, N s/m and m."""
-    if value is None:
-        return ""
-    if isinstance(value, str):
-        return value
-    scale, word = {"N/m": (1e-3, "N/mm"), "N s/m": (1e-3, "N s/mm"), "m": (1e3, "mm"),
-                   "-": (1.0, "")}.get(unit, (1.0, unit))
-    return f"{value * scale:.4g} {word}".strip()
-
-
-def _names(tests) -> str:
-    return ", ".join(t.name for t in tests)
-
-
-def _dimension(tir: TirFile, key: str, step: str) -> float:
-    value = tir.number("DIMENSION", key, None)
-    if value is None or not value > 0:
-        raise InputError(f"the {step} fit needs the tyre's {key}: give it in the manifest's [tyre] "
-                         "table, or a base property file (--into)", source=tir.source, field=key)
-    return value
-
-
-def _tyre(tir: TirFile, step: str):
-    from ..tyre.params import Tyre
-    _dimension(tir, "UNLOADED_RADIUS", step)
-    if not (tir.has("VERTICAL", "VERTICAL_STIFFNESS") or tir.table("DEFLECTION_LOAD_CURVE") is not None):
-        raise InputError(f"the {step} fit needs the tyre's vertical law: fit the vertical step first "
-                         "(a load_deflection test) or start from a property file (--into)",
-                         source=tir.source, field="VERTICAL")
-    return Tyre.from_tir(tir, name="fitted")
 
 
 # --- the steps -----------------------------------------------------------------------------
@@ -196,10 +149,10 @@ def fit_damping_step(campaign: Campaign, tir: TirFile) -> StepResult:
     rms = float(np.sqrt(np.mean([r.rms ** 2 for r in res.data["fits"]])))
     tir.set(FIT_SECTION, "DROP_RMS_M", rms)
     held = {}
-    fitted_tyre = _tyre(tir, "damping")
+    refitted = _tyre(tir, "damping")
     for t in (t for t in tests if t.use == "held_out"):
-        geometry, _, _ = _trailer_pendulum(t, fitted_tyre)
-        miss = simulated_drop(fitted_tyre, t.time, t.load_case, geometry) - t.displacement
+        geometry, _, _ = _trailer_pendulum(t, refitted)
+        miss = simulated_drop(refitted, t.time, t.load_case, geometry) - t.displacement
         held[t.name] = float(np.std(miss))          # the trace's zero is arbitrary, as in the fit
     res.rows.append(_row("damping", "VERTICAL_DAMPING", c, "N s/m", rms, held or None, _names(fit),
                          "trailer drop test simulated and fitted to the trace (3.4.1)"))

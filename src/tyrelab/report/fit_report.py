@@ -333,7 +333,8 @@ def figure_count(result) -> int:
     """How many figures :func:`report_html` draws (for a progress bar)."""
     from ..fit import lab_files as lf
     s, c = result.steps, result.campaign
-    n = ("vertical" in s) + ("shape" in s) + ("ring" in s) + len(c.of(lf.FootprintImage)) + len(c.of(lf.DynamicCleat))
+    n = ("vertical" in s) + ("shape" in s) + ("ring" in s)
+    n += len(c.of(lf.FootprintImage)) + len(c.of(lf.DynamicCleat))
     n += len(s["damping"].data["fits"]) if "damping" in s else 0
     n += (("length_fit" in s["patch"].data) + ("width_table" in s["patch"].data)) if "patch" in s else 0
     n += len(s["cleats"].data["predictions"]) if "cleats" in s else 0
