@@ -143,7 +143,9 @@ def road_height(road, x, y):
     return (z00 * (1.0 - fx) + z10 * fx) * (1.0 - fy) + (z01 * (1.0 - fx) + z11 * fx) * fy
 
 
-@nb.njit(cache=True)
+# inlined, as road_penetration: no call (and no reference counting) per query in
+# the ring's compiled contact loops
+@nb.njit(cache=True, inline="always")
 def road_height_gradient(road, x, y):
     """Height and its gradient ``(h, dh/dx, dh/dy)`` of the bilinear surface.
 
@@ -169,6 +171,38 @@ def road_height_gradient(road, x, y):
     if uy <= 0.0 or uy >= ny - 1:
         gy = 0.0
     return h, gx, gy
+
+
+@nb.njit(cache=True, inline="always")
+def road_penetration(road, x, y, zq):
+    """``(h - zq, h, dh/dx, dh/dy)`` at (x, y), the gradient only where ``h > zq``.
+
+    The same height and gradient as :func:`road_height_gradient` (the same
+    arithmetic); where the point at height ``zq`` is above the road
+    (``h <= zq``) the gradient is not computed and returned as 0.
+    """
+    z = road.z
+    ux = (x - road.x0) * road.inv_dx
+    uy = (y - road.y0) * road.inv_dy
+    nx = z.shape[0]
+    ny = z.shape[1]
+    i, fx = _locate(ux, nx)
+    j, fy = _locate(uy, ny)
+    z00 = z[i, j]
+    z10 = z[i + 1, j]
+    z01 = z[i, j + 1]
+    z11 = z[i + 1, j + 1]
+    h = (z00 * (1.0 - fx) + z10 * fx) * (1.0 - fy) + (z01 * (1.0 - fx) + z11 * fx) * fy
+    p = h - zq
+    if p <= 0.0:
+        return p, h, 0.0, 0.0
+    gx = ((z10 - z00) * (1.0 - fy) + (z11 - z01) * fy) * road.inv_dx
+    gy = ((z01 - z00) * (1.0 - fx) + (z11 - z10) * fx) * road.inv_dy
+    if ux <= 0.0 or ux >= nx - 1:
+        gx = 0.0
+    if uy <= 0.0 or uy >= ny - 1:
+        gy = 0.0
+    return p, h, gx, gy
 
 
 @nb.njit(cache=True)

@@ -46,7 +46,8 @@ from .tread import (ACC_DEFL, ACC_FX, ACC_FY, ACC_FZ, ACC_NX, ACC_NY, ACC_NZ, AC
                     segment_contact)
 
 
-@nb.njit(cache=True)
+# inlined into ring_advance: a call copies the records' several hundred fields
+@nb.njit(cache=True, inline="always")
 def ring_substep(params, state, road, pose, arx, ary, arz, domega, h, patch_decay):
     """One internal step of length h at ``pose`` (centre at this step's start).
 
@@ -55,20 +56,54 @@ def ring_substep(params, state, road, pose, arx, ary, arz, domega, h, patch_deca
     contact patch's Maxwell element over the step. Returns the loads on the
     rim ``(Fx, Fy, Fz, Mx, My, Mz)`` (world, moment about the centre) at the
     start of the step.
+
+    :func:`ring_kick` evaluates the forces and gives the kick (with the
+    chords' implicit solve); then the out-of-plane implicit solve (which
+    factorises, allocating, when the step length changes) and the drift.
+    """
+    rim = ring_kick(params, state, road, pose, arx, ary, arz, domega, h, patch_decay)
+    lateral_implicit(params, state, h)
+    p1s, p2s, v1s, v2s = state.p1, state.p2, state.v1, state.v2
+    ys, vys, bs, vbs = state.y, state.vy, state.beta, state.vbeta
+    for i in range(params.n_segments):
+        p1s[i] += h * v1s[i]
+        p2s[i] += h * v2s[i]
+        ys[i] += h * vys[i]
+        bs[i] += h * vbs[i]
+    kin = state.kinematics
+    kin[KIN_PSI] = kin[KIN_PSI] + pose.omega * h
+    return rim
+
+
+# Compiled without reference counting (numba's ``_nrt=False`` flag, which the
+# functions it calls inherit when they are compiled for it): it allocates
+# nothing (numba refuses to compile an allocation under this flag) and only
+# borrows the arrays of its records, which its caller holds. With reference
+# counting, each record handed to an inlined helper in the contact loops
+# (segment_can_touch, segment_contact, local_zmax, ...) took and dropped a
+# reference to every array in it (atomic operations that numba's pruning
+# left in place): a fifth of a trailer step on the Belgian paving
+# (docs/ring.md, "Performance").
+@nb.njit(cache=True, _nrt=False)
+def ring_kick(params, state, road, pose, arx, ary, arz, domega, h, patch_decay):
+    """The forces of one internal step (:func:`ring_substep`) and the kick they give.
+
+    Evaluates the foundation, belt, inertial and tread-contact forces and the
+    contact patch's Maxwell element, updates the velocities (symplectic
+    Euler, Coriolis as an exact rotation) and solves the chords' extension
+    implicitly. Returns the loads on the rim at the start of the step.
     """
     n = params.n_segments
     m = params.segment_mass
     jt = params.segment_twist_inertia
     cx, cy, cz = pose.cx, pose.cy, pose.cz
     ax, ay, az = pose.ax, pose.ay, pose.az
-    vx, vy, vz = pose.vx, pose.vy, pose.vz
     omega = pose.omega
     p1s, p2s, v1s, v2s = state.p1, state.p2, state.v1, state.v2
-    ys, vys, bs, vbs = state.y, state.vy, state.beta, state.vbeta
+    vys, vbs = state.vy, state.vbeta
     f1, f2, fy, fb = state.f1, state.f2, state.fy, state.fb
     acc = state.patch
     kin = state.kinematics
-    in_reach = state.in_reach
     cos_t = params.cos_theta
     sin_t = params.sin_theta
     # rotating axes: E1 = cos(psi) f - sin(psi) up, E2 = sin(psi) f + cos(psi) up,
@@ -138,6 +173,70 @@ def ring_substep(params, state, road, pose, arx, ary, arz, domega, h, patch_deca
     w0 = acc[ACC_W]
     px0, py0, pz0 = acc[ACC_PX], acc[ACC_PY], acc[ACC_PZ]
     nx0, ny0, nz0 = acc[ACC_NX], acc[ACC_NY], acc[ACC_NZ]
+    tread_contact(params, state, road, pose, e1x, e1y, e1z, e2x, e2y, e2z, fwx, fwy, fwz, h)
+    # the contact patch's Maxwell element, between the road and the rim at the
+    # patch's centre, along its mean normal (this step's sums)
+    fn = acc[ACC_W] - w0
+    f_patch = patch_hysteresis(params, state, fn, patch_decay)
+    if f_patch != 0.0:
+        gx = acc[ACC_NX] - nx0
+        gy = acc[ACC_NY] - ny0
+        gz = acc[ACC_NZ] - nz0
+        gl = math.sqrt(gx * gx + gy * gy + gz * gz)
+        gx *= f_patch / gl
+        gy *= f_patch / gl
+        gz *= f_patch / gl
+        lx = (acc[ACC_PX] - px0) / fn - cx
+        ly = (acc[ACC_PY] - py0) / fn - cy
+        lz = (acc[ACC_PZ] - pz0) / fn - cz
+        rim_fx += gx
+        rim_fy += gy
+        rim_fz += gz
+        rim_mx += ly * gz - lz * gy
+        rim_my += lz * gx - lx * gz
+        rim_mz += lx * gy - ly * gx
+        acc[ACC_FX] += gx
+        acc[ACC_FY] += gy
+        acc[ACC_FZ] += gz
+    # symplectic Euler; Coriolis as an exact rotation of the in-plane velocity;
+    # the stiff belt terms implicitly after the kick (.implicit)
+    relax = 1.0 / (1.0 + h * params.relax_rate)
+    cr = math.cos(2.0 * omega * h)
+    sr = math.sin(2.0 * omega * h)
+    hm = h / m
+    hj = h / jt
+    for i in range(n):
+        # Boris splitting: half kick, rotation, half kick (no energy drift)
+        v1 = v1s[i] + 0.5 * hm * f1[i]
+        v2 = v2s[i] + 0.5 * hm * f2[i]
+        v1s[i] = (cr * v1 - sr * v2 + 0.5 * hm * f1[i]) * relax
+        v2s[i] = (sr * v1 + cr * v2 + 0.5 * hm * f2[i]) * relax
+        vys[i] = (vys[i] + hm * fy[i]) * relax
+        vbs[i] = (vbs[i] + hj * fb[i]) * relax
+    chord_implicit(params, state, h)
+    return rim_fx, rim_fy, rim_fz, rim_mx, rim_my, rim_mz
+
+
+# inlined into ring_kick, so compiled without reference counting
+@nb.njit(cache=True, inline="always")
+def tread_contact(params, state, road, pose, e1x, e1y, e1z, e2x, e2y, e2z, fwx, fwy, fwz, h):
+    """The road's forces on the blocks of every segment within its reach, added to the belt.
+
+    ``e1, e2`` the rotating in-plane axes, ``fw`` the wheel's forward
+    direction, ``h`` the step. Adds each segment's contact force to
+    ``state.f1, f2, fy`` and twist moment to ``state.fb``, updates the
+    blocks (:func:`~.tread.segment_contact`) and ``state.in_reach``, and adds
+    the contact-patch sums into ``state.patch``.
+    """
+    n = params.n_segments
+    p1s, p2s, v1s, v2s = state.p1, state.p2, state.v1, state.v2
+    ys, vys, bs, vbs = state.y, state.vy, state.beta, state.vbeta
+    f1, f2, fy, fb = state.f1, state.f2, state.fy, state.fb
+    in_reach = state.in_reach
+    cx, cy, cz = pose.cx, pose.cy, pose.cz
+    ax, ay, az = pose.ax, pose.ay, pose.az
+    vx, vy, vz = pose.vx, pose.vy, pose.vz
+    omega = pose.omega
     # the highest road under the whole wheel (every window segment_can_touch
     # looks at for a twist up to 1 rad): segments above it, most of the belt,
     # are passed over without a road query of their own
@@ -194,54 +293,6 @@ def ring_substep(params, state, road, pose, arx, ary, arz, domega, h, patch_deca
         f2[i] += bfx * e2x + bfy * e2y + bfz * e2z
         fy[i] += bfx * ax + bfy * ay + bfz * az
         fb[i] += btw
-    # the contact patch's Maxwell element, between the road and the rim at the
-    # patch's centre, along its mean normal (this step's sums)
-    fn = acc[ACC_W] - w0
-    f_patch = patch_hysteresis(params, state, fn, patch_decay)
-    if f_patch != 0.0:
-        gx = acc[ACC_NX] - nx0
-        gy = acc[ACC_NY] - ny0
-        gz = acc[ACC_NZ] - nz0
-        gl = math.sqrt(gx * gx + gy * gy + gz * gz)
-        gx *= f_patch / gl
-        gy *= f_patch / gl
-        gz *= f_patch / gl
-        lx = (acc[ACC_PX] - px0) / fn - cx
-        ly = (acc[ACC_PY] - py0) / fn - cy
-        lz = (acc[ACC_PZ] - pz0) / fn - cz
-        rim_fx += gx
-        rim_fy += gy
-        rim_fz += gz
-        rim_mx += ly * gz - lz * gy
-        rim_my += lz * gx - lx * gz
-        rim_mz += lx * gy - ly * gx
-        acc[ACC_FX] += gx
-        acc[ACC_FY] += gy
-        acc[ACC_FZ] += gz
-    # symplectic Euler; Coriolis as an exact rotation of the in-plane velocity;
-    # the stiff belt terms implicitly after the kick (.implicit)
-    relax = 1.0 / (1.0 + h * params.relax_rate)
-    cr = math.cos(2.0 * omega * h)
-    sr = math.sin(2.0 * omega * h)
-    hm = h / m
-    hj = h / jt
-    for i in range(n):
-        # Boris splitting: half kick, rotation, half kick (no energy drift)
-        v1 = v1s[i] + 0.5 * hm * f1[i]
-        v2 = v2s[i] + 0.5 * hm * f2[i]
-        v1s[i] = (cr * v1 - sr * v2 + 0.5 * hm * f1[i]) * relax
-        v2s[i] = (sr * v1 + cr * v2 + 0.5 * hm * f2[i]) * relax
-        vys[i] = (vys[i] + hm * fy[i]) * relax
-        vbs[i] = (vbs[i] + hj * fb[i]) * relax
-    chord_implicit(params, state, h)
-    lateral_implicit(params, state, h)
-    for i in range(n):
-        p1s[i] += h * v1s[i]
-        p2s[i] += h * v2s[i]
-        ys[i] += h * vys[i]
-        bs[i] += h * vbs[i]
-    kin[KIN_PSI] = psi + omega * h
-    return rim_fx, rim_fy, rim_fz, rim_mx, rim_my, rim_mz
 
 
 @nb.njit(cache=True, inline="always")

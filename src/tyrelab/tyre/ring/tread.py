@@ -42,7 +42,7 @@ from typing import NamedTuple
 
 import numba as nb
 
-from ...road.grid import local_zmax, road_height_gradient
+from ...road.grid import local_zmax, road_height_gradient, road_penetration
 
 #: contact-patch sums of a step (``RingState.patch``, world frame): force of the
 #: road on the blocks, normal-force-weighted contact point and normal, total
@@ -191,8 +191,8 @@ def segment_contact(params, road, state, i, seg, motion, pose, fwx, fwy, fwz, h)
                     qx = bx0 + u * tx + w * ax
                     qy = by0 + u * ty + w * ay
                     qz = bz0 + u * tz + w * az
-                    gq, gxq, gyq = road_height_gradient(road, qx, qy)
-                    pq = gq - qz
+                    # the gradient only where the sample is below the road
+                    pq, gq, gxq, gyq = road_penetration(road, qx, qy, qz)
                     if pq > 0.0:
                         sw += pq
                         sx += pq * qx
