@@ -112,7 +112,7 @@ def campaign_ring_data(campaign, tir) -> RingData:
     modes = pd.concat([t.table for t in modal], ignore_index=True)
     fitted = {p: _press(ts) for p, ts in groups["fit"].items()}
     held = {p: _press(ts) for p, ts in groups["held_out"].items()}
-    for group, what in ((fitted, "fit"), (held, "held_out")):
+    for group in (fitted, held):
         for p in list(group):
             if np.isclose(p, reference):  # the tyre's own pressure, exactly
                 group[reference] = group.pop(p)
@@ -178,7 +178,7 @@ def fit_ring_step(campaign, tir, max_evaluations=MAX_EVALUATIONS, progress=None)
     start = ring_start(data)
     rp, fitted, held = fit_ring(data, start=start, max_nfev=max_evaluations, progress=progress)
     res = StepResult("ring", data={"fitted": fitted, "held": held, "data": data})
-    loads = [t for t in campaign.of(lf.LoadDeflection)]
+    loads = campaign.of(lf.LoadDeflection)
     modal = [t for t in campaign.of(lf.ModalResults) if t.use == "fit"]
     src = _names([t for t in loads if t.use == "fit"] + modal)
 
@@ -209,7 +209,7 @@ def fit_ring_step(campaign, tir, max_evaluations=MAX_EVALUATIONS, progress=None)
         res.notes.append(f"ring: presses at {data.pressures[0] / 1e3:g} kPa only: each foundation's "
                          "pressure rate is scaled with its constant part (their split is the XZL's); "
                          "a press at a second pressure identifies it")
-    runs = [t for t in campaign.of(lf.DynamicCleat)]
+    runs = campaign.of(lf.DynamicCleat)
     if runs:
         fit_runs = [cleat_run(t) for t in runs if t.use == "fit"]
         other = [cleat_run(t) for t in runs if t.use != "fit"]
