@@ -46,7 +46,7 @@ from .ring_dynamic import CleatRun, fit_ring_damping, run_table
 from .step_result import StepResult
 from .step_result import fitted_tyre as _tyre
 from .step_result import summary_row as _row
-from .step_result import test_names as _names
+from .step_result import file_names as _names
 
 #: the XZL's vertical stiffness at 300 kPa [N/m] (thesis 4.2), its width [m],
 #: carcass mass [kg] and the pressure [Pa] the start values belong to

@@ -39,8 +39,9 @@ def shown(value, unit="") -> str:
     return f"{value * scale:.4g} {word}".strip()
 
 
-def test_names(tests) -> str:
-    return ", ".join(t.name for t in tests)
+def file_names(tests) -> str:
+    """The tests' file names, each once (one file may hold several tests, as a table per pressure)."""
+    return ", ".join(dict.fromkeys(t.name for t in tests))
 
 
 def tyre_dimension(tir: TirFile, key: str, step: str) -> float:

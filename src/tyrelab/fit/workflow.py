@@ -41,7 +41,7 @@ from .property_file import FIT_SECTION, start_tir, tidy
 from .step_result import ERROR_UNITS, StepResult, shown  # noqa: F401  (the report imports shown here)
 from .step_result import fitted_tyre as _tyre
 from .step_result import summary_row as _row
-from .step_result import test_names as _names
+from .step_result import file_names as _names
 from .step_result import tyre_dimension as _dimension
 
 STEPS = ("vertical", "damping", "patch", "shape", "ring")
