@@ -126,7 +126,7 @@ class RingState(NamedTuple):
     [m/s] in the rotating wheel-plane axes, lateral displacement ``y`` [m]
     and velocity ``vy``, twist ``beta`` [rad] and its rate ``vbeta``;
     ``patch_relaxed[0]`` [N], the relaxed normal force ``r`` of the
-    contact patch's Maxwell element (:func:`~.kernel.patch_hysteresis`).
+    contact patch's Maxwell element (:func:`~.road_forces.patch_hysteresis`).
     Per block (N*NB): tangential tip deflections ``s1, s2`` [m] in the road
     plane, and ``block_force`` [N], each block's normal force at the end of
     the last step (footprints, pressure maps). ``kinematics`` holds the
