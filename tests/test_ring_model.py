@@ -122,3 +122,25 @@ def test_tyre_without_ring_section_is_an_input_error(tmp_path):
     other = dataclasses.replace(tyre, name="other")
     with pytest.raises(InputError, match="FLEXIBLE_RING"):
         ring_params(other, None)
+
+
+def test_an_unconverged_equilibrium_says_so(monkeypatch):
+    """The static equilibrium search held to 2 corrections and a tolerance no float meets: one
+    PhysicsWarning with the force reached, and the state returned is the one pressed at the
+    height returned (its block forces carry the force the warning reports). At the default
+    tolerance the same search is silent."""
+    import warnings
+
+    from tyrelab.guards import PhysicsWarning
+    from tyrelab.tyre.ring import model
+    tyre = load_tyre("xzl-16.00R20")
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", PhysicsWarning)
+        model.ring_static_equilibrium(tyre, 23291.0 + 0.123)
+    monkeypatch.setattr(model, "EQUILIBRIUM_TOLERANCE", 1e-15)
+    monkeypatch.setattr(model, "EQUILIBRIUM_ITERATIONS", 2)
+    with pytest.warns(PhysicsWarning, match=r"static equilibrium under 23\.29 kN ended at") as rec:
+        height, state = model.ring_static_equilibrium(tyre, 23291.0 + 0.456)
+    reached = float(str(rec[0].message).split("ended at ")[1].split(" kN")[0]) * 1e3
+    assert float(state.block_force.sum()) == pytest.approx(reached, rel=1e-3)
+    assert 0.6 < height < tyre.unloaded_radius

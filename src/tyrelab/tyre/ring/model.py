@@ -168,6 +168,9 @@ def nominal_state(params: RingParams) -> RingState:
 _CACHE: dict = {}
 #: static and rolling equilibria are found to this share of the load
 EQUILIBRIUM_TOLERANCE = 2e-4
+#: secant corrections of the static and the rolling equilibrium at most
+EQUILIBRIUM_ITERATIONS = 8
+ROLLING_ITERATIONS = 6
 #: rolling equilibrium: settling time, then each correction rolls twice this window [s]
 ROLL_SETTLE = 0.6
 ROLL_WINDOW = 0.2
@@ -179,6 +182,21 @@ def _cached(key, make):
             _CACHE.clear()
         _CACHE[key] = make()
     return _CACHE[key]
+
+
+def unconverged_equilibrium(kind: str, force: float, load: float) -> None:
+    """Warn (:class:`~tyrelab.guards.PhysicsWarning`, one line) when an equilibrium search
+    ended outside :data:`EQUILIBRIUM_TOLERANCE`: the rig then starts off equilibrium by
+    that much, and says so."""
+    if abs(force - load) < EQUILIBRIUM_TOLERANCE * load:
+        return
+    import warnings
+
+    from ...guards import PhysicsWarning
+    warnings.warn(f"the ring's {kind} equilibrium under {load / 1e3:.4g} kN ended at "
+                  f"{force / 1e3:.4g} kN ({100 * (force / load - 1):+.3g} %, tolerance "
+                  f"{100 * EQUILIBRIUM_TOLERANCE:g} %): the run starts that far from equilibrium; "
+                  "check the ring's parameters", PhysicsWarning, stacklevel=2)
 
 
 def ring_static_equilibrium(tyre, load, tread_pattern=False, **options):
@@ -203,11 +221,13 @@ def ring_static_equilibrium(tyre, load, tread_pattern=False, **options):
         h0 = tyre.unloaded_radius - tyre.static_deflection(load)
         f0 = float(settle(rp, state, road, [h0])[0, 2])
         h1 = h0 - (load - f0) / max(tyre.vertical_stiffness, 1.0)
-        for _ in range(8):
+        for k in range(EQUILIBRIUM_ITERATIONS):
             f1 = float(settle(rp, state, road, [h1], start=h1)[0, 2])
-            if abs(f1 - load) < EQUILIBRIUM_TOLERANCE * load or f1 == f0:
+            if abs(f1 - load) < EQUILIBRIUM_TOLERANCE * load or f1 == f0 \
+                    or k == EQUILIBRIUM_ITERATIONS - 1:  # the state stays the one at h1
                 break
             h0, f0, h1 = h1, f1, h1 - (load - f1) * (h1 - h0) / (f0 - f1)
+        unconverged_equilibrium("static", f1, load)
         return h1, state
 
     height, state = _cached(("static", params_key(rp), round(load, 6)), make)
@@ -279,12 +299,14 @@ def ring_equilibrium(tyre, load, speed, params, tread_pattern=False, **options):
         roll_in_place(wheel, h, speed, inertia, motion, n_settle, dt)
         f0, h0 = roll_in_place(wheel, h, speed, inertia, motion, n, dt), h
         h = h - (load - f0) / max(tyre.vertical_stiffness, 1.0)
-        for _ in range(6):
+        for k in range(ROLLING_ITERATIONS):
             roll_in_place(wheel, h, speed, inertia, motion, n, dt)  # settle after the move
             f1 = roll_in_place(wheel, h, speed, inertia, motion, n, dt)
-            if abs(f1 - load) < EQUILIBRIUM_TOLERANCE * load or f1 == f0:
+            if abs(f1 - load) < EQUILIBRIUM_TOLERANCE * load or f1 == f0 \
+                    or k == ROLLING_ITERATIONS - 1:  # the state stays the one at h
                 break
             h0, f0, h = h, f1, h - (load - f1) * (h - h0) / (f0 - f1)
+        unconverged_equilibrium(f"rolling ({speed * 3.6:.4g} km/h)", f1, load)
         return r0 - h, float(motion[1]), st
 
     deflection, spin, st = _cached(("rolling", params_key(params), round(load, 6),
