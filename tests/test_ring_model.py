@@ -125,7 +125,8 @@ def test_tyre_without_ring_section_is_an_input_error(tmp_path):
 
 
 def test_an_unconverged_equilibrium_says_so(monkeypatch):
-    """The static equilibrium search held to 2 corrections and a tolerance no float meets: one
+    """The static equilibrium search held to 2 corrections, a tolerance and a warning threshold
+    no float meets: one
     PhysicsWarning with the force reached, and the state returned is the one pressed at the
     height returned (its block forces carry the force the warning reports). At the default
     tolerance the same search is silent."""
@@ -138,6 +139,7 @@ def test_an_unconverged_equilibrium_says_so(monkeypatch):
         warnings.simplefilter("error", PhysicsWarning)
         model.ring_static_equilibrium(tyre, 23291.0 + 0.123)
     monkeypatch.setattr(model, "EQUILIBRIUM_TOLERANCE", 1e-15)
+    monkeypatch.setattr(model, "EQUILIBRIUM_WARNING", 1e-15)
     monkeypatch.setattr(model, "EQUILIBRIUM_ITERATIONS", 2)
     with pytest.warns(PhysicsWarning, match=r"static equilibrium under 23\.29 kN ended at") as rec:
         height, state = model.ring_static_equilibrium(tyre, 23291.0 + 0.456)

@@ -168,6 +168,10 @@ def nominal_state(params: RingParams) -> RingState:
 _CACHE: dict = {}
 #: static and rolling equilibria are found to this share of the load
 EQUILIBRIUM_TOLERANCE = 2e-4
+#: an equilibrium search that ends further than this from the load is warned about: the
+#: rigs are tested to start flat within it (tests/test_fidelity.py); the rolling search at
+#: 3 km/h, LC2, ends at -0.085 % (the tread's stick renewal makes its windows noisy)
+EQUILIBRIUM_WARNING = 2e-3
 #: secant corrections of the static and the rolling equilibrium at most
 EQUILIBRIUM_ITERATIONS = 8
 ROLLING_ITERATIONS = 6
@@ -186,16 +190,16 @@ def _cached(key, make):
 
 def unconverged_equilibrium(kind: str, force: float, load: float) -> None:
     """Warn (:class:`~tyrelab.guards.PhysicsWarning`, one line) when an equilibrium search
-    ended outside :data:`EQUILIBRIUM_TOLERANCE`: the rig then starts off equilibrium by
-    that much, and says so."""
-    if abs(force - load) < EQUILIBRIUM_TOLERANCE * load:
+    ended further than :data:`EQUILIBRIUM_WARNING` from ``load`` (it aims at
+    :data:`EQUILIBRIUM_TOLERANCE`): the rig then starts off equilibrium by that much."""
+    if abs(force - load) < EQUILIBRIUM_WARNING * load:
         return
     import warnings
 
     from ...guards import PhysicsWarning
     warnings.warn(f"the ring's {kind} equilibrium under {load / 1e3:.4g} kN ended at "
-                  f"{force / 1e3:.4g} kN ({100 * (force / load - 1):+.3g} %, tolerance "
-                  f"{100 * EQUILIBRIUM_TOLERANCE:g} %): the run starts that far from equilibrium; "
+                  f"{force / 1e3:.4g} kN ({100 * (force / load - 1):+.3g} %, more than "
+                  f"{100 * EQUILIBRIUM_WARNING:g} %): the run starts that far from equilibrium; "
                   "check the ring's parameters", PhysicsWarning, stacklevel=2)
 
 
