@@ -1,0 +1,159 @@
+"""Project Chrono tyre templates whose vertical law is written out as keys in the JSON.
+
+``Pac89Tire`` (with its handling coefficients), ``FialaTire``, ``TMeasyTire`` and
+``TMsimpleTire`` (TMeasy's load-index estimate as Chrono's), ``RigidTire`` and
+``LugreTire``: each function turns a parsed JSON document
+(:class:`~.chrono_document._Document`) into the property file tyrelab builds the
+tyre from. The keys each reads and what it assumes are listed in
+:mod:`tyrelab.tyre.chrono_json`'s module docstring, which also reads the templates
+that name or embed an ADAMS property file (Pac02Tire, PacejkaTire, MFTire).
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from importlib import resources
+
+from ..errors import InputError
+from .chrono_document import _Builder, _comment, _Document, _kind
+from .tir import TirFile
+
+
+#: Chrono's TMeasy "engineer's guess": deflection at the load capacity per section height,
+#: damping ratio, and the g that turns a load index's mass into a force [m/s^2]
+GUESS_DEFLECTION_RATIO = 0.16
+GUESS_DAMPING_RATIO = 0.5
+GUESS_GRAVITY = 9.81
+
+
+def _load_index_table() -> tuple[float, ...]:
+    """Load capacity [kg] per load index, from ``data/load_index_kg.csv`` (Chrono's table)."""
+    text = resources.files("tyrelab.tyre").joinpath("data", "load_index_kg.csv").read_text()
+    rows = [line.split(",") for line in text.splitlines() if line and not line.startswith(("#", "load"))]
+    assert [int(r[0]) for r in rows] == list(range(len(rows)))
+    return tuple(float(r[1]) for r in rows)
+
+
+#: load capacity [kg] of each load index (index = position)
+LOAD_INDEX_KG = _load_index_table()
+
+_PAC89_SETS = (("Lateral Coefficients", "a", 14, "LATERAL_COEFFICIENTS", "A"),
+               ("Longitudinal Coefficients", "b", 11, "LONGITUDINAL_COEFFICIENTS", "B"),
+               ("Aligning Coefficients", "c", 18, "ALIGNING_COEFFICIENTS", "C"))
+
+def pac89_tir(doc: _Document) -> TirFile:
+    dp = ("Design Parameters",)
+    header = [*_comment(doc, "source's coefficient of friction", "Coefficient of Friction"),
+              *_comment(doc, "lateral stiffness [N/m]", *dp, "Lateral Stiffness"),
+              *_comment(doc, "rolling resistance coefficient", *dp, "Rolling Resistance"),
+              "$ Coefficients in the ADAMS/Bakker convention (Fz in kN, slip angle and camber in",
+              "$ degrees, longitudinal slip in percent)."]
+    b = _Builder(doc, "Pac89Tire", header)
+    b.put("MODEL", "PROPERTY_FILE_FORMAT", "PAC89")
+    b.put("MODEL", "TYRESIDE", "LEFT")
+    _, width = b.dimensions(dp + ("Unloaded Radius",), width_keys=dp + ("Width",))
+    b.mass_and_inertia()
+    b.vertical(dp + ("Vertical Stiffness",), dp + ("Vertical Damping",), dp + ("Vertical Curve Data",))
+    b.assumed_contact_patch(width)
+    for obj, letter, count, section, adams in _PAC89_SETS:
+        b.section(section, (obj,))
+        for i in range(count):
+            keys = (obj, f"{letter}{i}")
+            b.put(section, f"{adams}{i}", doc.number(*keys), keys)
+    return b.tir
+
+
+def fiala_tir(doc: _Document) -> TirFile:
+    fp = ("Fiala Parameters",)
+    header = [f"$ Fiala handling parameters ({name}) not used by tyrelab: {json.dumps(doc.value(*fp, name))}"
+              for name in ("CSLIP", "CALPHA", "UMIN", "UMAX", "Rolling Resistance")
+              if doc.has(*fp, name)]
+    b = _Builder(doc, "FialaTire", header)
+    _, width = b.dimensions(fp + ("Unloaded Radius",), width_keys=fp + ("Width",))
+    b.mass_and_inertia()
+    b.vertical(fp + ("Vertical Stiffness",), fp + ("Vertical Damping",), fp + ("Vertical Curve Data",))
+    b.assumed_contact_patch(width)
+    return b.tir
+
+
+def tmeasy_tir(doc: _Document, template: str) -> TirFile:
+    design = ("Design",)
+    b = _Builder(doc, template)
+    r0, width = b.dimensions(design + ("Unloaded Radius [m]",), width_keys=design + ("Width [m]",),
+                             rim_keys=design + ("Rim Radius [m]",))
+    rim = b.tir.sections["DIMENSION"].entries["RIM_RADIUS"]
+    b.mass_and_inertia(design + ("Mass [kg]",), design + ("Inertia [kg.m2]",))
+    mass = b.tir.sections["INERTIA"].entries["MASS"]
+    vert = ("Parameters", "Vertical")
+    if doc.has("Parameters"):
+        stiffness, curve = vert + ("Vertical Tire Stiffness [N/m]",), vert + ("Tire Spring Curve Data",)
+        if not doc.has(*stiffness) and not doc.has(*curve):
+            doc.value(*vert)  # names a missing 'Vertical'
+            raise doc.error("missing key 'Vertical Tire Stiffness [N/m]' (or 'Tire Spring Curve Data')",
+                            vert)
+        if doc.has(*stiffness):
+            b.put("VERTICAL", "VERTICAL_STIFFNESS", doc.number(*stiffness, positive=True), stiffness)
+            b.put("VERTICAL", "VERTICAL_DAMPING",
+                  doc.number(*vert, "Tire Vertical Damping [Ns/m]", minimum=0.0),
+                  vert + ("Tire Vertical Damping [Ns/m]",))
+        else:
+            b.vertical(stiffness, vert + ("Tire Vertical Damping [Ns/m]",), curve)
+    else:
+        if doc.has("Load Index"):
+            keys = ("Load Index",)
+            li = doc.number(*keys, minimum=0.0)
+            if li != int(li) or li >= len(LOAD_INDEX_KG):
+                raise doc.error(f"expected a whole load index 0-{len(LOAD_INDEX_KG) - 1}, found {li:g}", keys)
+            load = LOAD_INDEX_KG[int(li)] * GUESS_GRAVITY
+            what = f"load index {int(li)} ({LOAD_INDEX_KG[int(li)]:g} kg)"
+        elif doc.has("Maximum Bearing Capacity [N]"):
+            keys = ("Maximum Bearing Capacity [N]",)
+            load = doc.number(*keys, positive=True)
+            what = f"bearing capacity {load:g} N"
+        else:
+            raise InputError("no vertical data: expected 'Parameters' > 'Vertical', a 'Load Index' or a "
+                             "'Maximum Bearing Capacity [N]'", source=doc.source, field="Parameters")
+        k = load / (GUESS_DEFLECTION_RATIO * (r0 - rim))
+        c = 2.0 * GUESS_DAMPING_RATIO * math.sqrt(k * mass)
+        b.put("VERTICAL", "VERTICAL_STIFFNESS", k, keys)
+        b.put("VERTICAL", "VERTICAL_DAMPING", c, keys)
+        b.tir.header += [
+            f"$ Vertical law GUESSED as Chrono does from the {what}: stiffness = load /",
+            f"$ ({GUESS_DEFLECTION_RATIO:g} x (unloaded radius - rim radius)), damping = 2 x "
+            f"{GUESS_DAMPING_RATIO:g} x sqrt(stiffness x tyre mass)."]
+    if doc.has("Inflation Pressure Use [Pa]"):
+        keys = ("Inflation Pressure Use [Pa]",)
+        b.put("OPERATING_CONDITIONS", "INFLPRES", doc.number(*keys, positive=True), keys)
+    b.assumed_contact_patch(width)
+    return b.tir
+
+
+def rigid_tir(doc: _Document) -> TirFile:
+    coeffs = ("Contact Material", "Coefficients")
+    b = _Builder(doc, "RigidTire", [
+        "$ Vertical law: the Hooke coefficients of Chrono's penalty contact (Contact Material >",
+        "$ Coefficients > Normal Stiffness, Normal Damping) for one contact."])
+    _, width = b.dimensions(("Radius",), width_keys=("Width",))
+    b.mass_and_inertia()
+    b.vertical(coeffs + ("Normal Stiffness",), coeffs + ("Normal Damping",))
+    b.assumed_contact_patch(width)
+    return b.tir
+
+
+def lugre_tir(doc: _Document) -> TirFile:
+    keys = ("Disc Locations",)
+    discs = doc.value(*keys)
+    if not isinstance(discs, list) or len(discs) < 2:
+        raise doc.error(f"expected a list of at least two disc positions, found {_kind(discs)}", keys)
+    ys = [doc.check_number(v, keys) for v in discs]
+    width = abs(ys[0] - ys[-1])
+    if not width > 0:
+        raise doc.error("the first and last discs are at the same place: the tyre has no width", keys)
+    b = _Builder(doc, "LugreTire", ["$ Width: the span of the Lugre discs (as Chrono)."])
+    b.dimensions(("Radius",), width=width)
+    b.tir.sections["DIMENSION"].lines["WIDTH"] = doc.line(keys)
+    b.mass_and_inertia()
+    b.vertical(("Normal Stiffness",), ("Normal Damping",))
+    b.assumed_contact_patch(width)
+    return b.tir
