@@ -150,26 +150,9 @@ def road_height_gradient(road, x, y):
     """Height and its gradient ``(h, dh/dx, dh/dy)`` of the bilinear surface.
 
     Outside the grid the surface is flat (edge extension), so the gradient
-    across an edge is zero.
+    across an edge is zero. (:func:`road_penetration` below a point no road reaches.)
     """
-    z = road.z
-    ux = (x - road.x0) * road.inv_dx
-    uy = (y - road.y0) * road.inv_dy
-    nx = z.shape[0]
-    ny = z.shape[1]
-    i, fx = _locate(ux, nx)
-    j, fy = _locate(uy, ny)
-    z00 = z[i, j]
-    z10 = z[i + 1, j]
-    z01 = z[i, j + 1]
-    z11 = z[i + 1, j + 1]
-    h = (z00 * (1.0 - fx) + z10 * fx) * (1.0 - fy) + (z01 * (1.0 - fx) + z11 * fx) * fy
-    gx = ((z10 - z00) * (1.0 - fy) + (z11 - z01) * fy) * road.inv_dx
-    gy = ((z01 - z00) * (1.0 - fx) + (z11 - z10) * fx) * road.inv_dy
-    if ux <= 0.0 or ux >= nx - 1:
-        gx = 0.0
-    if uy <= 0.0 or uy >= ny - 1:
-        gy = 0.0
+    _, h, gx, gy = road_penetration(road, x, y, -math.inf)
     return h, gx, gy
 
 
