@@ -181,9 +181,12 @@ def _ring_bar(args):
     @contextmanager
     def bar():
         # least_squares evaluates the residuals once per step and once per free
-        # parameter for each finite-difference Jacobian: an upper bound
+        # parameter for each finite-difference Jacobian: an upper bound. No fixed position:
+        # tqdm puts it under `fit all`'s bar, and alone it is line 0, whose closing returns
+        # the cursor to the line's start (a bar at position 1 closes with the cursor past
+        # its cleared text, and the next message would be printed there)
         with tqdm(total=args.max_evaluations * (len(FREE) + 1), unit="model", desc="identifying ring",
-                  leave=False, position=1, delay=1.0) as b:
+                  leave=False, delay=1.0) as b:
             def step(cost):
                 b.update(1)
                 b.set_postfix(cost=f"{cost:.4g}")
