@@ -80,10 +80,12 @@ def test_builtin_campaign_parses_and_expands(tmp_path):
     assert spec.output == (tmp_path / "results").resolve()
     assert spec.tyres == (TyreSpec("xzl", "xzl-16.00R20", 300e3, True),)
     assert [m.name for m in spec.models] == ["OPC lk", "OPC nlk", "3D VC lk", "3D VC nlk", "3D ENV lk",
-                                             "3D ENV nlk", "FTire", "FTire TP"]
+                                             "3D ENV nlk", "3D ENV edge lk", "3D ENV edge nlk",
+                                             "FTire", "FTire TP"]
     assert [(m.contact, m.stiffness) for m in spec.models] == [
         ("point", "linear"), ("point", "table"), ("volume", "linear"), ("volume", "table"),
-        ("enveloping", "linear"), ("enveloping", "table"), ("ring", None), ("ring-tp", None)]
+        ("enveloping", "linear"), ("enveloping", "table"), ("enveloping-edge", "linear"),
+        ("enveloping-edge", "table"), ("ring", None), ("ring-tp", None)]
     runs = spec.runs()
     # conditions (test label, speed, load), counted by hand from the thesis's tables and figures:
     #   cleat 50x50 perpendicular 12/18/42 LC1 (3), cleat 50x50 oblique 12 LC2 (1),
@@ -91,11 +93,11 @@ def test_builtin_campaign_parses_and_expands(tmp_path):
     #   trapezoidal bump 3 LC2 (1)                                   -> 9 discrete obstacles
     #   belgian paving 3/18 LC1 + 3/11 LC2 (4), fatigue track the same (4),
     #   parallel corrugations 3 LC1 (1), angled corrugations 3 LC1 + 11 LC2 (2) -> 11 rough tracks
-    # 20 conditions x 8 models x 1 tyre = 160 runs (72 + 88)
-    assert len(runs) == 160
-    assert sum(r.group == "discrete obstacles" for r in runs) == 72
-    assert sum(r.group == "rough tracks" for r in runs) == 88
-    assert len(set(runs)) == 160
+    # 20 conditions x 10 models x 1 tyre = 200 runs (90 + 110)
+    assert len(runs) == 200
+    assert sum(r.group == "discrete obstacles" for r in runs) == 90
+    assert sum(r.group == "rough tracks" for r in runs) == 110
+    assert len(set(runs)) == 200
     conditions = {(r.test, round(r.speed_kmh, 9), r.load) for r in runs}
     # every condition of the thesis's Tables 5-2 to 5-14 (the labels of its metrics files)
     thesis = {("cleat 50x50 perpendicular", 12, "LC1"), ("cleat 50x50 perpendicular", 18, "LC1"),
@@ -129,7 +131,7 @@ def test_builtin_campaign_parses_and_expands(tmp_path):
                            "rough tracks": {"mean_error_pct": 10.0, "std_error_pct": 25.0}}
     # keys: one per run, all different (every run differs in something simulated)
     keys = spec.run_keys()
-    assert len(set(keys.values())) == 160
+    assert len(set(keys.values())) == 200
     assert all(len(k) == 16 and int(k, 16) >= 0 for k in keys.values())
 
 
@@ -186,7 +188,7 @@ BAD = [
     (26, 'reference = "B"', 26, "test[1].reference", "expected a table"),
     # unknown names, with the known ones listed
     (13, 'contact = "magic"', 13, "model[1].contact", "unknown contact model",
-     "point, volume, enveloping, ring, ring-tp"),
+     "point, volume, enveloping, enveloping-edge, ring, ring-tp"),
     (14, 'handling = "pacejka"', 14, "model[1].handling", "unknown handling model", "none, pac89, mf"),
     (14, 'handling = "pac89"', 14, "model[1].handling", "tyre 'xzl' has no pac89 coefficients", "A0"),
     (14, 'stiffness = "cubic"', 14, "model[1].stiffness", "unknown stiffness", "table, linear"),

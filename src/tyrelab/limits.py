@@ -29,7 +29,8 @@ MAX_WALL_TIME = 600.0
 #: wall time [s] per simulated second at a 1 ms step on one core, per contact model on
 #: the trailer (README benchmarks; the study runner orders its runs by it); others: by
 #: kind below
-MODEL_COST = {"point": 0.002, "volume": 0.015, "enveloping": 0.015, "ring": 0.2, "ring-tp": 0.22}
+MODEL_COST = {"point": 0.002, "volume": 0.015, "enveloping": 0.015, "enveloping-edge": 0.015,
+              "ring": 0.2, "ring-tp": 0.22}
 #: cost of an unknown analytic model / model with its own dynamics [s per simulated s at 1 ms]
 ANALYTIC_COST, DYNAMIC_COST = 0.015, 1.0
 #: internal step of the models with their own dynamics (the ring's, at 100 segments) [s]:

@@ -30,7 +30,9 @@ Sections, in order:
    group with its expected error (mean and worst |primary metric| over the
    group's runs), and what the rules set aside.
 5. **Against the thesis**: our metrics beside the thesis's and the rank
-   agreement (Spearman's rho per run), when the study has thesis rows.
+   agreement (Spearman's rho per run), when the study has thesis rows; and,
+   when the reference is the thesis's FTire TP stand-in, the consistency with
+   what the thesis measured (:mod:`.consistency_section`).
 6. **Accuracy against cost**: each model's wall time per simulated second
    against its mean error (a scatter), and the parameterization it needs.
 
@@ -59,6 +61,7 @@ import numpy as np
 import pandas as pd
 
 from .._version import __version__
+from .consistency_section import consistency_html
 from ..io_atomic import atomic_output
 from ..validate.compare import METRICS, THESIS_CLEAT, THESIS_TRACK
 from ..validate.tables import _fmt, summary_html, table_html
@@ -76,7 +79,7 @@ METRIC_COLUMNS = ["key", "reference", "tyre", "model", "contact", "test", "group
                   "disturbance_start_s", "disturbance_end_s", "response_start_s", "response_end_s",
                   "error"]
 _ATTRIBUTES = ("spec", "folder", "store", "reference_note", "summary", "thesis", "rank_agreement",
-               "cost", "signal")
+               "consistency", "cost", "signal")
 
 _STYLE = """body{font-family:system-ui,sans-serif;max-width:75em;margin:auto;padding:0 1em;color:#222}
 .reference-note{background:#fff3cd;border:2px solid #e0a800;padding:.6em 1em;font-weight:bold;margin:1em 0}
@@ -367,6 +370,7 @@ def _thesis(study) -> str:
         out.append(f"<p>Rank agreement with the thesis (Spearman's rho of the models' ranks per "
                    f"run and metric, 1 = same order): mean <b>{_num(ra.mean)}</b>.</p>")
         out.append(_frame_html(ra.per_run, "Rank agreement per run"))
+    out.append(consistency_html(getattr(study, "consistency", None)))
     return "\n".join(out) + "</section>\n"
 
 

@@ -105,9 +105,11 @@ import pandas as pd
 from ..errors import InputError
 from ..signal import atomic_output
 from ..validate.align import align
-from ..validate.compare import METRICS, THESIS_CLEAT, THESIS_TRACK, compare_aligned
+from ..validate.compare import (METRICS, THESIS_CLEAT, THESIS_TRACK, compare_aligned,
+                                response_signals)
 from ..validate.distributions import fit_normal
-from ..validate.metrics import FLOOR_FRACTION, match_peaks, relative_error_floor
+from ..validate.metrics import (FLOOR_FRACTION, RESPONSE_BAND_HZ, match_peaks,
+                                relative_error_floor)
 from ..validate.segments import (Segments, segments_from_contact, segments_from_contour,
                                  segments_from_signal)
 from ..validate.thesis import TABLE_5_15_ROWS
@@ -196,24 +198,26 @@ def disturbance_segments(ref: pd.DataFrame, obstacle: Obstacle | None, radius: f
 
 
 def near_zero_counts(aligned, seg: Segments | None, floor_fraction: float = FLOOR_FRACTION,
-                     peak_kind: str = "both") -> tuple[int, int]:
+                     peak_kind: str = "both",
+                     response_band_hz: float | None = RESPONSE_BAND_HZ) -> tuple[int, int]:
     """(denominators the near-zero floor replaced, denominators) of a comparison.
 
     The same cuts and floors as :func:`~tyrelab.validate.compare.compare_aligned`:
     with segments, the disturbance samples (floor from the disturbance) and the
-    matched response peaks (floor from the response); without, the measured
+    matched peaks of the response's oscillation (floor from it,
+    :func:`~tyrelab.validate.compare.response_signals`); without, the measured
     mean and standard deviation of eq. 5.4 (floor from the whole record).
     """
-    t, p, m = aligned.t, aligned.p, aligned.m
+    t, m = aligned.t, aligned.m
     if seg is None:
         floor = relative_error_floor(m, floor_fraction)
         mu, sigma = fit_normal(m)
         return int(abs(mu) < floor) + int(abs(sigma) < floor), 2
     md = m[seg.mask(t, "disturbance")]
     n = int(np.sum(np.abs(md) < relative_error_floor(md, floor_fraction)))
-    sel = seg.mask(t, "response")
-    _, mv, _, _ = match_peaks(p[sel], m[sel], peak_kind)
-    n += int(np.sum(np.abs(mv) < relative_error_floor(m[sel], floor_fraction)))
+    pr, mr = response_signals(aligned, seg, response_band_hz)
+    _, mv, _, _ = match_peaks(pr, mr, peak_kind)
+    n += int(np.sum(np.abs(mv) < relative_error_floor(mr, floor_fraction)))
     return n, int(md.size + mv.size)
 
 

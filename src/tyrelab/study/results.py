@@ -5,6 +5,7 @@
 >>> s.summary                             # thesis Table 5-15 form
 >>> s.thesis                              # our metrics beside the thesis's published ones
 >>> s.rank_agreement.mean                 # do we rank the models as the thesis did?
+>>> s.consistency.views["ours"]["counts"] # within the bound the thesis's numbers impose?
 >>> s.cost                                # wall time per simulated second, data each model needs
 >>> s.to_xarray()                         # metrics as a Dataset, dims model x condition
 
@@ -39,6 +40,8 @@ PARAMETERIZATION = {
     "volume": "load-deflection curve + carcass cross-section shape",
     "enveloping": "load-deflection curve + contact-patch length and width vs load "
                   "(footprints) + cam (ellipse) parameters from cleat tests",
+    "enveloping-edge": "as enveloping (the cams on the patch's edges only, as the thesis's "
+                       "ADAMS model)",
     "ring": "load-deflection curve + modal tests (belt eigenfrequencies) + static "
             "cleat tests + footprints",
     "ring-tp": "load-deflection curve + modal tests (belt eigenfrequencies) + static "
@@ -190,6 +193,26 @@ class Study:
             empty = pd.DataFrame(columns=[*keys, "n_models", *THESIS_METRICS, "rho"])
             return RankAgreement(empty, float("nan"))
         return rank_agreement(ours, theirs, by=keys, metrics=THESIS_METRICS)
+
+    @property
+    def consistency(self):
+        """Our campaign against what the thesis measured
+        (:class:`~tyrelab.validate.consistency.Consistency`: the triangle bound per cell,
+        its counts, the agreement with Table 5-15 and Spearman's ρ per metric), over the
+        tests whose reference is the thesis's FTire TP (a model of that label); None when
+        no test has it."""
+        from ..validate.consistency import REFERENCE, consistency
+        m = self.metrics
+        if "is_reference" not in m:
+            return None
+        own = m[m["is_reference"].astype(bool) & (m["model"] == REFERENCE)]
+        if own.empty:
+            return None
+        rows = self._model_rows()
+        rows = rows[rows["test"].isin(set(own["test"]))]
+        if rows.empty:
+            return None
+        return consistency(rows, self.summary)
 
     @property
     def reference_note(self) -> str:

@@ -5,7 +5,8 @@
 (:mod:`.segments`) when asked, and computes
 
 * the thesis metrics (chapter 5): m%RE, 80%RE and RMS error of the
-  disturbance, m%RE and RMS error of the matched response peaks, μ%err and
+  disturbance, m%RE and RMS error of the matched peaks of the response's
+  oscillation (:mod:`.metrics`, *The peaks of the oscillatory response*), μ%err and
   σ%err of normal fits (over the whole compared record);
 * the additional ones: Sprague-Geers and Russell magnitude/phase/combined
   errors of the dynamic part (both signals taken about the measured mean;
@@ -31,7 +32,8 @@ from .align import Aligned, align
 from .comprehensive import russell, sprague_geers
 from .distributions import normal_fit_errors
 from .fatigue import DEFAULT_SLOPE, peak_load_errors
-from .metrics import FLOOR_FRACTION, disturbance_errors, response_peak_errors
+from .metrics import (FLOOR_FRACTION, RESPONSE_BAND_HZ, disturbance_errors, oscillation,
+                      response_peak_errors)
 from .segments import Segments, segments_from_signal
 from .spectra import compare_psd, sample_rate
 
@@ -77,10 +79,24 @@ def _cut(aligned: Aligned, seg: Segments, which: str):
     return aligned.t[sel], aligned.p[sel], aligned.m[sel]
 
 
+def response_signals(aligned: Aligned, seg: Segments,
+                     band_hz: float | None = RESPONSE_BAND_HZ):
+    """``(p, m)`` of the response segment whose peaks are compared: its oscillation below
+    ``band_hz`` (:func:`.metrics.oscillation` of the response alone, so that nothing of
+    the disturbance leaks into it); ``band_hz`` None: the raw samples."""
+    t, p, m = _cut(aligned, seg, "response")
+    if band_hz is not None:
+        p, m = oscillation(t, p, band_hz), oscillation(t, m, band_hz)
+    return p, m
+
+
 def compare_aligned(aligned: Aligned, segments=None, slope: float = DEFAULT_SLOPE,
-                    floor_fraction: float = FLOOR_FRACTION, peak_kind: str = "both") -> dict:
+                    floor_fraction: float = FLOOR_FRACTION, peak_kind: str = "both",
+                    response_band_hz: float | None = RESPONSE_BAND_HZ) -> dict:
     """All metrics for an aligned pair; see the module docstring.
 
+    ``response_band_hz``: the response's peaks are those of the oscillation below this
+    frequency (:data:`.metrics.RESPONSE_BAND_HZ`, thesis 5.2; None: of the raw signal).
     Returns a dict of flat scalar metrics (keys of :data:`METRICS`, where
     they apply) plus ``"details"`` with the sub-results.
     """
@@ -92,7 +108,7 @@ def compare_aligned(aligned: Aligned, segments=None, slope: float = DEFAULT_SLOP
     if seg is not None:
         _, pd_, md_ = _cut(aligned, seg, "disturbance")
         dist = disturbance_errors(pd_, md_, floor_fraction=floor_fraction)
-        _, pr, mr = _cut(aligned, seg, "response")
+        pr, mr = response_signals(aligned, seg, response_band_hz)
         resp = response_peak_errors(pr, mr, kind=peak_kind, floor_fraction=floor_fraction)
         out.update({"mRE_disturbance_pct": dist["mRE_pct"], "RE80_disturbance_pct":
                     dist["RE80_pct"], "rms_disturbance_N": dist["rms"],

@@ -41,6 +41,26 @@ patch is therefore sized at no less than ``min_patch_deflection`` (default
 deflection at the lightest thesis load), so the cams stay apart and the plane
 is as continuous in the wheel's position as every cam height is.
 
+*The thesis's cams on the outline.* Schmeitz spreads the cams over the patch,
+and so does this model (``N_LENGTH`` over the base length, eq. 2.6, ``N_WIDTH``
+over the width). The thesis describes the ADAMS implementation it ran otherwise:
+"the cams were arranged on the outline of the contact patch" (4.4), "the road
+input is only evaluated on the edges of the contact patch. Obstacles on the
+inside of the contact patch were disregarded" (5.4) -- the cause it gives for
+the model's failure on the tracks, amplified by the XZL's long patch. (The ADAMS
+manual's words are that the cams' *shape* corresponds to the outside tyre
+contour in the contact zone; what ADAMS did cannot be settled from the thesis.)
+``cam_layout="outline"`` (the contact model ``enveloping-edge``) is the thesis's
+description: the cams stand where they stand here, equally spaced, but only
+those on the patch's outline enter the least-squares plane -- every cam of the
+outer rows (at the patch's sides, ``N_LENGTH`` each) and the first and last cam
+(at its leading and trailing edges) of every row between. A road that does not
+vary across (a perpendicular cleat, the bump) looks alike from every row, so
+there the outline weighs the front and rear cams more than the grid does; on a
+3D road (the Belgian paving, an oblique cleat) the inside of the patch is not
+seen. It runs in the built-in campaign beside this model as the thesis's
+"3D ENV" (docs/consistency.md).
+
 Property-file keys, ``[CONTACT_PATCH]`` (ADAMS PAC2002 names first, then the
 MF-Swift names that mean the same thing on these cams):
 
@@ -92,6 +112,8 @@ BLOCK = 0.05
 #: default floor of the deflection that sizes the patch, a fraction of R0 (module docstring)
 MIN_PATCH_DEFLECTION = 0.015
 _OTHER_OPTIONS = ("discs",)
+#: which cams make the effective plane: the whole grid, or only those on the patch's outline
+CAM_LAYOUTS = ("grid", "outline")
 
 
 class EnvelopingParams(NamedTuple):
@@ -121,7 +143,9 @@ class EnvelopingParams(NamedTuple):
     * ``block_per``: x cells per road block, ``row_block_max``: the road's
       maxima per block and pair of grid rows, shape (blocks, ny - 1)
       (:func:`tyrelab.tyre.contact.shape.block_maxima`), empty for a road of
-      two x nodes.
+      two x nodes;
+    * ``outline_only``: only the cams on the patch's outline enter the plane
+      (module docstring, *The thesis's cams on the outline*); False: every cam.
     """
 
     unloaded_radius: float
@@ -150,6 +174,7 @@ class EnvelopingParams(NamedTuple):
     width_table: np.ndarray
     block_per: int
     row_block_max: np.ndarray
+    outline_only: bool = False
 
 
 class EffectiveRoad(NamedTuple):
@@ -175,7 +200,8 @@ class EffectiveRoad(NamedTuple):
 
 
 def enveloping_params(tyre, grid, width_table=None, n_width=None, n_length=None,
-                      step=DEFAULT_STEP, min_patch_deflection=None, **options) -> EnvelopingParams:
+                      step=DEFAULT_STEP, min_patch_deflection=None, cam_layout="grid",
+                      **options) -> EnvelopingParams:
     """The enveloping model's record: contact-patch laws, cam tables, the road's block maxima.
 
     Parameters
@@ -194,12 +220,19 @@ def enveloping_params(tyre, grid, width_table=None, n_width=None, n_length=None,
         The patch is sized at no less than this deflection [m] (default
         :data:`MIN_PATCH_DEFLECTION` R0; 0 lets it shrink to a point, see the
         module docstring).
+    cam_layout : {"grid", "outline"}
+        Which cams make the effective plane: every cam of the grid (default), or
+        only those on the patch's outline, as the thesis describes its ADAMS model
+        (module docstring; the contact model ``enveloping-edge``).
     """
     unknown = set(options) - set(_OTHER_OPTIONS)
     if unknown:
         raise InputError(f"unknown enveloping-model option(s) {', '.join(sorted(unknown))}; "
-                         "expected width_table, n_width, n_length, step, min_patch_deflection",
-                         field="options")
+                         "expected width_table, n_width, n_length, step, min_patch_deflection, "
+                         "cam_layout", field="options")
+    if cam_layout not in CAM_LAYOUTS:
+        raise InputError(f"cam_layout must be one of {', '.join(CAM_LAYOUTS)}, got '{cam_layout}'",
+                         field="cam_layout")
     tir = tyre.tir
     r0, w0 = float(tyre.unloaded_radius), float(tyre.width)
     rho_min = MIN_PATCH_DEFLECTION * r0 if min_patch_deflection is None else float(min_patch_deflection)
@@ -241,7 +274,7 @@ def enveloping_params(tyre, grid, width_table=None, n_width=None, n_length=None,
         # a 2D road: every row of cams sees the same road
         profile_road=bool(np.all(z == z[:, :1])),
         cam_drop=drop, cam_window=window, cam_touch=touch, width_table=wtable,
-        block_per=per, row_block_max=maxima)
+        block_per=per, row_block_max=maxima, outline_only=cam_layout == "outline")
 
 
 def contact_patch(params: EnvelopingParams, deflection: float):
@@ -290,8 +323,13 @@ def cam_plane(params, road, cx, cy, cz, fx, fy, dx, dy, cosg, zmax):
     v_first = -b if nw > 1 else 0.0
     sw = suw = svw = suu = svv = su2w = su4 = 0.0
     w_row = np.empty(nl)  # heights of one row's cams, in grid-x order
+    outline = params.outline_only
+    count = float(nl * nw)
+    if outline:  # two whole outer rows, the first and last cam of each row between
+        count = float(min(nw, 2) * nl + max(nw - 2, 0) * min(nl, 2))
     for jr in range(rows):
         v = 0.0 if same_rows else v_first + jr * dv
+        outer_row = jr == 0 or jr == nw - 1
         if aligned:
             j, wy = grid_row(road, py + v * ly)
             x_a = px + u_first * fx + v * lx  # first and last cam of the row
@@ -301,24 +339,31 @@ def cam_plane(params, road, cx, cy, cz, fx, fy, dx, dy, cosg, zmax):
             cam_row(params, road, j, wy, x_lo, du * abs(fx), nl, top, w_row)
         for i in range(nl):
             u = u_first + i * du
+            weight = mult
+            if outline:  # the rows this cam stands for whose cam i lies on the outline
+                end = i == 0 or i == nl - 1
+                if same_rows:
+                    weight = float(nw) if end else float(min(nw, 2))
+                elif not (end or outer_row):
+                    continue  # inside the patch: not evaluated (thesis 5.4)
             if aligned:
                 w = w_row[i] if fx > 0.0 else w_row[nl - 1 - i]
             else:
                 w = cam_height(params, road, px + u * fx + v * lx, py + u * fy + v * ly, fx, fy,
                                zmax)
-            sw += mult * w
-            suw += mult * u * w
-            svw += mult * v * w
-            suu += mult * u * u
-            svv += mult * v * v
-            su2w += mult * u * u * w
-            su4 += mult * u * u * u * u
+            sw += weight * w
+            suw += weight * u * w
+            svw += weight * v * w
+            suu += weight * u * u
+            svv += weight * v * v
+            su2w += weight * u * u * w
+            su4 += weight * u * u * u * u
     if same_rows:  # the rows' spread, for completeness of the sums (no tilt across)
         svv = 0.0
         for jr in range(nw):
             v = v_first + jr * dv
-            svv += nl * v * v
-    count = float(nl * nw)
+            in_row = nl if not outline or jr == 0 or jr == nw - 1 else min(nl, 2)
+            svv += in_row * v * v
     su = suw / suu if suu > 0.0 else 0.0  # forward slope
     sv = svw / svv if svv > 0.0 and not same_rows else 0.0  # road camber
     mean_u2 = suu / count
@@ -449,3 +494,19 @@ register_contact(ContactModel("enveloping", EnvelopingParams, enveloping_params,
                               geometry=enveloping_contact,
                               summary="3D enveloping contact (tandem elliptical cams), "
                                       "thesis 2.3.3"))
+
+
+def edge_params(tyre, grid, **options) -> EnvelopingParams:
+    """The enveloping model's record with the road evaluated on the patch's outline only
+    (module docstring, *The thesis's cams on the outline*)."""
+    if options.get("cam_layout", "outline") != "outline":
+        raise InputError("the edge enveloping model evaluates the road on the patch's outline; "
+                         "for every cam use the model 'enveloping'", field="cam_layout")
+    return enveloping_params(tyre, grid, **{**options, "cam_layout": "outline"})
+
+
+register_contact(ContactModel("enveloping-edge", EnvelopingParams, edge_params,
+                              geometry=enveloping_contact,
+                              summary="3D enveloping contact with the road evaluated on the "
+                                      "patch's edges only, as the thesis describes its ADAMS "
+                                      "model (5.4)"))
