@@ -271,3 +271,21 @@ def test_collector_paused_while_compiling_and_resumed(tmp_path):
     assert got["nested"] > 5  # the probe saw the kernels' nested compiles
     assert got["paused"]
     assert got["after_run"] and got["after_error"]
+
+
+def test_the_numba_range_pinned_is_the_range_tested_and_installed():
+    """The cache patches numba's internals (and the ring's force step compiles with
+    ``_nrt=False``): the range they were tested on is pinned in pyproject.toml, and a
+    numba outside it -- installed by hand, or a pin edited alone -- fails here, loudly."""
+    import re
+    import tomllib
+
+    from tyrelab.core.jit_cache import TESTED_NUMBA, numba_is_tested, numba_release
+
+    lo, hi = TESTED_NUMBA
+    pyproject = tomllib.loads((Path(__file__).parents[1] / "pyproject.toml").read_text(encoding="utf-8"))
+    pins = [d for d in pyproject["project"]["dependencies"] if re.match(r"numba\b", d)]
+    assert pins == [f"numba>={lo[0]}.{lo[1]},<{hi[0]}.{hi[1]}"]
+    assert numba_is_tested(numba.__version__), f"numba {numba.__version__} outside {TESTED_NUMBA}"
+    assert numba_release("0.68.1") == (0, 68) and numba_release("1.0.0rc1") == (1, 0)
+    assert numba_is_tested("0.68.0") and not numba_is_tested("0.67.1") and not numba_is_tested("0.69.0")

@@ -67,6 +67,23 @@ from numba.core.dispatcher import Dispatcher
 
 _PACKAGE = Path(__file__).resolve().parents[1]
 _folder: Path | None = None  # chosen by configure()
+#: the numba releases, [first, past last) as (major, minor), that this module's use of
+#: numba's internals (``Dispatcher.enable_caching``, ``caching._CacheLocator`` and
+#: ``_SourceFileBackedLocatorMixin``, ``IndexDataCacheFile``) and the ring's
+#: ``_nrt=False`` force step were tested on; ``pyproject.toml`` pins the same range and
+#: ``tests/test_jit_cache.py`` fails when either or the installed numba leaves it
+TESTED_NUMBA = ((0, 68), (0, 69))
+
+
+def numba_release(version: str = numba.__version__) -> tuple[int, int]:
+    """``(major, minor)`` of a numba version string."""
+    major, minor = (int(re.match(r"\d+", part).group()) for part in version.split(".")[:2])
+    return major, minor
+
+
+def numba_is_tested(version: str = numba.__version__) -> bool:
+    """Whether ``version`` lies in :data:`TESTED_NUMBA`."""
+    return TESTED_NUMBA[0] <= numba_release(version) < TESTED_NUMBA[1]
 
 
 def _module_file(package: Path, parts: list[str]) -> Path | None:
@@ -225,6 +242,13 @@ def configure() -> Path | None:
     """
     global _folder
     _folder = cache_dir()
+    if not numba_is_tested():
+        import warnings
+        lo, hi = TESTED_NUMBA
+        warnings.warn(f"tyrelab was tested with numba {lo[0]}.{lo[1]} to before {hi[0]}.{hi[1]}, "
+                      f"found {numba.__version__}: its kernel cache relies on numba internals "
+                      f"(pip install 'numba>={lo[0]}.{lo[1]},<{hi[0]}.{hi[1]}')", RuntimeWarning,
+                      stacklevel=3)
     if not getattr(Dispatcher.enable_caching, "_tyrelab", False):
         numba_enable_caching = Dispatcher.enable_caching
 
