@@ -19,15 +19,31 @@ Two checks:
 from __future__ import annotations
 
 import ast
+import re
 import subprocess
 import sys
 from pathlib import Path
 
 PACKAGE = Path(__file__).resolve().parents[1] / "src" / "tyrelab"
 
-#: packages (and top-level modules) whose import graph must be acyclic
-ACYCLIC = ("tyrelab.road", "tyrelab.measure", "tyrelab.validate", "tyrelab.report", "tyrelab.fit",
-           "tyrelab.signal", "tyrelab.errors", "tyrelab._version")
+#: The layers of ARCHITECTURE.md's table, in its order: a module may import (at any level,
+#: module or function) only modules of its own layer or of the layers above it. ``tyrelab``
+#: is the package's own ``__init__`` (the front door re-exporting ``simulate`` ...).
+LAYERS = (
+    ("tyrelab.core",),
+    ("tyrelab._version", "tyrelab.errors", "tyrelab.limits", "tyrelab.io_atomic", "tyrelab.signal",
+     "tyrelab.guards"),
+    ("tyrelab.road",),
+    ("tyrelab.tyre",),
+    ("tyrelab.rig",),
+    ("tyrelab.api", "tyrelab"),
+    ("tyrelab.measure",),
+    ("tyrelab.validate",),
+    ("tyrelab.fit",),
+    ("tyrelab.report",),
+    ("tyrelab.study",),
+    ("tyrelab.cli",),
+)
 
 _DRIVER = r"""
 import importlib, os, subprocess, sys, traceback
@@ -79,11 +95,26 @@ def _modules() -> dict[str, tuple[Path, bool]]:
     return mods
 
 
+def _runtime_nodes(tree):
+    """Every node of ``tree`` except those under ``if TYPE_CHECKING:`` (type hints only:
+    never imported when the program runs)."""
+    todo = [tree]
+    while todo:
+        node = todo.pop()
+        yield node
+        for child in ast.iter_child_nodes(node):
+            if isinstance(child, ast.If) and "TYPE_CHECKING" in ast.unparse(child.test):
+                todo.extend(child.orelse)
+                continue
+            todo.append(child)
+
+
 def _imports(name: str, path: Path, is_pkg: bool, mods) -> set[str]:
-    """The package's modules that ``name`` imports, at any level (module or function)."""
+    """The package's modules that ``name`` imports when it runs, at any level (module or
+    function; ``if TYPE_CHECKING:`` imports left out)."""
     here = name.split(".") if is_pkg else name.split(".")[:-1]
     out = set()
-    for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"), filename=str(path))):
+    for node in _runtime_nodes(ast.parse(path.read_text(encoding="utf-8"), filename=str(path))):
         if isinstance(node, ast.Import):
             targets = [a.name for a in node.names]
         elif isinstance(node, ast.ImportFrom):
@@ -144,14 +175,42 @@ def test_every_module_imports_when_imported_first():
     assert r.returncode == 0, f"{r.stdout}\n{r.stderr}"
 
 
-def test_light_packages_have_no_import_cycles():
+def _layer(name: str) -> int:
+    """Index in :data:`LAYERS` of a module (its longest matching package)."""
+    best, depth = None, -1
+    for i, layer in enumerate(LAYERS):
+        for prefix in layer:
+            if (name == prefix or name.startswith(prefix + ".")) and prefix.count(".") > depth:
+                best, depth = i, prefix.count(".")
+    assert best is not None, f"{name} is in no layer of ARCHITECTURE.md's table"
+    return best
+
+
+def test_imports_follow_the_layers_of_the_architecture():
+    """ARCHITECTURE.md's layer table, as :data:`LAYERS`: no import points down it."""
+    mods = _modules()
+    down = []
+    for name, (path, is_pkg) in mods.items():
+        for target in _imports(name, path, is_pkg, mods):
+            if _layer(target) > _layer(name):
+                down.append(f"{name} (layer {_layer(name)}) imports {target} (layer {_layer(target)})")
+    assert not down, "imports pointing down the layers:\n" + "\n".join(sorted(down))
+
+
+def test_the_layer_table_of_architecture_md_is_the_one_enforced():
+    """The table's package column, row by row, names the packages of :data:`LAYERS`."""
+    text = (PACKAGE.parents[1] / "ARCHITECTURE.md").read_text(encoding="utf-8")
+    table = text[text.index("## Layers"):text.index("## Documentation and examples")]
+    rows = [ln for ln in table.splitlines() if ln.startswith("| `tyrelab")]
+    named = [set(re.findall(r"`(tyrelab[\w.]*)`", ln.split("|")[1])) for ln in rows]
+    assert named == [set(layer) for layer in LAYERS]
+
+
+def test_the_package_has_no_import_cycles():
+    """No cycle anywhere, counting function-level imports (type-hint-only ones aside)."""
     mods = _modules()
     graph = {name: _imports(name, path, is_pkg, mods) for name, (path, is_pkg) in mods.items()}
-
-    def checked(name):
-        return any(name == p or name.startswith(p + ".") for p in ACYCLIC)
-
-    bad = [c for c in _cycles(graph) if any(checked(m) for m in c)]
+    bad = _cycles(graph)
     detail = "\n".join(" <-> ".join(c) + ": " + "; ".join(f"{m} imports {sorted(graph[m] & set(c))}"
                                                          for m in c) for c in bad)
     assert not bad, f"import cycles (counting function-level imports):\n{detail}"

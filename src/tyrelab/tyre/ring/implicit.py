@@ -37,10 +37,8 @@ from __future__ import annotations
 import numba as nb
 import numpy as np
 
-#: half bandwidth of the interleaved out-of-plane matrix (y_i couples y_{i+-2})
-LATERAL_BAND = 4
-#: rows of the dense border the ring's closure puts at the end of its factor
-LATERAL_BORDER = 4
+from .records import empty_state
+
 #: weight of the new velocities in the implicit terms: 1/2 is the least that is
 #: stable for every step; it damps a mode by about THETA h omega_K^2 / (2 omega)
 #: (omega_K^2 the implicit terms' share of its stiffness), the stiffest most
@@ -55,7 +53,6 @@ def lateral_stiffness_matrix(params) -> np.ndarray:
     linear). Rigid motions of the ring strain neither, so the low lateral
     modes (the belt on its foundation) see none of the implicit treatment."""
     from .belt import out_of_plane_forces
-    from .records import empty_state
 
     n, nb_ = params.n_segments, params.n_blocks
     params = params._replace(pretension=0.0)

@@ -15,8 +15,13 @@ from typing import NamedTuple
 
 import numpy as np
 
-from .implicit import LATERAL_BAND, LATERAL_BORDER
 from .tread import ACC_SIZE
+
+# --- the out-of-plane factor (tyre/ring/implicit.py) kept in RingState ------------
+#: half bandwidth of the interleaved out-of-plane matrix (y_i couples y_{i+-2})
+LATERAL_BAND = 4
+#: rows of the dense border the ring's closure puts at the end of its factor
+LATERAL_BORDER = 4
 
 # --- RingState.kinematics: the rim's motion as the state last saw it -------------
 #: belt rotation angle psi [rad] (integral of the spin)
