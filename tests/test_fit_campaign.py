@@ -10,7 +10,6 @@ import copy
 import shutil
 import subprocess
 import sys
-import time
 from pathlib import Path
 
 import numpy as np
@@ -32,17 +31,11 @@ def tyrelab(*args, cwd=None):
 
 @pytest.fixture(scope="module")
 def fitted(tmp_path_factory):
-    start = time.perf_counter()
-    # every step but the ring (minutes; tests/test_fit_ring_campaign.py)
+    # every step but the ring (tests/test_ring_fit_campaign_fast.py, tests/test_fit_ring_campaign.py)
     result = fit_campaign(read_campaign(EXAMPLE), STEPS[:-1], skip_missing=True, skipped=("ring",))
     path = tmp_path_factory.mktemp("fit") / "xzl.tir"
     write_tir(result.tir, path)
-    return result, path, time.perf_counter() - start
-
-
-def test_fit_all_of_the_example_is_fast(fitted):
-    """Issue point 7: minutes at most; measured about 3 s (compiled kernels cached)."""
-    assert fitted[2] < 60.0
+    return result, path
 
 
 def test_written_file_reads_back_and_its_models_give_table_3_2(fitted):
@@ -67,7 +60,7 @@ def test_stand_ins_give_back_what_made_them(fitted):
     """The drop trace was made at 2.66 N s/mm (3.4.1) with 0.1 mm noise: 0.5 %; the patch lengths
     on eq. 2.3 with PA1 0.15, PA2 7.06, written to 0.1 mm: 0.5 %; the held-out footprint image
     (LC1, a patch of the eq. 2.3 length and the contour's width) predicted within 2 mm."""
-    result, path, _ = fitted
+    result, path = fitted
     tir = read_tir(path)
     assert tir.number("VERTICAL", "VERTICAL_DAMPING") == pytest.approx(2660.0, rel=0.005)
     assert tir.number("TYRELAB_FIT", "DAMPING_PENDULUM_NS_PER_M") == pytest.approx(2660.0, rel=0.01)
@@ -200,23 +193,39 @@ def test_tydex_press_and_modal_table(tmp_path):
     assert (row.frequency, row.damping) == pytest.approx((22.72, 0.0294))
 
 
-def test_static_cleats_are_predicted_by_every_analytic_model(tmp_path, xzl):
-    """A 51 x 51 mm lateral cleat pressed with the volume model of the built-in XZL: fitted on
-    the plate (Table 3-2) with that tyre's carcass, the volume model predicts it to 1 N, the
-    point model (a disc, blind to the cleat's width) is tens of kN off."""
-    from tyrelab.rig.static_press import static_press
-    from tyrelab.tyre.model import TyreModel
-    d = np.arange(1, 9) / 100
-    loads = static_press(TyreModel(xzl, "volume"), d, "cleat:51x51")["load"].to_numpy()
+def _plate_as_cleat(tmp_path, deflections):
+    """Table 3-2 at 300 kPa written as a 51 x 51 mm lateral cleat press: what a rigid disc gives
+    on the cleat (its lowest point rests on the flat top: a disc on a plate)."""
+    loads = np.interp(deflections, np.arange(9) / 100, TABLE_3_2_300)
     (tmp_path / "cleat.csv").write_text("deflection_mm,load_N\n" + "".join(
-        f"{a * 1e3:g},{float(b)!r}\n" for a, b in zip(d, loads)))
+        f"{a * 1e3:g},{b:g}\n" for a, b in zip(deflections, loads)))
+    return loads
+
+
+def _cleat_predictions(result):
+    (test, pred), = result.steps["cleats"].data["predictions"]
+    rms = {r["parameter"].split(":")[0]: r["held_out"]["cleat.csv"] for r in result.steps["cleats"].rows}
+    for model, loads in pred.items():       # the reported error: the RMS of the prediction's misses
+        assert rms[model] == pytest.approx(np.sqrt(np.mean((loads - test.load) ** 2)))
+    return pred, rms
+
+
+def test_static_cleats_are_predicted_by_every_analytic_model(tmp_path, xzl):
+    """A held-out 51 x 51 mm lateral cleat press whose loads are the plate's (Table 3-2), fitted
+    on the plate with the built-in XZL's carcass: the point model reads the road in the wheel
+    plane only, a disc blind to the cleat's width, and predicts it to 1 N; the volume and
+    enveloping models feel the width and predict less at every deflection (a tyre is softer
+    on a cleat than on the plate, thesis 3.3.4)."""
+    d = np.arange(1, 9) / 100
+    plate = _plate_as_cleat(tmp_path, d)
     write_tir(xzl.tir, tmp_path / "base.tir")
     body = '[tyre]\nbase = "base.tir"\n' + LD + \
         '[[test]]\nkind = "static_cleat"\nfile = "cleat.csv"\ncleat = "51x51"\n'
-    result = fit_campaign(read_campaign(_campaign(tmp_path, body)))
-    rms = {r["parameter"].split(":")[0]: r["held_out"]["cleat.csv"] for r in result.steps["cleats"].rows}
-    assert rms["volume"] < 1.0
-    assert rms["point"] > 10e3
+    pred, rms = _cleat_predictions(fit_campaign(read_campaign(_campaign(tmp_path, body))))
+    assert set(rms) == {"point", "volume", "enveloping"}
+    assert rms["point"] < 1.0
+    for model in ("volume", "enveloping"):
+        assert np.all(pred[model] < plate), model
 
 
 def test_dynamic_cleat_run_is_read_and_drawn(tmp_path):
@@ -275,19 +284,17 @@ def test_held_out_drop_at_another_load_is_predicted(tmp_path, xzl):
 
 def test_static_cleats_are_predicted_by_the_ring_once_identified(tmp_path, xzl):
     """A base file with a [FLEXIBLE_RING] (the shipped XZL ring): its static cleat press is one
-    of the held-out predictions, and on a press the ring itself made it is exact."""
-    from tyrelab.rig.static_press import static_press
-    from tyrelab.tyre.model import TyreModel
+    of the held-out predictions. On the plate's loads written as a cleat press (see above) the
+    disc is exact and the ring, which envelops the cleat, predicts less at every deflection."""
     from tyrelab.tyre.ring.parameters import ring_parameters
     d = np.arange(1, 7) / 100
-    loads = static_press(TyreModel(xzl, "ring"), d, "cleat:51x51")["load"].to_numpy()
-    (tmp_path / "cleat.csv").write_text("deflection_mm,load_N\n" + "".join(
-        f"{a * 1e3:g},{float(b)!r}\n" for a, b in zip(d, loads)))
+    plate = _plate_as_cleat(tmp_path, d)
     tir = ring_parameters(xzl).to_tir(copy.deepcopy(xzl.tir))
     write_tir(tir, tmp_path / "base.tir", units=tir.units or None)
     body = '[tyre]\nbase = "base.tir"\n' + LD + \
         '[[test]]\nkind = "static_cleat"\nfile = "cleat.csv"\ncleat = "51x51"\n'
     result = fit_campaign(read_campaign(_campaign(tmp_path, body)), skip_missing=True)
-    rms = {r["parameter"].split(":")[0]: r["held_out"]["cleat.csv"] for r in result.steps["cleats"].rows}
+    pred, rms = _cleat_predictions(result)
     assert set(rms) == {"point", "volume", "enveloping", "ring"}
-    assert rms["ring"] < 1.0 < rms["volume"]
+    assert rms["point"] < 1.0
+    assert np.all(pred["ring"] < plate)

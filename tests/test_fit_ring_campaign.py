@@ -5,7 +5,10 @@ The example campaign carries the thesis's own ring data (Table 3-2 at 100,
 the data the built-in identification uses. The optimisation itself is
 checked by round trips (slow): presses and modes made by a known ring are
 reproduced, and a patch damping hidden in trailer runs written as TYDEX
-files is recovered through the campaign.
+files is recovered through the campaign. Their fast siblings in the default
+suite: ``tyrelab fit ring`` end to end on a campaign made by a known ring
+(test_ring_fit_campaign_fast.py; no optimiser step) and the patch damping
+found from one cleat run (test_fit_ring_dynamic.py).
 """
 
 import copy

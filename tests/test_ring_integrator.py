@@ -122,8 +122,9 @@ ENSEMBLE = _ensemble()
 SPEED_CHANGES = sorted({float(r["speed_change"]) for r in ENSEMBLE})
 ROADS = {"cleat": ("cleat:50x50", 2.5), "oblique": ("cleat:50x50@45", 2.5),
          "paving": ("belgian-paving", 20.0 / (12 / 3.6))}
-#: one case runs by default, the rest with the slow studies
-FAST_CASES = ("trailer-ring-cleat-LC1",)
+#: by default the perpendicular cleat (FZW, FX) and the oblique one (FY, MX too) at LC1; LC3
+#: and the paving (five 6 s runs) with the slow studies
+FAST_CASES = ("trailer-ring-cleat-LC1", "trailer-ring-oblique-LC1")
 
 
 def _metrics(signal):

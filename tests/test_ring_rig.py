@@ -52,15 +52,14 @@ def test_standing_tyre_sits_at_table_deflection(pressure, case):
     assert abs(model - table) < 0.1 * table, f"model {model * 1e3:.1f} mm, table {table * 1e3:.1f} mm"
 
 
-@pytest.mark.slow
 def test_free_rolling_tyre_sits_at_its_rolling_equilibrium(xzl300):
     """The same ring from walking pace to the top speed (88 km/h) on the trailer:
     it carries the wheel load where its own rolling equilibrium (found apart,
     at a fixed height, ``TyreModel.equilibrium``) says; at 12 km/h that is
     the table's deflection (10 %, the identification's accuracy); at 88 km/h
-    it is less (the belt's centrifugal growth, and the foundation's Maxwell
-    branch stiffening at the rolling frequencies); the rolling resistance
-    opposes the motion."""
+    it is less (the spinning belt's centrifugal growth presses it harder onto
+    the road at a given height: docs/ring.md, "Starting in equilibrium"); the
+    rolling resistance opposes the motion."""
     from tyrelab.rig.trailer import Trailer
     model = TyreModel(xzl300, contact="ring")
     trailer = Trailer(model, "LC1")
@@ -160,7 +159,6 @@ def test_modal_cli(capsys):
     assert main(["modal", "--tyre", "nonexistent.tir"]) == 2
 
 
-@pytest.mark.slow
 def test_trailer_over_cleat_ring_envelops(xzl300):
     """The trailer over the 50 mm cleat at 12 km/h: the ring runs, stays finite
     with a non-negative normal force, and its peak is below the rigid disc's."""
