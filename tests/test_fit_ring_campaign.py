@@ -195,3 +195,28 @@ def test_round_trip_patch_damping_hidden_in_tydex_runs(example, tmp_path):
     assert RingParameters.from_tir(out).cp == pytest.approx(truth.cp, rel=0.01)
     runs = step.data["cleat_runs"].set_index("set")
     assert runs.loc["held out", "rms_after_pct"] < 0.1 < runs.loc["held out", "rms_before_pct"]
+
+
+def test_a_start_clipped_into_the_bounds_keeps_its_foundation_with_one_pressure():
+    """Presses at one pressure: each foundation is one factor on its total, its pressure
+    rate following the constant part by the ratio to the start's. The XZL's tangential
+    constant part (19.35 N/m^2) lies below its bound (100 N/m^2); the start is moved inside
+    and must stay the start, its tangential foundation at 300 kPa (0.66e6 N/m^2) changed by
+    that clip alone -- before, the rate was scaled by 100 / 19.35 too (5.2x the foundation)."""
+    from tyrelab.fit.ring import (BOUNDS, FREE, PAIRS, START, _with, free_parameters,
+                                  start_inside)
+    from tyrelab.tyre.ring.parameters import RingParameters
+
+    free = free_parameters(1)
+    keep = [k in free for k in FREE]
+    lower, upper = np.array(BOUNDS[0])[keep], np.array(BOUNDS[1])[keep]
+    rp = dataclasses.replace(RingParameters(), **START)
+    start, x0 = start_inside(rp, free, lower, upper)
+    assert _with(start, x0, free) == start                      # at x0 the model is the start
+    p = 300e3
+    for k0, kp in PAIRS.items():
+        before = getattr(rp, k0) + getattr(rp, kp) * p
+        after = getattr(start, k0) + getattr(start, kp) * p
+        assert after - before == pytest.approx(getattr(start, k0) - getattr(rp, k0), abs=1e-6)
+        assert abs(after / before - 1) < 2e-4
+    assert start.kt0 == pytest.approx(100.0) and start.ktp == rp.ktp

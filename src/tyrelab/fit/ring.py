@@ -321,6 +321,19 @@ def fit_patch_damping(tyre, rp, target, tol=0.01, progress=None):
     return dataclasses.replace(rp, cp=x1), drop
 
 
+def start_inside(rp0: RingParameters, free: dict, lower, upper):
+    """``(start, x0)``: the start moved inside the bounds, and its free values (scaled).
+
+    The start itself is rebuilt from the clipped values, so that :func:`_with` at ``x0``
+    is the start: with one pressure a foundation's pressure rate follows its constant part
+    by the ratio to the start's, and a clipped constant part (the XZL's tangential one,
+    19.35 N/m^2 against a lower bound of 100) must not scale the rate by that clip.
+    """
+    x0 = np.array([getattr(rp0, k) / s for k, s in free.items()])
+    x0 = np.clip(x0, np.asarray(lower) + 1e-3, np.asarray(upper) - 1e-3)
+    return dataclasses.replace(rp0, **{k: float(v) * s for (k, s), v in zip(free.items(), x0)}), x0
+
+
 def fit_ring(name="xzl-16.00R20", start: RingParameters | None = None, max_nfev=25,
              verbose=0, ftol=2e-3, progress=None):
     """Identify the ring; returns ``(params, fitted, held_out)``.
@@ -334,12 +347,10 @@ def fit_ring(name="xzl-16.00R20", start: RingParameters | None = None, max_nfev=
     from scipy.optimize import least_squares
     data = _data(name)
     free = free_parameters(len(data.pressures))
-    rp0 = start or dataclasses.replace(RingParameters(), **START)
     keep = [k in free for k in FREE]
     lower = np.array(data.bounds[0], float)[keep]
     upper = np.array(data.bounds[1], float)[keep]
-    x0 = np.array([getattr(rp0, k) / s for k, s in free.items()])
-    x0 = np.clip(x0, lower + 1e-3, upper - 1e-3)
+    rp0, x0 = start_inside(start or dataclasses.replace(RingParameters(), **START), free, lower, upper)
     sol = least_squares(_residuals, x0, args=(data, rp0, progress, free), bounds=(lower, upper),
                         diff_step=0.02, max_nfev=max_nfev, verbose=verbose, x_scale=1.0,
                         ftol=ftol, xtol=1e-3)
