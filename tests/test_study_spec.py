@@ -164,7 +164,7 @@ def test_base_spec_parses(tmp_path):
     assert runs[0].simulate_kwargs() == {
         "tyre": "xzl-16.00R20", "model": "point", "road": "cleat:50x50", "speed": 12 / 3.6, "load": "LC1",
         "pressure": 300e3, "stiffness": "linear", "handling": None, "rig": "trailer", "duration": 6.0,
-        "dt": 1e-3, "output_rate": 1000.0, "left_wheel": None}
+        "dt": 1e-3, "output_rate": 1000.0, "left_wheel": None, "options": None}
     assert spec.reference_run(runs[0]) == runs[1]
     assert spec.output == (tmp_path / "results").resolve()
 
@@ -484,3 +484,25 @@ def test_run_keys_follow_rdf_roads_and_chrono_tyres(tmp_path):
     (tmp_path / "hmmwv.json").write_text(json_text.replace("3483.932502", "3600.0", 1))
     tyre_changed = _keys(parse(text, tmp_path))
     assert all(tyre_changed[k] != before[k] for k in before)
+
+
+def test_model_options_reach_the_run_and_its_key(tmp_path):
+    """[[model]] options: checked against the contact model's (name and type, file, line and
+    key named), handed to tyrelab.simulate, and part of that model's run keys only; a model
+    without options keeps the key it had before options existed."""
+    plain = parse(BASE, tmp_path)
+    spec = parse(edit(18, 'contact = "volume"\noptions = { discs = 4, step = 0.01 }'), tmp_path)
+    b = {r.model.name: r for r in spec.runs()}["B"]
+    assert b.model.options == (("discs", 4), ("step", 0.01))
+    assert b.simulate_kwargs()["options"] == {"discs": 4, "step": 0.01}
+    old, new = (dict((r.model.name, k) for r, k in s.run_keys().items() if r.speed * 3.6 < 15)
+                for s in (plain, spec))
+    assert old["A"] == new["A"] and old["B"] != new["B"]
+    fails(edit(18, 'contact = "volume"\noptions = { n_length = 5 }'), tmp_path, 19,
+          "model[2].options.n_length", "unknown option(s) n_length of the 'volume' model", "discs, step")
+    fails(edit(18, 'contact = "volume"\noptions = { discs = "four" }'), tmp_path, 19,
+          "model[2].options.discs", "expected an integer, got 'four'")
+    fails(edit(18, 'contact = "volume"\noptions = 4'), tmp_path, 19, "model[2].options",
+          "expected a table")
+    fails(edit(18, 'contact = "ring"\noptions = { parameters = 1 }'), tmp_path, 19,
+          "model[2].options.parameters", "Python only")

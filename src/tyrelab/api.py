@@ -45,18 +45,23 @@ def default_handling(tyre: Tyre) -> str:
 
 
 def make_tyre_model(tyre: str | Tyre = DEFAULT_TYRE, model: str = "point", pressure: float | None = None,
-                    stiffness: str | None = None, handling: str | None = None) -> TyreModel:
-    """A :class:`TyreModel` from a tyre name or file, a contact model and options.
+                    stiffness: str | None = None, handling: str | None = None,
+                    options: dict | None = None) -> TyreModel:
+    """A :class:`TyreModel` from a tyre name or file, a contact model and its options.
 
     ``handling=None`` takes the handling model the property file describes
-    (:func:`default_handling`).
+    (:func:`default_handling`); ``options`` are the contact model's
+    (:attr:`tyrelab.tyre.registry.ContactModel.options`; others are refused,
+    the allowed ones named).
     """
+    from .tyre.registry import check_options
+    options = check_options(model, options)
     if pressure is not None:
         check_pressure(pressure)
     t = tyre if isinstance(tyre, Tyre) else load_tyre(tyre, pressure)
     if stiffness is not None:
         t = t.with_stiffness(stiffness)
-    return TyreModel(t, contact=model, handling=handling or default_handling(t))
+    return TyreModel(t, contact=model, handling=handling or default_handling(t), options=options)
 
 
 def _default_duration(road, speed: float) -> float:
@@ -85,7 +90,7 @@ def simulate(tyre: str | Tyre = DEFAULT_TYRE, model: str = "point", road="cleat:
              stiffness: str | None = None, handling: str | None = None,
              rig: str = "trailer", duration: float | None = None,
              dt: float = 1e-3, output_rate: float | None = None, progress: bool | None = None,
-             left_wheel: str | None = None, force: bool = False):
+             left_wheel: str | None = None, force: bool = False, options: dict | None = None):
     """Run a tyre model on a rig over a road; returns the signal table.
 
     Parameters
@@ -127,6 +132,12 @@ def simulate(tyre: str | Tyre = DEFAULT_TYRE, model: str = "point", road="cleat:
     force : bool
         Run even when the estimated memory or wall time is above
         :data:`tyrelab.limits.MAX_MEMORY` / :data:`~tyrelab.limits.MAX_WALL_TIME`.
+    options : dict, optional
+        The contact model's options, e.g. ``{"n_length": 5}`` for the
+        enveloping model's cams or ``{"n_segments": 200}`` for the ring
+        (:attr:`tyrelab.tyre.registry.ContactModel.options` lists each
+        model's; an unknown key is refused with the allowed ones named). The
+        trailer's left wheel (``left_wheel``, another model) takes none.
 
     Every argument is checked before any work (:mod:`tyrelab.limits`); a run
     that leaves the physics the models hold for (rim contact, an overturned
@@ -147,7 +158,7 @@ def simulate(tyre: str | Tyre = DEFAULT_TYRE, model: str = "point", road="cleat:
     output_rate = limits.check_rate(output_rate, dt)
     if duration is not None:
         duration = limits.check_duration(duration, dt, output_rate)
-    tm = make_tyre_model(tyre, model, pressure, stiffness, handling)
+    tm = make_tyre_model(tyre, model, pressure, stiffness, handling, options)
     if left_wheel is not None and rig not in ("trailer", "drop"):
         raise InputError(f"left_wheel applies to the trailer rigs, not to '{rig}'", field="left_wheel")
     if isinstance(load, str):

@@ -90,6 +90,40 @@ def output_path(text: str, suffixes=(".parquet", ".csv"), field: str = "-o", inp
     return check_output_path(text, suffixes, field, inputs)
 
 
+def option_value(text: str) -> tuple[str, object]:
+    """``KEY=VALUE`` of ``--option``: the value as an integer, a number, true/false or text."""
+    key, sep, value = text.partition("=")
+    key, value = key.strip(), value.strip()
+    if not sep or not key.isidentifier() or not value:
+        raise argparse.ArgumentTypeError(f"expected KEY=VALUE (e.g. n_length=5), got '{text}'")
+    lowered = value.lower()
+    if lowered in ("true", "false"):
+        return key, lowered == "true"
+    for kind in (int, float):
+        try:
+            number = kind(value)
+        except ValueError:
+            continue
+        if kind is float and not math.isfinite(number):
+            raise argparse.ArgumentTypeError(f"option {key}: expected a finite number, got '{value}'")
+        return key, number
+    return key, value
+
+
+def add_options(parser) -> None:
+    """``--option KEY=VALUE`` (repeatable): the contact model's options."""
+    parser.add_argument("--option", type=option_value, action="append", default=[],
+                        metavar="KEY=VALUE",
+                        help="an option of the contact model, e.g. n_length=5 (enveloping cams), "
+                             "n_segments=200 (ring), cam_layout=outline; repeat for more; an "
+                             "unknown key is refused with the model's options listed")
+
+
+def model_options(pairs) -> dict:
+    """The ``--option`` pairs as a dict (a key given twice: the last one)."""
+    return dict(pairs or [])
+
+
 def add_force(parser) -> None:
     """``--force``: run a request estimated above the memory or time limit."""
     from ..limits import MAX_MEMORY, MAX_WALL_TIME

@@ -5,13 +5,14 @@ from __future__ import annotations
 import sys
 
 from ..limits import MAX_DT, MAX_DURATION, MAX_OUTPUT_RATE, MAX_SPEED, MIN_DT, MIN_SPEED
-from ._common import (add_force, bounded_float, input_files, load_value, output_path, pressure_kpa,
-                      renamed)
+from ._common import (add_force, add_options, bounded_float, input_files, load_value, model_options,
+                      output_path, pressure_kpa, renamed)
 
 #: Python argument names of :func:`tyrelab.simulate` -> the options that set them
 OPTIONS = {"speed": "--speed", "duration": "--duration", "dt": "--dt", "output_rate": "--rate",
            "load": "--load", "pressure": "--pressure", "rig": "--rig", "left_wheel": "--left-wheel",
-           "stiffness": "--stiffness", "tyre": "--tyre", "model": "--model", "road": "--road"}
+           "stiffness": "--stiffness", "tyre": "--tyre", "model": "--model", "road": "--road",
+           "options": "--option"}
 
 
 def register(sub):
@@ -26,6 +27,7 @@ def register(sub):
     p.add_argument("--pressure", type=pressure_kpa(), default=None, metavar="KPA",
                    help="inflation pressure in kPa (built-in tyres; default 300)")
     p.add_argument("--model", default="point", help="contact model (default: point)")
+    add_options(p)
     p.add_argument("--stiffness", choices=("table", "linear"), default=None,
                    help="vertical stiffness: load-deflection spline (table, default when the file has one) "
                         "or linear")
@@ -73,7 +75,8 @@ def run(args) -> int:
         table = simulate(tyre=args.tyre, model=args.model, road=args.road, speed=args.speed,
                          load=args.load, pressure=args.pressure, stiffness=args.stiffness,
                          handling=args.handling, rig=args.rig, left_wheel=args.left_wheel,
-                         duration=args.duration, dt=args.dt, output_rate=args.rate, force=args.force)
+                         duration=args.duration, dt=args.dt, output_rate=args.rate, force=args.force,
+                         options=model_options(args.option))
     except InputError as exc:
         raise renamed(exc, OPTIONS) from None
     write_signal(table, out)

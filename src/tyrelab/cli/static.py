@@ -5,7 +5,8 @@ from __future__ import annotations
 import numpy as np
 
 from ..limits import MAX_STATIC_STEPS, MIN_LOAD, MIN_STATIC_STEPS
-from ._common import bounded_float, count, input_files, output_path, pressure_kpa
+from ._common import (add_options, bounded_float, count, input_files, model_options, output_path,
+                      pressure_kpa, renamed)
 
 #: what ``-o`` may be: a table, or a plot of it
 TABLE_SUFFIXES = (".csv",)
@@ -20,6 +21,7 @@ def register(sub):
                    help="inflation pressure in kPa (default 300)")
     p.add_argument("--model", default="point", help="contact model (default point)")
     p.add_argument("--stiffness", choices=("table", "linear"), default=None)
+    add_options(p)
     p.add_argument("--test", default="plate",
                    help="plate, cleat:WxH (mm) or footprint (default plate)")
     p.add_argument("--direction", choices=("lateral", "longitudinal"), default="lateral",
@@ -51,7 +53,11 @@ def run(args) -> int:
         out = output_path(args.output, TABLE_SUFFIXES + IMAGE_SUFFIXES, inputs=inputs) \
             if args.output else None
         press_road(args.test, args.direction)  # a bad test name or cleat size: refused now
-    model = make_tyre_model(args.tyre, args.model, args.pressure, args.stiffness, handling="none")
+    try:
+        model = make_tyre_model(args.tyre, args.model, args.pressure, args.stiffness, handling="none",
+                                options=model_options(args.option))
+    except InputError as exc:
+        raise renamed(exc, {"options": "--option", "model": "--model"}) from None
     tyre = model.tyre
     if args.test == "footprint":
         from ..report.footprint import plot_footprint

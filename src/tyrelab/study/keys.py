@@ -126,7 +126,7 @@ def run_key(run: RunSpec, tyre_digest: str) -> str:
 
     SHA-256 of a canonical JSON of: ``tyre_digest`` (pass
     :func:`tyre_digest` of ``run.tyre``: the tyre's parameter content, not
-    its label) and pressure; the model's contact, stiffness and handling;
+    its label) and pressure; the model's contact, stiffness, handling and options;
     the road (its name, or a ``.crg`` file's content digest and offset);
     the speed [m/s]; the load (a load case with its ballast and wheel mass
     from Table 3-4, or the force [N]); the rig (and the trailer's left-wheel model when
@@ -141,7 +141,9 @@ def run_key(run: RunSpec, tyre_digest: str) -> str:
         "tyrelab": __version__,
         "tyre": {"digest": tyre_digest, "pressure": run.tyre.pressure},
         "model": {"contact": run.model.contact, "stiffness": run.model.stiffness,
-                  "handling": run.model.handling},
+                  "handling": run.model.handling,
+                  # only when set, so the keys of runs without options are those of before
+                  **({"options": dict(run.model.options)} if run.model.options else {})},
         "road": _road_identity(run.road),
         "speed": float(run.speed),
         "load": _load_identity(run.load),

@@ -41,12 +41,14 @@ class TyreSpec:
 
 @dataclass(frozen=True)
 class ModelSpec:
-    """A model variant: contact model, vertical stiffness and handling model (None: default)."""
+    """A model variant: contact model, vertical stiffness and handling model (None: default)
+    and the contact model's options, ``(name, value)`` pairs sorted by name."""
 
     name: str
     contact: str
     stiffness: str | None = None
     handling: str | None = None
+    options: tuple = ()
 
 
 @dataclass(frozen=True)
@@ -125,7 +127,8 @@ class RunSpec:
                 "speed": self.speed, "load": self.load, "pressure": self.tyre.pressure,
                 "stiffness": self.model.stiffness, "handling": self.model.handling,
                 "rig": self.rig, "duration": self.duration, "dt": self.dt,
-                "output_rate": self.output_rate, "left_wheel": self.left_contact}
+                "output_rate": self.output_rate, "left_wheel": self.left_contact,
+                "options": dict(self.model.options) or None}
 
 
 @dataclass(frozen=True)

@@ -25,6 +25,7 @@ Schema (km/h, kPa, mm at this edge, as the command line; SI in the parsed object
     contact = "point"                   # a registered contact model
     stiffness = "linear"                # "linear" | "table" (optional: the model's default)
     handling = "none"                   # a registered handling model (optional: the tyre file's)
+    options = { n_length = 5 }          # the contact model's options (optional; tyre.registry)
 
     [[test]]                            # one or more
     name = "cleat 50x50 perpendicular"  # obstacle/track label (the thesis's words)
@@ -85,7 +86,7 @@ BUILTIN_SPEC = "thesis_campaign.toml"
 
 _STUDY_KEYS = ("name", "output", "dt", "output_rate", "left_wheel")
 _TYRE_KEYS = ("name", "file", "pressure_kpa")
-_MODEL_KEYS = ("name", "contact", "stiffness", "handling")
+_MODEL_KEYS = ("name", "contact", "stiffness", "handling", "options")
 _TOP_KEYS = ("study", "tyre", "model", "test", "metrics")
 _METRICS_KEYS = ("limits",)
 
@@ -190,8 +191,30 @@ def _models(ck: Checker, doc, tyres) -> tuple[ModelSpec, ...]:
                 except InputError as exc:
                     ck.fail(path + ("handling",), f"tyre '{tyre_spec.name}' has no {handling} "
                             f"coefficients: {exc}")
-        models.append(ModelSpec(name, contact, stiffness, handling))
+        options = _options(ck, t.get("options"), path + ("options",), contact)
+        models.append(ModelSpec(name, contact, stiffness, handling, options))
     return tuple(models)
+
+
+def _options(ck: Checker, raw, path, contact: str) -> tuple:
+    """A model's ``options`` table as sorted ``(name, value)`` pairs, each checked against
+    the contact model's options (name and type; :func:`tyrelab.tyre.registry.check_options`)."""
+    from ..tyre.registry import check_options, contact_model
+    if raw is None:
+        return ()
+    if not isinstance(raw, dict):
+        ck.fail(path, f"expected a table of the '{contact}' model's options, e.g. "
+                      "options = { n_length = 5 }")
+    known = contact_model(contact).options
+    for key, value in raw.items():
+        if known.get(key) is object:
+            ck.fail(path + (key,), f"the '{contact}' model's option {key} is set from Python only")
+        try:
+            checked = check_options(contact, {key: value})
+        except InputError as exc:
+            ck.fail(path + (key,), exc.reason)
+        raw = {**raw, key: checked[key]}
+    return tuple(sorted(raw.items()))
 
 
 def _limits(ck: Checker, doc) -> dict:

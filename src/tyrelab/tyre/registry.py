@@ -83,6 +83,11 @@ class ContactModel:
         without it the static press draws the geometric footprint.
     summary : str
         One line for listings.
+    options : dict
+        The options ``build`` takes that a user may set (``simulate(options=...)``,
+        ``--option KEY=VALUE``, a study spec's ``options`` table), name -> type
+        (``int``, ``float``, ``bool``, ``str``, or ``object`` for a Python value);
+        :func:`check_options` refuses any other name and a value of another type.
     """
 
     name: str
@@ -95,6 +100,7 @@ class ContactModel:
     static_options: Any = field(default_factory=dict)
     footprint: Callable[..., Any] | None = None
     summary: str = ""
+    options: dict = field(default_factory=dict)
 
     def __post_init__(self):
         if (self.geometry is None) == (self.step is None):
@@ -173,6 +179,36 @@ def contact_model(name: str) -> ContactModel:
         raise InputError(f"unknown model '{name}', expected one of {', '.join(models)}",
                          field="model")
     return models[name]
+
+
+def check_options(name: str, options: dict | None, field: str = "options") -> dict:
+    """``options`` for the contact model ``name`` (a new dict), or InputError naming the
+    unknown keys and the ones the model takes (:attr:`ContactModel.options`)."""
+    model = contact_model(name)
+    options = dict(options or {})
+    unknown = sorted(set(options) - set(model.options))
+    if unknown:
+        allowed = ", ".join(model.options) if model.options else "none"
+        raise InputError(f"unknown option(s) {', '.join(unknown)} of the '{name}' model; it takes: "
+                         f"{allowed}", field=field)
+    for key, value in options.items():
+        options[key] = _typed(name, key, value, model.options[key], field)
+    return options
+
+
+_TYPE_WORDS = {int: "an integer", float: "a number", bool: "true or false", str: "a text"}
+
+
+def _typed(model: str, key: str, value, kind, field: str):
+    """``value`` as an option of type ``kind`` (an integer is a number too), or InputError."""
+    if kind is object:
+        return value
+    if kind is float and isinstance(value, int) and not isinstance(value, bool):
+        return float(value)
+    if isinstance(value, kind) and not (kind is int and isinstance(value, bool)):
+        return value
+    raise InputError(f"option {key} of the '{model}' model: expected {_TYPE_WORDS.get(kind, kind)}, "
+                     f"got {value!r}", field=field)
 
 
 def handling_model(name: str) -> HandlingModel:

@@ -112,6 +112,9 @@ BLOCK = 0.05
 #: default floor of the deflection that sizes the patch, a fraction of R0 (module docstring)
 MIN_PATCH_DEFLECTION = 0.015
 _OTHER_OPTIONS = ("discs",)
+#: the options a user sets, by type (tyrelab.tyre.registry.check_options)
+_USER_OPTIONS = {"n_length": int, "n_width": int, "width_table": bool, "step": float,
+                 "min_patch_deflection": float}
 #: which cams make the effective plane: the whole grid, or only those on the patch's outline
 CAM_LAYOUTS = ("grid", "outline")
 
@@ -493,7 +496,8 @@ def enveloping_geometry(tyre, road, x, y=0.0, z=None, axis=(0.0, 1.0, 0.0), **op
 register_contact(ContactModel("enveloping", EnvelopingParams, enveloping_params,
                               geometry=enveloping_contact,
                               summary="3D enveloping contact (tandem elliptical cams), "
-                                      "thesis 2.3.3"))
+                                      "thesis 2.3.3",
+                              options={**_USER_OPTIONS, "cam_layout": str}))
 
 
 def edge_params(tyre, grid, **options) -> EnvelopingParams:
@@ -509,4 +513,5 @@ register_contact(ContactModel("enveloping-edge", EnvelopingParams, edge_params,
                               geometry=enveloping_contact,
                               summary="3D enveloping contact with the road evaluated on the "
                                       "patch's edges only, as the thesis describes its ADAMS "
-                                      "model (5.4)"))
+                                      "model (5.4)",
+                              options=_USER_OPTIONS))
