@@ -26,12 +26,8 @@ MAX_MEMORY = 2 * 1024 ** 3
 #: longest estimated wall time of one request before ``force`` [s]: 10 min (the longest
 #: runs of the thesis campaign, the ring on a 100 m track at 3 km/h, take about 2-3 min)
 MAX_WALL_TIME = 600.0
-#: wall time [s] per simulated second at a 1 ms step on one core, per contact model on
-#: the trailer (README benchmarks; the study runner orders its runs by it); others: by
-#: kind below
-MODEL_COST = {"point": 0.002, "volume": 0.015, "enveloping": 0.015, "enveloping-edge": 0.015,
-              "ring": 0.2, "ring-tp": 0.22}
-#: cost of an unknown analytic model / model with its own dynamics [s per simulated s at 1 ms]
+#: cost of a contact model that states none (``ContactModel.cost``, the registry), analytic /
+#: with its own dynamics [s per simulated s at 1 ms on one core]
 ANALYTIC_COST, DYNAMIC_COST = 0.015, 1.0
 #: internal step of the models with their own dynamics (the ring's, at 100 segments) [s]:
 #: below it their cost grows as 1/dt
@@ -316,10 +312,13 @@ def check_stable_step(dt: float, models, wheel_load: float, field: str = "dt") -
 
 
 def model_cost(model) -> float:
-    """Wall time [s] per simulated second at a 1 ms step (rough)."""
-    if model.contact in MODEL_COST:
-        return MODEL_COST[model.contact]
-    return DYNAMIC_COST if model.has_state else ANALYTIC_COST
+    """Wall time [s] per simulated second at a 1 ms step (rough) of a ``TyreModel`` or a
+    registered ``ContactModel``: the cost the model states in the registry, else
+    :data:`ANALYTIC_COST` or :data:`DYNAMIC_COST` by its kind."""
+    contact = getattr(model, "contact_model", model)
+    if contact.cost is not None:
+        return contact.cost
+    return DYNAMIC_COST if contact.has_state else ANALYTIC_COST
 
 
 def run_wall_time(models, duration: float, dt: float) -> float:

@@ -17,7 +17,7 @@ import json
 from pathlib import Path
 
 
-from ..limits import MODEL_COST
+from ..limits import model_cost
 from .evaluate import evaluate_study
 from .results import Study
 from .spec import RunSpec, StudySpec, builtin_spec, example_spec, load_spec
@@ -45,8 +45,9 @@ _TRACK_LENGTH = 100.0
 def expected_cost(run: RunSpec) -> float:
     """A rough estimate of a run's wall time [s]: simulated time x the model's cost."""
     simulated = run.duration if run.duration is not None else _TRACK_LENGTH / run.speed
-    # the models' cost per simulated second (limits.MODEL_COST) only orders the runs
-    return simulated * MODEL_COST.get(run.model.contact, 0.002)
+    # the model's cost per simulated second (the registry's, limits.model_cost) orders the runs
+    from ..tyre.registry import contact_model
+    return simulated * model_cost(contact_model(run.model.contact))
 
 
 def tasks(spec: StudySpec) -> list[dict]:

@@ -34,21 +34,15 @@ from .evaluate import METRICS_FILE, REPEATABILITY, evaluate_study
 from .spec import StudySpec, parse_spec
 from .store import DONE, Store
 
-#: what each contact model must be given, measured (thesis chapter 4), as a short text
-PARAMETERIZATION = {
-    "point": "load-deflection curve (static press on a flat plate)",
-    "volume": "load-deflection curve + carcass cross-section shape",
-    "enveloping": "load-deflection curve + contact-patch length and width vs load "
-                  "(footprints) + cam (ellipse) parameters from cleat tests",
-    "enveloping-edge": "as enveloping (the cams on the patch's edges only, as the thesis's "
-                       "ADAMS model)",
-    "ring": "load-deflection curve + modal tests (belt eigenfrequencies) + static "
-            "cleat tests + footprints",
-    "ring-tp": "load-deflection curve + modal tests (belt eigenfrequencies) + static "
-               "cleat tests + footprints + tread pattern",
-}
 RUN_COLUMNS = ("tyre", "test", "speed_kmh", "load")
 THESIS_METRICS = [*THESIS_CLEAT, *THESIS_TRACK]
+
+
+def _parameterization(contact: str) -> str:
+    """What a contact model must be given, measured (the registry's text; "" if unknown)."""
+    from ..tyre.registry import contact_models
+    model = contact_models().get(contact)
+    return model.parameterization if model is not None else ""
 
 
 class Study:
@@ -259,7 +253,7 @@ class Study:
             contact = str(g["contact"].iloc[0]) if "contact" in g else ""
             rows.append({"model": model, "contact": contact, "runs": len(g),
                          "wall_per_simulated_s": float((g["wall_time_s"] / g["simulated_s"]).median()),
-                         "parameterization": PARAMETERIZATION.get(contact, "")})
+                         "parameterization": _parameterization(contact)})
         out = pd.DataFrame(rows, columns=cols)
         if self.spec is not None:
             order = {m.name: i for i, m in enumerate(self.spec.models)}

@@ -83,6 +83,14 @@ class ContactModel:
         without it the static press draws the geometric footprint.
     summary : str
         One line for listings.
+    cost : float, optional
+        Wall time [s] per simulated second on the trailer at a 1 ms step on one
+        core (README benchmarks): orders a study's runs, longest first, and
+        estimates a request's time (:func:`tyrelab.limits.model_cost`; None: by
+        kind).
+    parameterization : str
+        What the model must be given, measured (thesis chapter 4), in a few
+        words: the study report's cost table.
     options : dict
         The options ``build`` takes that a user may set (``simulate(options=...)``,
         ``--option KEY=VALUE``, a study spec's ``options`` table), name -> type
@@ -101,6 +109,8 @@ class ContactModel:
     footprint: Callable[..., Any] | None = None
     summary: str = ""
     options: dict = field(default_factory=dict)
+    cost: float | None = None
+    parameterization: str = ""
 
     def __post_init__(self):
         if (self.geometry is None) == (self.step is None):

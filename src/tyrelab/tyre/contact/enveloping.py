@@ -115,6 +115,9 @@ _OTHER_OPTIONS = ("discs",)
 #: the options a user sets, by type (tyrelab.tyre.registry.check_options)
 _USER_OPTIONS = {"n_length": int, "n_width": int, "width_table": bool, "step": float,
                  "min_patch_deflection": float}
+#: what the model must be given, measured (thesis chapter 4)
+_DATA = ("load-deflection curve + contact-patch length and width vs load (footprints) + cam "
+         "(ellipse) parameters from cleat tests")
 #: which cams make the effective plane: the whole grid, or only those on the patch's outline
 CAM_LAYOUTS = ("grid", "outline")
 
@@ -497,7 +500,8 @@ register_contact(ContactModel("enveloping", EnvelopingParams, enveloping_params,
                               geometry=enveloping_contact,
                               summary="3D enveloping contact (tandem elliptical cams), "
                                       "thesis 2.3.3",
-                              options={**_USER_OPTIONS, "cam_layout": str}))
+                              options={**_USER_OPTIONS, "cam_layout": str}, cost=0.015,
+                              parameterization=_DATA))
 
 
 def edge_params(tyre, grid, **options) -> EnvelopingParams:
@@ -514,4 +518,5 @@ register_contact(ContactModel("enveloping-edge", EnvelopingParams, edge_params,
                               summary="3D enveloping contact with the road evaluated on the "
                                       "patch's edges only, as the thesis describes its ADAMS "
                                       "model (5.4)",
-                              options=_USER_OPTIONS))
+                              options=_USER_OPTIONS, cost=0.015,
+                              parameterization=_DATA + " (the cams on the patch's edges only)"))

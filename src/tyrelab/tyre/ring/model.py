@@ -38,6 +38,9 @@ STATIC_LATERAL_SAMPLES = 4
 
 _OPTIONS = ("n_segments", "n_blocks", "friction", "dt_max", "pattern", "parameters", "relax",
             "lateral_samples")
+#: what the model must be given, measured (thesis chapter 4)
+_DATA = ("load-deflection curve + modal tests (belt eigenfrequencies) + static cleat tests + "
+         "footprints")
 #: the options by type (tyrelab.tyre.registry.check_options); ``pattern`` (a dict of blocks
 #: or a file) and ``parameters`` (a RingParameters record) are Python values
 _OPTION_TYPES = {"n_segments": int, "n_blocks": int, "friction": float, "dt_max": float,
@@ -362,10 +365,12 @@ def _ring_tp_equilibrium(tyre, load, speed, params, **options):
 register_contact(ContactModel("ring", RingParams, _ring_build, step=ring_step,
                               initial_state=_ring_state, equilibrium=_ring_equilibrium,
                               static_options={"relax": RELAX_RATE},
-                              footprint=ring_footprint_of, options=_OPTION_TYPES,
+                              footprint=ring_footprint_of, options=_OPTION_TYPES, cost=0.2,
+                              parameterization=_DATA,
                               summary="flexible ring (FTire class), evenly spaced tread blocks"))
 register_contact(ContactModel("ring-tp", RingParams, _ring_tp_build, step=ring_step,
                               initial_state=_ring_tp_state, equilibrium=_ring_tp_equilibrium,
                               static_options={"relax": RELAX_RATE}, footprint=ring_footprint_of,
-                              options=_OPTION_TYPES,
+                              options=_OPTION_TYPES, cost=0.22,
+                              parameterization=_DATA + " + tread pattern",
                               summary="flexible ring with blocks on the tread pattern"))
