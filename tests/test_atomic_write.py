@@ -9,6 +9,7 @@ into the same unwinding (exit 143) and Ctrl-C into exit 130.
 from __future__ import annotations
 
 import os
+import shutil
 import signal
 import subprocess
 import sys
@@ -129,36 +130,169 @@ def _handler_installed(pid: int, signum: int) -> bool:
     return bool(caught >> (signum - 1) & 1)
 
 
-@linux
-@pytest.mark.parametrize("sig, code, words, cold", [
-    (signal.SIGTERM, 143, "tyrelab: terminated", False),
-    (signal.SIGINT, 130, "tyrelab: interrupted", False),
-    (signal.SIGTERM, 143, "tyrelab: terminated", True),    # while numba compiles the kernels
-], ids=["SIGTERM", "SIGINT", "SIGTERM-compiling"])
-def test_a_signal_to_a_running_simulation(tmp_path, sig, code, words, cold):
-    """SIGTERM / Ctrl-C during a long run: one line, exit 143 / 130, the earlier output intact."""
-    out = tmp_path / "run.parquet"
-    out.write_bytes(b"an earlier result")
-    env = dict(os.environ)
-    if cold:  # an empty compile cache: the signal arrives inside numba / llvmlite
-        env["NUMBA_CACHE_DIR"] = str(tmp_path / "cache")
-    # a long run (about a minute of work) that is stopped after a second
-    p = subprocess.Popen([sys.executable, "-m", "tyrelab.cli.main", "simulate", "--road", "flat",
-                          "--duration", "3000", "--dt", "1e-4", "--rate", "10", "-o", str(out)],
-                         stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, cwd=tmp_path, env=env)
-    t0 = time.monotonic()
-    while not _handler_installed(p.pid, signal.SIGTERM):  # the command's own handler is in place
-        assert p.poll() is None and time.monotonic() - t0 < 60
-        time.sleep(0.05)
-    time.sleep(1.0)
-    p.send_signal(sig)
-    _, err = p.communicate(timeout=60)
-    lines = [ln for ln in err.splitlines() if ln.strip()]
-    assert p.returncode == code, err
-    assert lines == [words], err
-    assert "Traceback" not in err
+#: the long run the signal tests stop: 30 million steps, about a minute of work
+SIMULATE = ["simulate", "--road", "flat", "--dt", "1e-4", "--rate", "10"]
+LONG = ["--duration", "3000"]
+#: bound on any wait of these tests [s]: a hung process fails here (never a speed limit)
+HANG = 600
+#: CPU time [s] the run must have spent after loading its loop's compiled code before it is
+#: signalled: loading takes milliseconds and the first 0.5 s chunk of the loop ends within
+#: 0.05 s of CPU (measured with the progress bar on a tty), the whole loop takes ~13 s
+IN_LOOP_CPU = 0.5
+
+
+def _cpu_seconds(pid: int) -> float:
+    """User + system CPU time of a process [s] (/proc/PID/stat fields 14 and 15)."""
+    fields = Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()
+    return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
+
+
+def _wait(condition, p, what: str) -> None:
+    """Until ``condition()``; fails if the process ends first or after :data:`HANG` seconds."""
+    end = time.monotonic() + HANG
+    while not condition():
+        assert p.poll() is None, f"the run ended ({p.returncode}) before {what}"
+        assert time.monotonic() < end, f"not {what} after {HANG} s"
+        time.sleep(0.02)
+
+
+class _Opened:
+    """Names of the files opened in some folders from now on (Linux inotify, IN_OPEN)."""
+
+    IN_OPEN = 0x20
+
+    def __init__(self, folders):
+        import ctypes
+        self._libc = ctypes.CDLL(None, use_errno=True)
+        self._fd = self._libc.inotify_init1(os.O_NONBLOCK | os.O_CLOEXEC)
+        if self._fd < 0:
+            raise OSError(ctypes.get_errno(), "inotify_init1")
+        for folder in folders:
+            if self._libc.inotify_add_watch(self._fd, os.fsencode(folder), self.IN_OPEN) < 0:
+                raise OSError(ctypes.get_errno(), f"inotify_add_watch {folder}")
+        self.names: list[str] = []
+
+    def poll(self) -> list[str]:
+        import struct
+        while True:
+            try:
+                data = os.read(self._fd, 65536)
+            except BlockingIOError:
+                return self.names
+            i = 0
+            while i < len(data):  # struct inotify_event: wd, mask, cookie, len, name[len]
+                length = struct.unpack_from("iIII", data, i)[3]
+                self.names.append(data[i + 16:i + 16 + length].split(b"\0")[0].decode())
+                i += 16 + length
+
+    def close(self) -> None:
+        os.close(self._fd)
+
+
+def _kernel_files(cache: Path, pattern: str) -> dict[Path, float]:
+    """Cached files of the trailer rig's kernels under a NUMBA_CACHE_DIR, with their mtimes."""
+    return {f: f.stat().st_mtime for f in cache.glob(f"tyrelab-*/rig_*/{pattern}")}
+
+
+@pytest.fixture(scope="module")
+def warm_cache(tmp_path_factory):
+    """A NUMBA_CACHE_DIR holding the compiled kernels of the signal tests' run: filled by a
+    0.5 s run of the same command (after copying this session's cache, so it usually only
+    loads them instead of compiling for 10 s)."""
+    from tyrelab.core import jit_cache
+    cache = tmp_path_factory.mktemp("numba-cache")
+    if jit_cache._folder is not None and jit_cache._folder.is_dir():
+        shutil.copytree(jit_cache._folder, cache / f"tyrelab-{jit_cache._folder.name}")
+    warm = subprocess.run([sys.executable, "-m", "tyrelab.cli.main", *SIMULATE, "--duration", "0.5",
+                           "-o", str(cache / "warm.parquet")],
+                          env=dict(os.environ, NUMBA_CACHE_DIR=str(cache)), capture_output=True, timeout=HANG)
+    assert warm.returncode == 0, warm.stderr
+    assert _kernel_files(cache, "_trailer_kernel.trailer_steps-*.nbc")
+    return cache
+
+
+def _start(tmp_path, out: Path, cache: Path):
+    p = subprocess.Popen([sys.executable, "-m", "tyrelab.cli.main", *SIMULATE, *LONG, "-o", str(out)],
+                         stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, cwd=tmp_path,
+                         env=dict(os.environ, NUMBA_CACHE_DIR=str(cache)))
+    return p, StreamWatcher(p.stderr)
+
+
+def _ended_in_one_line(p, err, code: int, words: str, out: Path, tmp_path: Path) -> None:
+    p.wait(timeout=HANG)
+    raw = err.finish()
+    shown = [ln for ln in render(raw) if ln.strip()]
+    assert p.returncode == code, raw
+    assert shown == [words], raw
+    assert b"Traceback" not in raw
     assert out.read_bytes() == b"an earlier result"
     assert _temporaries(tmp_path) == []
+
+
+@linux
+@pytest.mark.parametrize("sig, code, words", [
+    (signal.SIGTERM, 143, "tyrelab: terminated"),
+    (signal.SIGINT, 130, "tyrelab: interrupted"),
+], ids=["SIGTERM", "SIGINT"])
+def test_a_signal_to_a_running_simulation(tmp_path, warm_cache, sig, code, words):
+    """SIGTERM / Ctrl-C in the time-stepping loop of a long run: one line, exit 143 / 130, the
+    earlier output intact.
+
+    ``tyrelab simulate`` reports no phase on a pipe (its bar is drawn only on a terminal), so
+    the run is observed: the signal is sent once it has opened its loop's compiled code in the
+    warm cache (inotify; or, if the kernels' sources changed since the cache was warmed, once
+    it has written that code after compiling it) and then spent IN_LOOP_CPU s of CPU time."""
+    out = tmp_path / "run.parquet"
+    out.write_bytes(b"an earlier result")
+    nbc = "_trailer_kernel.trailer_steps-*.nbc"
+    before = _kernel_files(warm_cache, nbc)
+    opened = _Opened({f.parent for f in before})
+    p, err = _start(tmp_path, out, warm_cache)
+    try:
+        def loop_code_ready():
+            loaded = any(Path(name).match(nbc) for name in opened.poll())
+            return loaded or _kernel_files(warm_cache, nbc) != before
+        _wait(loop_code_ready, p, "the loop's compiled code was loaded")
+        assert _handler_installed(p.pid, signal.SIGTERM)  # the command's own handler is in place
+        cpu = _cpu_seconds(p.pid)
+        _wait(lambda: _cpu_seconds(p.pid) >= cpu + IN_LOOP_CPU, p, "the loop had run")
+        p.send_signal(sig)
+        _ended_in_one_line(p, err, code, words, out, tmp_path)
+    finally:
+        opened.close()
+        if p.poll() is None:
+            p.kill()
+
+
+@linux
+def test_sigterm_while_numba_compiles(tmp_path):
+    """SIGTERM while numba compiles the run's loop (an empty compile cache): one line, exit 143.
+
+    The signal arrives inside numba / llvmlite, where a C library may call back into Python
+    and swallow the exception (tyrelab.cli.main._on_signal). The phase is observed: the run
+    has llvmlite loaded, has compiled a function of the loop's own module (``_rotation``, which
+    numba compiles when it types the loop ``trailer_steps``) but not yet written the loop --
+    checked again right before the signal -- and the loop's code is never written."""
+    out = tmp_path / "run.parquet"
+    out.write_bytes(b"an earlier result")
+    cache = tmp_path / "cache"
+    cache.mkdir()
+    loop = "_trailer_kernel.trailer_steps-*"
+    p, err = _start(tmp_path, out, cache)
+    try:
+        def compiling_the_loop():
+            return bool(_kernel_files(cache, "_trailer_kernel._rotation-*.nbi")) and \
+                not _kernel_files(cache, f"{loop}.nbi")
+        _wait(compiling_the_loop, p, "numba compiled the loop's callee")
+        assert _handler_installed(p.pid, signal.SIGTERM)
+        assert "llvmlite" in Path(f"/proc/{p.pid}/maps").read_text()
+        assert not _kernel_files(cache, f"{loop}.nbi")  # still compiling, right before the signal
+        p.send_signal(signal.SIGTERM)
+        _ended_in_one_line(p, err, 143, "tyrelab: terminated", out, tmp_path)
+    finally:
+        if p.poll() is None:
+            p.kill()
+    assert not _kernel_files(cache, loop)  # the loop was never compiled to the end
 
 
 def test_every_writer_goes_through_the_atomic_writer(tmp_path, monkeypatch):
@@ -241,3 +375,24 @@ def test_the_terminal_rendering_the_signal_tests_read():
     closed_at_1 = b"\n\r" + b" " * 10 + b"\x1b[A"
     assert render(closed_at_1 + b"tyrelab: terminated\n") == [" " * 10 + "tyrelab: terminated"]
     assert render(b"\r" + b" " * 10 + b"\rtyrelab: terminated\n") == ["tyrelab: terminated"]
+
+
+def test_a_message_after_a_bar_drawn_but_not_closed_starts_its_own_line():
+    """The command's last line after a bar an interrupt caught mid-draw (tqdm wrote the bar
+    but had not recorded it, so its close cleared nothing): the message still starts at the
+    line's start; after a finished line nothing extra is written."""
+    import io
+
+    from tyrelab.cli import main as cli
+
+    for before, extra in [("\ridentifying ring:   0%|          | 1/550", "\r\x1b[K"), ("done\n", "")]:
+        tracker = cli._LineTracker(io.StringIO())
+        tracker.write(before)
+        old, sys.stderr = sys.stderr, tracker
+        try:
+            cli._say("tyrelab: terminated")
+        finally:
+            sys.stderr = old
+        text = tracker._stream.getvalue()
+        assert text == before + extra + "tyrelab: terminated\n"
+        assert render(text)[-1] == "tyrelab: terminated"

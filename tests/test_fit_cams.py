@@ -35,9 +35,30 @@ def test_table_has_every_pair_and_condition(study):
     assert 1.0 < t["disturbance_start_s"].iloc[0] < t["disturbance_end_s"].iloc[0] < 2.0
 
 
-def test_reference_pair_has_zero_error(study):
-    # the reference is the same deterministic simulation as the grid's 5 x 6 run
-    assert _row(study.table, 5, 6)["error_pct"] == 0.0
+def test_error_of_a_pair_by_hand(study):
+    """The 1 x 1 pair's error_pct, recomputed here from its definition (cams.py docstring) on
+    runs made here: over the samples from the first to the last whose reference contact point
+    lies above 1 % of the cleat's 50 mm, the RMS of FZW minus the reference's, in per cent of
+    the reference's peak |FZW| there. Both runs share their time base: no interpolation."""
+    from tyrelab.rig.trailer import Trailer
+    from tyrelab.tyre.library import load_tyre
+    from tyrelab.tyre.model import TyreModel
+    t = load_tyre("xzl-16.00R20")
+    left = TyreModel(t, "point", handling="none")
+
+    def run(nl, nw):
+        model = TyreModel(t, "enveloping", handling="none", options={"n_length": nl, "n_width": nw})
+        return Trailer(model, "LC1", left=left).run("cleat:50x50", 12 / 3.6, 2.5)
+    ref, sim = run(5, 6), run(1, 1)
+    np.testing.assert_array_equal(ref["RUNTIME"], sim["RUNTIME"])
+    on = np.flatnonzero(ref["Z_CP"].to_numpy() / 0.050 > 0.01)
+    window = slice(on[0], on[-1] + 1)
+    m, p = ref["FZW"].to_numpy()[window], sim["FZW"].to_numpy()[window]
+    expected = np.sqrt(np.mean((p - m) ** 2)) / np.abs(m).max() * 100
+    row = _row(study.table, 1, 1)
+    assert row["error_pct"] == pytest.approx(expected, rel=1e-9)
+    t_ref = ref["RUNTIME"].to_numpy()
+    assert (row["disturbance_start_s"], row["disturbance_end_s"]) == (t_ref[on[0]], t_ref[on[-1]])
 
 
 def test_one_cam_cannot_envelop_the_cleat(study):

@@ -47,13 +47,39 @@ def test_thesis_pb1_pb3_come_back_from_their_own_curve():
 
 def test_noise_on_the_lengths_degrades_pa_gracefully():
     """2 mm of noise on each half length (14 footprints): the fitted curve stays within 2 mm
-    RMS of the true one over 20-85 mm."""
+    RMS of the true one over 20-85 mm, and the fit's residual is the noise's part outside
+    the law.
+
+    The law is linear in (PA1, PA1 PA2) with the basis [x, sqrt(x)] (n = 14 points, p = 2), and
+    the true half lengths lie on it, so a least-squares fit leaves exactly the residual
+    (I - H) e of the noise e (H: the projection onto the basis) and moves the curve by H e.
+    For Gaussian e of sigma 2 mm: |H e|^2 / sigma^2 is chi-squared with p = 2 degrees of
+    freedom and n rms^2 / sigma^2 with n - p = 12."""
+    sigma, n, p = 0.002, D.size, 2
     a = contact_half_length(D, PA1, PA2, R0)
-    noisy = a + np.random.default_rng(3).normal(0.0, 0.002, a.size)
-    fit = fit_contact_length(D, noisy, R0)
+    noise = np.random.default_rng(3).normal(0.0, sigma, n)
+    fit = fit_contact_length(D, a + noise, R0)
     err = contact_half_length(D, fit.pa1, fit.pa2, R0) - a
-    assert np.sqrt(np.mean(err ** 2)) < 0.002
-    assert fit.rms == pytest.approx(0.002, rel=0.5)
+    # RMS(H e) >= 2 mm means chi2(2) >= n: probability exp(-n / 2) = 1e-3 over seeds
+    assert np.sqrt(np.mean(err ** 2)) < sigma
+    # the residual, computed from the noise alone (QR projection, not the fit's lstsq on the data)
+    x = D / R0
+    q, _ = np.linalg.qr(np.column_stack([x, np.sqrt(x)]))
+    residual = noise - q @ (q.T @ noise)
+    assert fit.rms == pytest.approx(np.sqrt(np.mean(residual ** 2)), rel=1e-9)
+    np.testing.assert_allclose(err, noise - residual, rtol=0, atol=1e-12)   # the curve moved by H e
+    # over many noise draws, the mean of rms^2 / sigma^2 is (n - p) / n = 0.857 (a fit that
+    # missed the least-squares optimum would leave more; a residual divided by n - p instead
+    # of n would give 1.0). One draw of n rms^2 / sigma^2 has a standard deviation of
+    # sqrt(2 (n - p)) = 4.9, i.e. +-41 % about its mean of 12: a single seed cannot check this
+    # to better than a factor of about 2. The mean of 400 draws has a standard error of
+    # sqrt(2 (n - p)) / n / sqrt(400) = 0.0175; the bound is 4 standard errors (6e-5 of seeds).
+    draws = 400
+    rng = np.random.default_rng(4)
+    rms2 = np.array([fit_contact_length(D, a + rng.normal(0.0, sigma, n), R0).rms ** 2
+                     for _ in range(draws)]) / sigma ** 2
+    standard_error = np.sqrt(2 * (n - p)) / n / np.sqrt(draws)
+    assert abs(rms2.mean() - (n - p) / n) < 4 * standard_error
 
 
 def test_width_table_and_line():

@@ -5,14 +5,22 @@ damages real inputs -- truncation, flipped bytes, swapped or deleted lines and
 sections, absurd numbers -- and every case must end one of two ways: refused
 cleanly (:class:`InputError`, or a one-line message and exit 2 on the command
 line) or run correctly (finite numbers, no NaN). Never another exception, a
-traceback, a hang or a NaN. A few hundred cases, a few seconds each at most.
+traceback, a hang or a NaN. A few hundred cases.
+
+No case is timed: how long a case takes depends on the machine, its load and on
+whether numba's compile cache is warm, so a wall-clock limit would test the machine.
+A hang is caught by :func:`_no_hang` instead: a test still running after
+:data:`HANG_LIMIT` seconds (many times what the slowest takes on a loaded machine
+with a cold cache) has hung, and the test process is stopped with the traceback of
+every thread (``faulthandler``) rather than left waiting forever.
 """
 
 from __future__ import annotations
 
+import faulthandler
 import random
 import re
-import time
+import sys
 import warnings
 from pathlib import Path
 
@@ -26,8 +34,21 @@ PACKAGE = Path(__file__).parents[1] / "src" / "tyrelab" / "tyre" / "data"
 #: numbers a damaged file or a careless user writes
 NASTY = ["nan", "NaN", "inf", "-inf", "1e400", "-1e400", "1e308", "-1e308", "1e30", "1e-320", "0", "-0.0",
          "-1", "9" * 40, "1e-9", "1D+400", "0x10", "", "1e", "--5"]
-#: the longest any single case may take [s]: a hang shows here, not as a stuck test run
-CASE_LIMIT = 10.0
+#: a test of this file still running after this long [s] has hung (a bound on a hang, never
+#: on speed: each takes seconds to a minute or two on a loaded machine with a cold cache)
+HANG_LIMIT = 900.0
+
+
+@pytest.fixture(autouse=True)
+def _no_hang():
+    """Stop the test process, with every thread's traceback, if a test runs for longer than
+    :data:`HANG_LIMIT` (numba's compiled loops do not return to Python to be interrupted, so
+    a Python-level alarm could not stop them)."""
+    faulthandler.dump_traceback_later(HANG_LIMIT, exit=True, file=sys.__stderr__)
+    try:
+        yield
+    finally:
+        faulthandler.cancel_dump_traceback_later()
 
 
 def _damage(data: bytes, rng: random.Random) -> bytes:
@@ -90,7 +111,6 @@ def test_damaged_property_files(tmp_path):
     refused = loaded = driven = 0
     for case in range(160):
         data = _damage(rng.choice(texts), rng)
-        t0 = time.perf_counter()
         try:
             with warnings.catch_warnings():
                 warnings.simplefilter("ignore")
@@ -112,7 +132,6 @@ def test_damaged_property_files(tmp_path):
         except SimulationError as exc:  # a divergence is reported, not hidden: one line
             assert "diverged" in str(exc), case
             refused += 1
-        assert time.perf_counter() - t0 < CASE_LIMIT, case
     assert refused > 20 and loaded > 20  # the damage both breaks and spares files
 
 
@@ -134,7 +153,6 @@ def test_damaged_crg_files(tmp_path):
     refused = loaded = 0
     for case in range(100):
         path.write_bytes(_damage(rng.choice(sources), rng))
-        t0 = time.perf_counter()
         try:
             with warnings.catch_warnings():
                 warnings.simplefilter("ignore")
@@ -145,7 +163,6 @@ def test_damaged_crg_files(tmp_path):
         except InputError as exc:
             assert "fuzz.crg" in str(exc), (case, str(exc))
             refused += 1
-        assert time.perf_counter() - t0 < CASE_LIMIT, case
     assert refused > 10 and loaded > 10
 
 
@@ -164,7 +181,6 @@ def test_damaged_tydex_files(tmp_path):
     refused = loaded = 0
     for case in range(100):
         path.write_bytes(_damage(source, rng))
-        t0 = time.perf_counter()
         try:
             run = read_tydex(path)
             assert _finite_table(run), case
@@ -172,7 +188,6 @@ def test_damaged_tydex_files(tmp_path):
         except InputError as exc:
             assert "fuzz.tdx" in str(exc), (case, str(exc))
             refused += 1
-        assert time.perf_counter() - t0 < CASE_LIMIT, case
     assert refused > 10 and loaded > 10
 
 
@@ -221,7 +236,6 @@ def test_fuzzed_road_names():
     refused = built = 0
     for case in range(150):
         name = _road_name(rng)
-        t0 = time.perf_counter()
         try:
             with warnings.catch_warnings():
                 warnings.simplefilter("ignore")
@@ -234,7 +248,6 @@ def test_fuzzed_road_names():
                     assert _finite_table(run), name
         except InputError:
             refused += 1
-        assert time.perf_counter() - t0 < CASE_LIMIT, name
     assert refused > 30 and built > 20
 
 
@@ -264,10 +277,8 @@ def test_fuzzed_simulate_options(tmp_path, capsys):
         for opt in good:
             if opt == "--duration" or rng.random() < 0.5:  # every run short
                 argv += [opt, rng.choice(bad[opt] if rng.random() < 0.12 else good[opt])]
-        t0 = time.perf_counter()
         code = main(argv)
         err = [ln for ln in capsys.readouterr().err.splitlines() if ln.strip()]
-        assert time.perf_counter() - t0 < CASE_LIMIT, argv
         assert code in (0, 2), (argv, err)
         errors = [ln for ln in err if not ln.startswith("tyrelab: warning: ")]
         if code == 2:

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import json
 
+import distributed  # noqa: F401 -- a required dependency: missing, this file fails, never skips
 import numpy as np
 import pandas as pd
 import pytest
@@ -18,8 +19,6 @@ import pytest
 import tyrelab
 from tyrelab.study.runner import run_tasks
 from tyrelab.study.store import Store
-
-pytest.importorskip("distributed")
 
 
 def _task(key, model, road, speed_kmh):
@@ -96,13 +95,36 @@ def test_a_record_without_its_table_is_not_finished(tmp_path):
     assert not list(store.runs.glob("*.part"))
 
 
+#: a scheduler that has not written its file after this long [s] is stuck (a bound on a hang)
+SCHEDULER_START = 300.0
+
+
+def _scheduler_address(info, proc) -> str:
+    """The address in the scheduler file, once the file is complete.
+
+    distributed writes the file in place (``open(.., "w")`` then ``json.dump``), so it can be
+    seen empty or half written: it is read until it parses as the scheduler's identity with
+    its address, the process still running."""
+    import time
+    end = time.monotonic() + SCHEDULER_START
+    while time.monotonic() < end:
+        assert proc.poll() is None, f"the scheduler exited ({proc.returncode}) before writing {info}"
+        try:
+            ident = json.loads(info.read_text())
+        except (FileNotFoundError, json.JSONDecodeError):
+            ident = None
+        if isinstance(ident, dict) and ident.get("type") == "Scheduler" and \
+                str(ident.get("address", "")).startswith("tcp://127.0.0.1:"):
+            return ident["address"]
+        time.sleep(0.1)
+    raise AssertionError(f"no complete scheduler file {info} after {SCHEDULER_START:g} s")
+
+
 def test_external_scheduler_gives_the_same_tables(two_workers, tmp_path):
     """--scheduler: a separately started Dask scheduler and worker (the commands the README
     gives for a cluster, here on the loopback address) compute the same tables."""
-    import json as _json
     import subprocess
     import sys
-    import time
 
     info = tmp_path / "scheduler.json"
     bindir = [sys.executable, "-m", "distributed.cli.dask_scheduler"]
@@ -111,10 +133,7 @@ def test_external_scheduler_gives_the_same_tables(two_workers, tmp_path):
                              stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
     worker = None
     try:
-        deadline = time.monotonic() + 60
-        while not info.exists() and time.monotonic() < deadline:
-            time.sleep(0.1)
-        address = _json.loads(info.read_text())["address"]
+        address = _scheduler_address(info, sched)
         worker = subprocess.Popen([sys.executable, "-m", "distributed.cli.dask_worker", address,
                                    "--nworkers", "1", "--nthreads", "1", "--no-dashboard"],
                                   stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)

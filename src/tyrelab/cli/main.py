@@ -69,8 +69,36 @@ def _one_line(text: str, limit: int = MAX_MESSAGE) -> str:
     return text if len(text) <= limit else text[:limit - 3] + "..."
 
 
+class _LineTracker:
+    """sys.stderr while a command runs, remembering whether the cursor was left mid-line:
+    a progress bar draws without a newline, and an interrupt can land between its drawing
+    and its own record of it (its close then clears nothing)."""
+
+    def __init__(self, stream):
+        self._stream = stream
+        self.mid_line = False
+
+    def write(self, text):
+        written = self._stream.write(text)
+        if text:
+            self.mid_line = not text.endswith("\n")
+        return written
+
+    def __getattr__(self, name):
+        return getattr(self._stream, name)
+
+
+def _say(text: str) -> None:
+    """One line on stderr starting at the line's start (``\r`` and erase to the end of the
+    line first when a progress bar left the cursor mid-line; nothing extra otherwise)."""
+    stream = sys.stderr
+    if getattr(stream, "mid_line", False):
+        stream.write("\r\x1b[K")
+    print(text, file=stream)
+
+
 def _show_warning(message, category, filename, lineno, file=None, line=None):
-    print(f"tyrelab: warning: {_one_line(message)}", file=sys.stderr)
+    _say(f"tyrelab: warning: {_one_line(message)}")
 
 
 def _set_error(parser, error) -> None:
@@ -102,8 +130,8 @@ def _unraisable(hook_args) -> None:
     if _signalled or isinstance(hook_args.exc_value, KeyboardInterrupt):
         return
     where = getattr(hook_args.object, "__qualname__", None) or type(hook_args.object).__name__
-    print(f"tyrelab: warning: an error was ignored in {where}: {hook_args.exc_type.__name__}: "
-          f"{_one_line(hook_args.exc_value)}", file=sys.stderr)
+    _say(f"tyrelab: warning: an error was ignored in {where}: {hook_args.exc_type.__name__}: "
+         f"{_one_line(hook_args.exc_value)}")
 
 
 def _interrupted() -> int | None:
@@ -111,9 +139,9 @@ def _interrupted() -> int | None:
     if not _signalled:
         return None
     if _signalled[0] == signal.SIGTERM:
-        print("tyrelab: terminated", file=sys.stderr)
+        _say("tyrelab: terminated")
         return 143
-    print("tyrelab: interrupted", file=sys.stderr)
+    _say("tyrelab: interrupted")
     return 130
 
 
@@ -138,11 +166,14 @@ def main(argv=None) -> int:
             previous[signum] = signal.signal(signum, _on_signal)
     hook = sys.unraisablehook
     sys.unraisablehook = _unraisable
+    stderr = sys.stderr
+    sys.stderr = _LineTracker(stderr)   # progress bars write through it (see _say)
     try:
         with warnings.catch_warnings():
             warnings.showwarning = _show_warning
             return _main(argv, debug)
     finally:
+        sys.stderr = stderr
         sys.unraisablehook = hook
         for signum, handler in previous.items():
             signal.signal(signum, handler)
@@ -177,28 +208,28 @@ def _report(exc: BaseException, argv) -> int:
     from ..rig.simulation import SimulationError
 
     if isinstance(exc, _ArgumentError):
-        print(f"tyrelab: error: {_one_line(exc)}", file=sys.stderr)
+        _say(f"tyrelab: error: {_one_line(exc)}")
         return 2
     if isinstance(exc, (InputError, SimulationError)):
-        print(f"tyrelab: error: {_one_line(exc, 2000)}", file=sys.stderr)
+        _say(f"tyrelab: error: {_one_line(exc, 2000)}")
         return 2
     if isinstance(exc, Terminated):
-        print("tyrelab: terminated", file=sys.stderr)
+        _say("tyrelab: terminated")
         return 143
     if isinstance(exc, KeyboardInterrupt):
-        print("tyrelab: interrupted", file=sys.stderr)
+        _say("tyrelab: interrupted")
         return 130
     if isinstance(exc, MemoryError):
-        print(f"tyrelab: error: out of memory ({_one_line(exc) or 'MemoryError'}); ask for less "
-              "(a coarser step, a shorter run)", file=sys.stderr)
+        _say(f"tyrelab: error: out of memory ({_one_line(exc) or 'MemoryError'}); ask for less "
+             "(a coarser step, a shorter run)")
         return 1
     if isinstance(exc, OSError):  # the system refused: disk full, permission denied ...
         what = exc.strerror or _one_line(exc)
         where = f": {exc.filename}" if getattr(exc, "filename", None) else ""
-        print(f"tyrelab: error: {what}{where}", file=sys.stderr)
+        _say(f"tyrelab: error: {what}{where}")
         return 1
-    print(f"tyrelab: internal error (a bug) in '{_command(argv)}': {type(exc).__name__}: "
-          f"{_one_line(exc)}; run again with --debug for the full trace", file=sys.stderr)
+    _say(f"tyrelab: internal error (a bug) in '{_command(argv)}': {type(exc).__name__}: "
+         f"{_one_line(exc)}; run again with --debug for the full trace")
     return 1
 
 

@@ -29,22 +29,25 @@ def run_chunks(advance, n_steps: int, out_every: int, n_channels: int, dt: float
     done = 0
     row = 0
     started = time.perf_counter()
-    while done < n_steps:
-        n = min(per_chunk, n_steps - done)
-        row = advance(n, out, row)
-        done += n
-        if bar is None and progress is not False and done < n_steps:
-            elapsed = time.perf_counter() - started
-            expected = elapsed * n_steps / done
-            if progress or (expected > PROGRESS_AFTER and sys.stderr.isatty()):
-                from tqdm import tqdm
-                bar = tqdm(total=n_steps * dt, unit="s sim", desc="simulating", file=sys.stderr,
-                           bar_format="{l_bar}{bar}| {n:.1f}/{total:.1f} s simulated [{elapsed}<{remaining}]")
-                bar.update(done * dt)
-        elif bar is not None:
-            bar.update(n * dt)
-    if bar is not None:
-        bar.close()
+    try:
+        while done < n_steps:
+            n = min(per_chunk, n_steps - done)
+            row = advance(n, out, row)
+            done += n
+            if bar is None and progress is not False and done < n_steps:
+                elapsed = time.perf_counter() - started
+                expected = elapsed * n_steps / done
+                if progress or (expected > PROGRESS_AFTER and sys.stderr.isatty()):
+                    from tqdm import tqdm
+                    bar = tqdm(total=n_steps * dt, unit="s sim", desc="simulating", file=sys.stderr,
+                               bar_format="{l_bar}{bar}| {n:.1f}/{total:.1f} s simulated "
+                                          "[{elapsed}<{remaining}]")
+                    bar.update(done * dt)
+            elif bar is not None:
+                bar.update(n * dt)
+    finally:  # an interrupt too: the bar's line is left, not redrawn after the message
+        if bar is not None:
+            bar.close()
     return out[:row]
 
 

@@ -5,7 +5,7 @@
 >>> s.summary                             # thesis Table 5-15 form
 >>> s.thesis                              # our metrics beside the thesis's published ones
 >>> s.rank_agreement.mean                 # do we rank the models as the thesis did?
->>> s.consistency.views["ours"]["counts"] # within the bound the thesis's numbers impose?
+>>> s.consistency.views                  # within the bound the thesis's numbers impose?
 >>> s.cost                                # wall time per simulated second, data each model needs
 >>> s.to_xarray()                         # metrics as a Dataset, dims model x condition
 

@@ -62,8 +62,12 @@ def _client(scheduler: str | None, workers: int | None, connect_timeout: float =
     main_thread = threading.current_thread() is threading.main_thread()
     previous = signal.signal(signal.SIGINT, signal.SIG_IGN) if main_thread else None
     try:
+        # silence_logs: the workers' own log lines stay off the terminal; at ERROR a worker
+        # whose scheduler closes under it (a study stopped by SIGTERM or Ctrl-C) printed a
+        # heartbeat traceback (CommClosedError) before "tyrelab: terminated". A run's own
+        # failure reaches the study through its future, and is recorded
         cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True,
-                               dashboard_address=":0", silence_logs=logging.ERROR)  # any free port
+                               dashboard_address=":0", silence_logs=logging.CRITICAL)  # any port
     finally:
         if main_thread:
             signal.signal(signal.SIGINT, previous)
