@@ -112,6 +112,7 @@ def run_tasks(tasks: list[dict], store: Store, workers: int | None = None,
     from tqdm import tqdm
     client, cluster = _client(scheduler, workers, connect_timeout)
     futures = {}
+    interrupted = False
     # the time left is estimated from the runs' expected costs, not from their count: the
     # longest runs go first, so a count-based estimate would start far too high
     total_cost = sum(t.get("cost", 0.0) for t in todo) or 1.0
@@ -146,13 +147,34 @@ def run_tasks(tasks: list[dict], store: Store, workers: int | None = None,
             bar.update(1)
             future.release()
     except KeyboardInterrupt:
+        interrupted = True
         for f in futures:
             f.cancel()
         raise
     finally:
         bar.close()
-        client.close()
-        if cluster is not None:
-            cluster.close()
+        _close(client, cluster, CLOSE_TIMEOUT if interrupted else None)
         store.write_index()
     return counts
+
+
+#: how long a stopped study waits for the cluster to close [s]: a worker may be inside a
+#: compiled loop that cannot be interrupted (a ring run on a track, half a minute and more on a
+#: busy machine); its process is a daemon, ended when this one exits
+CLOSE_TIMEOUT = 10.0
+
+
+def _close(client, cluster, timeout: float | None) -> None:
+    """Close the client and the local cluster; stopped (``timeout`` given), do not wait longer."""
+    try:
+        if timeout is None:
+            client.close()
+            if cluster is not None:
+                cluster.close()
+        else:
+            client.close(timeout=timeout)
+            if cluster is not None:
+                cluster.close(timeout=timeout)
+    except (TimeoutError, OSError):
+        if timeout is None:
+            raise
