@@ -312,3 +312,27 @@ def test_fuzzed_tir_on_the_command_line(tmp_path, capsys, seed):
         else:
             loads = [float(ln.split()[1]) for ln in cap.out.splitlines()[2:]]
             assert len(loads) == 3 and np.all(np.isfinite(loads)), (case, cap.out)
+
+
+def test_binary_bytes_as_a_column_map_or_a_mapped_csv(tmp_path, capsys):
+    """Random bytes given as --column-map (or as the CSV it maps): one line naming the file
+    and exit 2, never a decoding traceback (issue "Lean and fast", point 6)."""
+    from tyrelab.cli.main import main
+    from tyrelab.measure.columns import read_column_map, read_mapped_csv
+
+    rng = random.Random(1605)
+    good_map = tmp_path / "map.csv"
+    good_map.write_text("t,RUNTIME,s\nfz,FZ,N\n")
+    for case in range(20):
+        junk = tmp_path / f"junk{case}.csv"
+        junk.write_bytes(bytes([0xF0, 0x80]) + bytes(rng.randrange(256) for _ in range(200)))
+        with pytest.raises(InputError) as err:
+            read_column_map(junk)
+        assert err.value.source == str(junk) and "UTF-8" in str(err.value)
+        with pytest.raises(InputError):
+            read_mapped_csv(junk, read_column_map(good_map))
+    measured = tmp_path / "m.csv"
+    measured.write_text("t,fz\n0,1\n0.001,2\n")
+    assert main(["validate", str(measured), str(measured), "--column-map", str(junk)]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and str(junk) in err[0] and "internal error" not in err[0], err

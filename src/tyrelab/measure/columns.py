@@ -26,25 +26,39 @@ from ..signal import make_signal
 from .units import si_unit, to_si
 
 
+def _csv_rows(path: Path, delimiter: str = ","):
+    """``(line number, cells)`` of a CSV text file; a file that is not UTF-8 text or not CSV
+    (binary bytes, a NUL) is one InputError naming it, never a decoding traceback."""
+    try:
+        with open(path, encoding="utf-8", newline="") as fh:
+            reader = csv.reader(fh, delimiter=delimiter)
+            for row in reader:
+                yield reader.line_num, row
+    except UnicodeDecodeError as exc:
+        raise InputError(f"not UTF-8 text (byte {exc.start}: {exc.reason}); expected a CSV "
+                         "text file", source=str(path)) from None
+    except csv.Error as exc:
+        raise InputError(f"not a CSV text file ({exc})", source=str(path)) from None
+
+
 def read_column_map(path) -> dict[str, tuple[str, str]]:
     """Read a column map file: ``source,channel,unit`` per line."""
     path = Path(path)
     if not path.is_file():
         raise InputError("no such file", source=str(path))
     mapping: dict[str, tuple[str, str]] = {}
-    with open(path, encoding="utf-8", newline="") as fh:
-        for lineno, row in enumerate(csv.reader(fh), start=1):
-            if not row or not "".join(row).strip() or row[0].lstrip().startswith("#"):
-                continue
-            cells = [c.strip() for c in row]
-            if lineno == 1 and [c.lower() for c in cells[:3]] == ["source", "channel", "unit"]:
-                continue
-            if len(cells) not in (2, 3):
-                raise InputError(f"expected 'source,channel,unit', got {len(cells)} fields",
-                                 source=str(path), line=lineno)
-            unit = cells[2] if len(cells) == 3 else ""
-            si_unit(unit, source=str(path), line=lineno, field=cells[0])
-            mapping[cells[0]] = (cells[1], unit)
+    for lineno, row in _csv_rows(path):
+        if not row or not "".join(row).strip() or row[0].lstrip().startswith("#"):
+            continue
+        cells = [c.strip() for c in row]
+        if lineno == 1 and [c.lower() for c in cells[:3]] == ["source", "channel", "unit"]:
+            continue
+        if len(cells) not in (2, 3):
+            raise InputError(f"expected 'source,channel,unit', got {len(cells)} fields",
+                             source=str(path), line=lineno)
+        unit = cells[2] if len(cells) == 3 else ""
+        si_unit(unit, source=str(path), line=lineno, field=cells[0])
+        mapping[cells[0]] = (cells[1], unit)
     if not mapping:
         raise InputError("column map is empty", source=str(path))
     return mapping
@@ -53,14 +67,13 @@ def read_column_map(path) -> dict[str, tuple[str, str]]:
 def _table(path: Path, delimiter: str):
     """(header cells, header line, [(line number, cells)]) of a CSV file."""
     header, header_line, rows = None, None, []
-    with open(path, encoding="utf-8", newline="") as fh:
-        for lineno, row in enumerate(csv.reader(fh, delimiter=delimiter), start=1):
-            if not row or not "".join(row).strip() or row[0].lstrip().startswith("#"):
-                continue
-            if header is None:
-                header, header_line = [c.strip() for c in row], lineno
-                continue
-            rows.append((lineno, row))
+    for lineno, row in _csv_rows(path, delimiter):
+        if not row or not "".join(row).strip() or row[0].lstrip().startswith("#"):
+            continue
+        if header is None:
+            header, header_line = [c.strip() for c in row], lineno
+            continue
+        rows.append((lineno, row))
     if header is None:
         raise InputError("no header line", source=str(path))
     return header, header_line, rows
