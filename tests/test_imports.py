@@ -32,7 +32,7 @@ PACKAGE = Path(__file__).resolve().parents[1] / "src" / "tyrelab"
 LAYERS = (
     ("tyrelab.core",),
     ("tyrelab._version", "tyrelab.errors", "tyrelab.limits", "tyrelab.io_atomic", "tyrelab.signal",
-     "tyrelab.guards"),
+     "tyrelab.guards", "tyrelab.stop"),
     ("tyrelab.road",),
     ("tyrelab.tyre",),
     ("tyrelab.rig",),

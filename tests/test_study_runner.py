@@ -171,3 +171,27 @@ def test_a_spec_given_as_text_is_kept_with_its_results(tmp_path):
     assert (store.folder / "spec.toml").read_text() == example_spec()
     again = Study(store.folder).spec
     assert again.runs() == spec.runs() and again.run_keys() == spec.run_keys()
+
+
+def test_a_stop_asked_for_while_no_run_finishes_ends_the_wait(tmp_path):
+    """A signal's exception can be swallowed by one of the client's callbacks (it runs in
+    the main thread as they do); the handler also records the stop (tyrelab.stop), and the
+    runner's wait polls it. Here nothing raises at all: the stop is only recorded, while the
+    one worker is inside a run far longer than the wait -- the wait ends, as on Ctrl-C, and
+    the store holds no finished run."""
+    import threading
+
+    from tyrelab import stop
+
+    long_run = _task("long", "point", "flat", 12)
+    long_run["simulate"]["duration"] = 600.0          # about 10 s of work on one core
+    store = Store(tmp_path / "study")
+    timer = threading.Timer(4.0, stop.request, args=(15,))
+    timer.start()
+    try:
+        with pytest.raises(KeyboardInterrupt, match="signal 15"):
+            run_tasks([long_run], store, workers=1, progress=False)
+    finally:
+        timer.cancel()
+        stop.clear()
+    assert not store.is_finished("long")

@@ -30,6 +30,7 @@ import sys
 import threading
 import warnings
 
+from .. import stop
 from ..errors import InputError
 
 #: subcommand modules, in the order ``tyrelab --help`` lists them
@@ -117,8 +118,10 @@ _signalled: list[int] = []
 def _on_signal(signum, frame):
     """SIGINT / SIGTERM: remember it and unwind. A signal can arrive while a C library calls
     back into Python (numba compiling through llvmlite), which swallows the exception and
-    fails later in some other way; the remembered signal still decides how the command ends."""
+    fails later in some other way; the remembered signal still decides how the command ends,
+    and long waits that poll :func:`tyrelab.stop.check` (a study's) stop on it."""
     _signalled.append(signum)
+    stop.request(signum)
     if signum == signal.SIGTERM:
         raise Terminated()
     raise KeyboardInterrupt()
@@ -160,6 +163,7 @@ def main(argv=None) -> int:
     argv = [a for a in argv if a != "--debug"]
     main_thread = threading.current_thread() is threading.main_thread()
     _signalled.clear()
+    stop.clear()
     previous = {}
     if main_thread:
         for signum in (signal.SIGTERM, signal.SIGINT):
@@ -173,6 +177,7 @@ def main(argv=None) -> int:
             warnings.showwarning = _show_warning
             return _main(argv, debug)
     finally:
+        stop.clear()  # a later call in this process (a test) starts without it
         sys.stderr = stderr
         sys.unraisablehook = hook
         for signum, handler in previous.items():

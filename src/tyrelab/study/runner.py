@@ -26,6 +26,7 @@ import signal
 import threading
 import time
 
+from .. import stop
 from ..errors import InputError
 from .store import Store
 
@@ -127,7 +128,7 @@ def run_tasks(tasks: list[dict], store: Store, workers: int | None = None,
         # computes again what the store lacks
         futures = {client.submit(execute, t, key=f"tyrelab-run-{t['key']}", pure=False,
                                  priority=t.get("cost", 0.0)): t for t in todo}
-        for future in as_completed(futures):
+        for future in _completed(as_completed(futures)):
             task = futures[future]
             key = task["key"]
             try:
@@ -156,6 +157,21 @@ def run_tasks(tasks: list[dict], store: Store, workers: int | None = None,
         _close(client, cluster, CLOSE_TIMEOUT if interrupted else None)
         store.write_index()
     return counts
+
+
+def _completed(finished, poll: float = 0.2):
+    """The futures of ``finished`` (a distributed ``as_completed``) as they finish, checking
+    between them for a stop a signal asked for (:func:`tyrelab.stop.check`): the exception the
+    signal raised may have been swallowed by a callback of the client's (tyrelab.stop)."""
+    while True:
+        stop.check()
+        batch = finished.next_batch(block=False)
+        if batch:
+            yield from batch
+        elif finished.is_empty():
+            return
+        else:
+            time.sleep(poll)
 
 
 #: how long a stopped study waits for the cluster to close [s]: a worker may be inside a
