@@ -80,10 +80,11 @@ class _LineTracker:
         self.mid_line = False
 
     def write(self, text):
-        written = self._stream.write(text)
+        # recorded before the write: an interrupt right after the bytes are out (when a
+        # watcher sees them) must find the cursor's state already set
         if text:
             self.mid_line = not text.endswith("\n")
-        return written
+        return self._stream.write(text)
 
     def __getattr__(self, name):
         return getattr(self._stream, name)
