@@ -181,7 +181,11 @@ CLOSE_TIMEOUT = 10.0
 
 
 def _close(client, cluster, timeout: float | None) -> None:
-    """Close the client and the local cluster; stopped (``timeout`` given), do not wait longer."""
+    """Close the client and the local cluster; stopped (``timeout`` given), do not wait longer,
+    and keep what the scheduler logs while it closes under its client off the terminal (the
+    cluster restores the log level it silenced as it closes, and a scheduler whose client
+    has gone logs a traceback: "... already closed")."""
+    quiet = _Quiet() if timeout is not None else None
     try:
         if timeout is None:
             client.close()
@@ -194,3 +198,24 @@ def _close(client, cluster, timeout: float | None) -> None:
     except (TimeoutError, OSError):
         if timeout is None:
             raise
+    finally:
+        if quiet is not None:
+            quiet.restore()
+
+
+class _Quiet:
+    """Drops every record reaching the handlers of the ``distributed`` and root loggers
+    until :meth:`restore`."""
+
+    def __init__(self):
+        self.handlers = [*logging.getLogger("distributed").handlers, *logging.getLogger().handlers]
+        for h in self.handlers:
+            h.addFilter(self._drop)
+
+    @staticmethod
+    def _drop(record) -> bool:
+        return False
+
+    def restore(self) -> None:
+        for h in self.handlers:
+            h.removeFilter(self._drop)
