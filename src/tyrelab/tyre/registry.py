@@ -28,6 +28,7 @@ BUILTIN_CONTACT = (
     "tyrelab.tyre.contact.point",
     "tyrelab.tyre.contact.volume",
     "tyrelab.tyre.contact.enveloping",
+    "tyrelab.tyre.contact.enveloping_edge",
     "tyrelab.tyre.ring.model",
 )
 #: modules that register the built-in handling models

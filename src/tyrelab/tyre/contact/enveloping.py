@@ -41,25 +41,9 @@ patch is therefore sized at no less than ``min_patch_deflection`` (default
 deflection at the lightest thesis load), so the cams stay apart and the plane
 is as continuous in the wheel's position as every cam height is.
 
-*The thesis's cams on the outline.* Schmeitz spreads the cams over the patch,
-and so does this model (``N_LENGTH`` over the base length, eq. 2.6, ``N_WIDTH``
-over the width). The thesis describes the ADAMS implementation it ran otherwise:
-"the cams were arranged on the outline of the contact patch" (4.4), "the road
-input is only evaluated on the edges of the contact patch. Obstacles on the
-inside of the contact patch were disregarded" (5.4) -- the cause it gives for
-the model's failure on the tracks, amplified by the XZL's long patch. (The ADAMS
-manual's words are that the cams' *shape* corresponds to the outside tyre
-contour in the contact zone; what ADAMS did cannot be settled from the thesis.)
-``cam_layout="outline"`` (the contact model ``enveloping-edge``) is the thesis's
-description: the cams stand where they stand here, equally spaced, but only
-those on the patch's outline enter the least-squares plane -- every cam of the
-outer rows (at the patch's sides, ``N_LENGTH`` each) and the first and last cam
-(at its leading and trailing edges) of every row between. A road that does not
-vary across (a perpendicular cleat, the bump) looks alike from every row, so
-there the outline weighs the front and rear cams more than the grid does; on a
-3D road (the Belgian paving, an oblique cleat) the inside of the patch is not
-seen. It runs in the built-in campaign beside this model as the thesis's
-"3D ENV" (docs/consistency.md).
+*Cam layouts.* ``cam_layout="outline"`` lets only the cams on the patch's outline
+make the plane, as the thesis describes its ADAMS implementation: the contact model
+``enveloping-edge`` (:mod:`.enveloping_edge`, where the reasons are written down).
 
 Property-file keys, ``[CONTACT_PATCH]`` (ADAMS PAC2002 names first, then the
 MF-Swift names that mean the same thing on these cams):
@@ -151,7 +135,7 @@ class EnvelopingParams(NamedTuple):
       (:func:`tyrelab.tyre.contact.shape.block_maxima`), empty for a road of
       two x nodes;
     * ``outline_only``: only the cams on the patch's outline enter the plane
-      (module docstring, *The thesis's cams on the outline*); False: every cam.
+      (:mod:`.enveloping_edge`); False: every cam.
     """
 
     unloaded_radius: float
@@ -229,7 +213,7 @@ def enveloping_params(tyre, grid, width_table=None, n_width=None, n_length=None,
     cam_layout : {"grid", "outline"}
         Which cams make the effective plane: every cam of the grid (default), or
         only those on the patch's outline, as the thesis describes its ADAMS model
-        (module docstring; the contact model ``enveloping-edge``).
+        (the contact model ``enveloping-edge``, :mod:`.enveloping_edge`).
     """
     unknown = set(options) - set(_OTHER_OPTIONS)
     if unknown:
@@ -503,20 +487,3 @@ register_contact(ContactModel("enveloping", EnvelopingParams, enveloping_params,
                               options={**_USER_OPTIONS, "cam_layout": str}, cost=0.015,
                               parameterization=_DATA))
 
-
-def edge_params(tyre, grid, **options) -> EnvelopingParams:
-    """The enveloping model's record with the road evaluated on the patch's outline only
-    (module docstring, *The thesis's cams on the outline*)."""
-    if options.get("cam_layout", "outline") != "outline":
-        raise InputError("the edge enveloping model evaluates the road on the patch's outline; "
-                         "for every cam use the model 'enveloping'", field="cam_layout")
-    return enveloping_params(tyre, grid, **{**options, "cam_layout": "outline"})
-
-
-register_contact(ContactModel("enveloping-edge", EnvelopingParams, edge_params,
-                              geometry=enveloping_contact,
-                              summary="3D enveloping contact with the road evaluated on the "
-                                      "patch's edges only, as the thesis describes its ADAMS "
-                                      "model (5.4)",
-                              options=_USER_OPTIONS, cost=0.015,
-                              parameterization=_DATA + " (the cams on the patch's edges only)"))
