@@ -57,9 +57,8 @@ def _view(name: str, view: dict) -> str:
            f"of {len(agree)}</b> cells reproduced by the linear or the nonlinear variant, "
            f"{int(agree['all'].sum())} by both.</p>",
            _table(counts, "consistency-counts", "model"),
-           _table(agree.assign(any=agree["any"], all=agree["all"]).rename(
-               columns={"any": "lk or nlk", "all": "both"}).set_index("group"), "consistency-5-15",
-               "group"),
+           _table(agree.rename(columns={"any": "lk or nlk", "all": "both"}).set_index("group"),
+                  "consistency-5-15", "group"),
            _table(rho.set_index("metric"), "consistency-rho", "metric")]
     return "\n".join(out)
 
@@ -80,8 +79,7 @@ def consistency_html(result) -> str:
            "errors against the thesis's over every cell both tables hold.</p>"]
     for name, view in result.views.items():
         out.append(_view(name, view))
-    b = result.bounds.copy()
-    b = b.sort_values("excess", ascending=False)
+    b = result.bounds.sort_values("excess", ascending=False)
     out.append("<details><summary>Every cell and its bound (largest excess first)</summary>"
                + _table(b[["test", "speed_kmh", "load_case", "model", "metric", "ours",
                            "thesis_model_error", "thesis_reference_error", "bound", "within",

@@ -206,15 +206,15 @@ def _options(ck: Checker, raw, path, contact: str) -> tuple:
         ck.fail(path, f"expected a table of the '{contact}' model's options, e.g. "
                       "options = { n_length = 5 }")
     known = contact_model(contact).options
+    options = {}
     for key, value in raw.items():
         if known.get(key) is object:
             ck.fail(path + (key,), f"the '{contact}' model's option {key} is set from Python only")
         try:
-            checked = check_options(contact, {key: value})
+            options.update(check_options(contact, {key: value}))
         except InputError as exc:
             ck.fail(path + (key,), exc.reason)
-        raw = {**raw, key: checked[key]}
-    return tuple(sorted(raw.items()))
+    return tuple(sorted(options.items()))
 
 
 def _limits(ck: Checker, doc) -> dict:
