@@ -114,6 +114,21 @@ def test_digest_follows_kernel_sources_only(tmp_path):
     assert jit_cache.kernel_digest(package) != with_probe
 
 
+def test_digest_follows_the_generated_and_named_index_modules(tmp_path):
+    """The MF kernels read ``C.PCX1`` from the generated ``coefficient_index.py`` and the rigs
+    write ``o[WC.FX]`` through ``core/named_index.py``'s records: numba freezes both into the
+    compiled code, so an edit of either must give a new cache folder."""
+    package = copy_package(tmp_path) / "tyrelab"
+    modules = jit_cache.kernel_modules(package)
+    index = package / "tyre" / "handling" / "mf" / "coefficient_index.py"
+    named = package / "core" / "named_index.py"
+    assert index in modules and named in modules
+    for path in (index, named):
+        before = jit_cache.kernel_digest(package)
+        append_comment(path)
+        assert jit_cache.kernel_digest(package) != before, path
+
+
 def test_cache_dir_honours_numba_cache_dir(tmp_path, monkeypatch):
     digest = jit_cache.kernel_digest()[:16]
     monkeypatch.setattr(numba.config, "CACHE_DIR", str(tmp_path / "numba"))

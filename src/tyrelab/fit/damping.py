@@ -23,6 +23,7 @@ from typing import NamedTuple
 import numpy as np
 from scipy.signal import find_peaks
 
+from ..core.named_index import named_index
 from ..errors import InputError
 
 
@@ -213,6 +214,13 @@ def simulated_drop(tyre, time, load_case="LC1", geometry=None, contact="point"):
     return np.interp(t, signal["RUNTIME"].to_numpy(), z - z[0])
 
 
+#: the drop-trace fit's unknowns, in the optimiser's vector: the damping as a multiple of its
+#: start, then (when fitted) the factor on the load-deflection law; with their bounds
+DROP_FIT_UNKNOWNS = ("damping", "scale")
+X = named_index("DropFitIndex", DROP_FIT_UNKNOWNS)
+_DROP_FIT_BOUNDS = {"damping": (1e-3, 100.0), "scale": (0.2, 5.0)}
+
+
 def fit_drop_trace(time, displacement, tyre, load_case="LC1", geometry=None, fit_stiffness=True,
                    start=None) -> RigDropFit:
     """Tyre damping by fitting the rig's own simulated drop test to a measured trace (thesis 3.4.1).
@@ -253,20 +261,22 @@ def fit_drop_trace(time, displacement, tyre, load_case="LC1", geometry=None, fit
         raise InputError("a drop-test trace needs at least 50 samples of time and displacement",
                          field="drop test")
     c0 = float(start or tyre.vertical_damping or 1000.0)
-    count = [0]
+    calls = 0
 
     def residual(p):
-        count[0] += 1
-        scale = p[1] if fit_stiffness else 1.0
-        r = simulated_drop(_scaled(tyre, p[0] * c0, scale), t, load_case, geometry) - z
+        nonlocal calls
+        calls += 1
+        scale = p[X.scale] if fit_stiffness else 1.0
+        r = simulated_drop(_scaled(tyre, p[X.damping] * c0, scale), t, load_case, geometry) - z
         return r - r.mean()
 
-    x0 = [1.0, 1.0] if fit_stiffness else [1.0]
-    lower = [1e-3, 0.2] if fit_stiffness else [1e-3]
-    upper = [100.0, 5.0] if fit_stiffness else [100.0]
+    unknowns = DROP_FIT_UNKNOWNS if fit_stiffness else DROP_FIT_UNKNOWNS[:X.scale]
+    x0 = [1.0] * len(unknowns)
+    lower = [_DROP_FIT_BOUNDS[n][0] for n in unknowns]
+    upper = [_DROP_FIT_BOUNDS[n][1] for n in unknowns]
     sol = least_squares(residual, x0, bounds=(lower, upper), x_scale=x0, diff_step=1e-4)
-    scale = float(sol.x[1]) if fit_stiffness else 1.0
-    damping = float(sol.x[0] * c0)
+    scale = float(sol.x[X.scale]) if fit_stiffness else 1.0
+    damping = float(sol.x[X.damping] * c0)
     sim = simulated_drop(_scaled(tyre, damping, scale), t, load_case, geometry)
     z = z + float(np.mean(sim - z))
-    return RigDropFit(damping, scale, float(np.sqrt(np.mean((sim - z) ** 2))), t, z, sim, count[0] + 1)
+    return RigDropFit(damping, scale, float(np.sqrt(np.mean((sim - z) ** 2))), t, z, sim, calls + 1)

@@ -30,6 +30,7 @@ tyre's feed the ring only.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from typing import NamedTuple
 
 import numpy as np
 
@@ -88,15 +89,15 @@ def fit_vertical_step(campaign: Campaign, tir: TirFile) -> StepResult:
     tir.set(FIT_SECTION, "TABLE_RMS_N", law_rms)
     res = StepResult("vertical", data={"tests": tests, "linear": lin, "tables": tables,
                                        "table": np.column_stack([rows_d, rows_f])})
-    held = {}
+    held_linear, held_table = {}, {}   # held-out test -> RMS error of the line, of the table
     for t in (t for t in tests if t.use == "held_out"):
-        held[t.name] = (float(np.sqrt(np.mean((lin.stiffness * t.deflection - t.load) ** 2))),
-                        table_rms(rows_d, rows_f, t.deflection, t.load))
+        held_linear[t.name] = float(np.sqrt(np.mean((lin.stiffness * t.deflection - t.load) ** 2)))
+        held_table[t.name] = table_rms(rows_d, rows_f, t.deflection, t.load)
     res.rows.append(_row("vertical", "VERTICAL_STIFFNESS", lin.stiffness, "N/m", lin.rms,
-                         {k: v[0] for k, v in held.items()} or None, src, "eq. 4.1, F = k rho (4.2)"))
+                         held_linear or None, src, "eq. 4.1, F = k rho (4.2)"))
     res.rows.append(_row("vertical", "DEFLECTION_LOAD_CURVE",
                          f"{rows_d.size} rows to {rows_d[-1] * 1e3:.0f} mm", "", law_rms,
-                         {k: v[1] for k, v in held.items()} or None, src,
+                         held_table or None, src,
                          "mean of loading and unloading (Table 3-2), spline eq. 2.2"))
     if len(tests) < len(every):
         res.notes.append(f"vertical: {len(every) - len(tests)} press(es) at other pressures are for the "
@@ -164,8 +165,17 @@ def fit_damping_step(campaign: Campaign, tir: TirFile) -> StepResult:
     return res
 
 
-def _patch_points(campaign: Campaign, tir: TirFile, use: str):
-    """(deflection, length, width, source) of every patch measurement of ``use``."""
+class _PatchFile(NamedTuple):
+    """The patch measurements of one file: deflection, full length and width [m] per point."""
+
+    deflection: np.ndarray
+    length: np.ndarray
+    width: np.ndarray
+    source: str
+
+
+def _patch_points(campaign: Campaign, tir: TirFile, use: str) -> list[_PatchFile]:
+    """A :class:`_PatchFile` for every patch measurement file of ``use``."""
     tyre = None
     out = []
     for t in campaign.of(lf.PatchPoints, lf.FootprintImage):
@@ -186,7 +196,7 @@ def _patch_points(campaign: Campaign, tir: TirFile, use: str):
         if need.any():
             tyre = tyre or _tyre(tir, "contact patch (a load given without its deflection)")
             d[need] = [tyre.static_deflection(float(x)) for x in loads[need]]
-        out.append((d, ll, w, t.name))
+        out.append(_PatchFile(d, ll, w, t.name))
     return out
 
 
@@ -201,24 +211,29 @@ def fit_patch_step(campaign: Campaign, tir: TirFile) -> StepResult:
     if not pts:
         raise InputError("no contact_patch or footprint_image test to fit", source=campaign.source,
                          field="patch")
-    d = np.concatenate([p[0] for p in pts])
-    a = 0.5 * np.concatenate([p[1] for p in pts])
-    b = 0.5 * np.concatenate([p[2] for p in pts])
-    src = ", ".join(dict.fromkeys(p[3] for p in pts))
+    d = np.concatenate([p.deflection for p in pts])
+    a = 0.5 * np.concatenate([p.length for p in pts])
+    b = 0.5 * np.concatenate([p.width for p in pts])
+    src = ", ".join(dict.fromkeys(p.source for p in pts))
     res = StepResult("patch", data={"deflection": d, "half_length": a, "half_width": b, "R0": r0, "W0": w0})
     held = _patch_points(campaign, tir, "held_out")
-    hd, ha, hb = (np.concatenate([p[k] for p in held]) * (1.0 if k == 0 else 0.5) if held else np.zeros(0)
-                  for k in (0, 1, 2))
+    if held:
+        hd = np.concatenate([p.deflection for p in held])
+        ha = 0.5 * np.concatenate([p.length for p in held])
+        hb = 0.5 * np.concatenate([p.width for p in held])
+    else:
+        hd = ha = hb = np.zeros(0)
     res.data.update(held_deflection=hd, held_half_length=ha, held_half_width=hb)
 
-    def errors(predict, k):
-        """RMS error of ``predict(deflection)`` on each held-out file's half sizes (column k)."""
+    def errors(predict, size):
+        """RMS error of ``predict(deflection)`` on each held-out file's half ``size``
+        (``"length"`` or ``"width"``)."""
         out = {}
         for p in held:
-            meas = 0.5 * p[k]
+            meas = 0.5 * getattr(p, size)
             ok = np.isfinite(meas)
             if ok.any():
-                out[p[3]] = float(np.sqrt(np.mean((predict(p[0][ok]) - meas[ok]) ** 2)))
+                out[p.source] = float(np.sqrt(np.mean((predict(p.deflection[ok]) - meas[ok]) ** 2)))
         return out or None
 
     ok = np.isfinite(a)
@@ -229,7 +244,7 @@ def fit_patch_step(campaign: Campaign, tir: TirFile) -> StepResult:
         tir.set(FIT_SECTION, "CONTACT_LENGTH_RMS_M", fl.rms)
         res.data["length_fit"] = fl
         res.rows.append(_row("patch", "PA1, PA2", f"{fl.pa1:.4g}, {fl.pa2:.4g}", "-", fl.rms,
-                             errors(lambda x: contact_half_length(x, fl.pa1, fl.pa2, r0), 1), src,
+                             errors(lambda x: contact_half_length(x, fl.pa1, fl.pa2, r0), "length"), src,
                              "eq. 2.3 on the half length a"))
     ok = np.isfinite(b)
     if ok.any():
@@ -240,7 +255,8 @@ def fit_patch_step(campaign: Campaign, tir: TirFile) -> StepResult:
         tir.set(FIT_SECTION, "WIDTH_LINE_SLOPE", wt.slope)
         res.data["width_table"] = wt
         res.rows.append(_row("patch", "CONTACT_WIDTH_CURVE", f"{wt.table.shape[0]} rows", "", wt.rms,
-                             errors(lambda x: np.minimum(width_from_table(wt.table, x), 0.5 * w0), 2), src,
+                             errors(lambda x: np.minimum(width_from_table(wt.table, x), 0.5 * w0), "width"),
+                             src,
                              "half width vs deflection (4.4's recommendation)"))
         if np.unique(np.round(d[ok], 6)).size >= 2:
             wf = fit_contact_width(d[ok], b[ok], r0, w0)
@@ -249,7 +265,8 @@ def fit_patch_step(campaign: Campaign, tir: TirFile) -> StepResult:
             tir.set(FIT_SECTION, "CONTACT_WIDTH_RMS_M", wf.rms)
             res.data["width_fit"] = wf
             res.rows.append(_row("patch", "PB1, PB2, PB3", f"{wf.pb1:.4g}, {wf.pb2:.4g}, {wf.pb3:.4g}", "-",
-                                 wf.rms, errors(lambda x: contact_half_width(x, *wf[:3], r0, w0), 2), src,
+                                 wf.rms, errors(lambda x: contact_half_width(x, *wf[:3], r0, w0), "width"),
+                                 src,
                                  "eq. 2.4 on the half width b (clipped to W0/2 as the model)"))
         else:
             res.notes.append("patch: widths at one deflection only: PB1-PB3 not fitted")
@@ -308,7 +325,8 @@ def predict_cleats(campaign: Campaign, tir: TirFile) -> StepResult:
     # the ring too once identified (held out: thesis 4.5 fitted FTire to them, tyrelab predicts)
     models = MODELS + (("ring",) if tir.has("FLEXIBLE_RING") else ())
     for t in tests:
-        spec = f"cleat:{t.cleat[0] * 1e3:g}x{t.cleat[1] * 1e3:g}"
+        width, height = t.cleat
+        spec = f"cleat:{width * 1e3:g}x{height * 1e3:g}"
         pred = {}
         for m in models:
             loads = static_press(TyreModel(tyre, m), t.deflection, spec, t.direction)["load"].to_numpy()

@@ -56,9 +56,9 @@ def read_column_map(path) -> dict[str, tuple[str, str]]:
         if len(cells) not in (2, 3):
             raise InputError(f"expected 'source,channel,unit', got {len(cells)} fields",
                              source=str(path), line=lineno)
-        unit = cells[2] if len(cells) == 3 else ""
-        si_unit(unit, source=str(path), line=lineno, field=cells[0])
-        mapping[cells[0]] = (cells[1], unit)
+        column, channel, unit = cells if len(cells) == 3 else (*cells, "")  # unit optional
+        si_unit(unit, source=str(path), line=lineno, field=column)
+        mapping[column] = (channel, unit)
     if not mapping:
         raise InputError("column map is empty", source=str(path))
     return mapping

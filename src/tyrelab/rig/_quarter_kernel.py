@@ -6,7 +6,8 @@ import numba as nb
 import numpy as np
 
 from ..tyre.wheel import WheelPose, wheel_step
-from .frames import N_WHEEL, WHEEL_CHANNELS, wheel_row
+from ..core.named_index import named_index
+from .frames import CA, N_C_AXIS, WHEEL_CHANNELS, wheel_row
 
 
 class QuarterParams(NamedTuple):
@@ -28,12 +29,16 @@ class QuarterParams(NamedTuple):
     x_start: float
 
 
-# state layout (this module's own array)
-Q_ZS, Q_VS, Q_ZU, Q_VU, Q_W, Q_T = range(6)
-Q_SIZE = 6
+#: the state array of :func:`quarter_steps`, in this order: sprung mass height [m] and
+#: velocity [m/s], hub height and velocity, wheel spin [rad/s], time [s]
+STATE = ("ZS", "VS", "ZU", "VU", "W", "T")
+Q = named_index("QuarterStateIndex", STATE)
+Q_SIZE = len(STATE)
 
+#: output columns: the wheel's, then the load cells, the body and the suspension force
 CHANNELS = WHEEL_CHANNELS + ("FX_HUB", "FY_HUB", "FZ_HUB", "Z_BODY", "VZ_BODY", "F_SUSP")
 N_CH = len(CHANNELS)
+QC = named_index("QuarterChannelIndex", CHANNELS)
 
 
 @nb.njit(cache=True)
@@ -47,17 +52,17 @@ def quarter_steps(wheel, qp, state, n_steps, dt, out_every, out, row0):
         m_u z_u'' = F_tyre,z - F_susp - m_u g
         F_susp    = k_s (d0 - (z_s - z_u)) + c_s (z_u' - z_s')
     """
-    cax = np.empty(6)
+    cax = np.empty(N_C_AXIS)
     V = qp.speed
     ms = qp.sprung_mass
     mu = qp.unsprung_mass
     g = qp.gravity
     row = row0
     for step in range(n_steps):
-        t = state[Q_T]
+        t = state[Q.T]
         cx = qp.x_start + V * t
-        zs, vs, zu, vu = state[Q_ZS], state[Q_VS], state[Q_ZU], state[Q_VU]
-        pose = WheelPose(cx, 0.0, zu, 0.0, 1.0, 0.0, V, 0.0, vu, state[Q_W])
+        zs, vs, zu, vu = state[Q.ZS], state[Q.VS], state[Q.ZU], state[Q.VU]
+        pose = WheelPose(cx, 0.0, zu, 0.0, 1.0, 0.0, V, 0.0, vu, state[Q.W])
         f = wheel_step(wheel, pose, dt)
         fsp = qp.stiffness * (qp.spring_free_length - (zs - zu)) + qp.damping * (vu - vs)
         a_s = fsp / ms - g
@@ -66,19 +71,19 @@ def quarter_steps(wheel, qp, state, n_steps, dt, out_every, out, row0):
         if (step % out_every) == 0 and row < out.shape[0]:
             o = out[row]
             wheel_row(o, t, cx - qp.x_start, pose, f, cax)
-            o[N_WHEEL] = cax[0]
-            o[N_WHEEL + 1] = cax[1]
-            o[N_WHEEL + 2] = cax[2] - mu * a_u   # load-cell reading, tared with the wheel hanging free
-            o[N_WHEEL + 3] = zs
-            o[N_WHEEL + 4] = vs
-            o[N_WHEEL + 5] = fsp
+            o[QC.FX_HUB] = cax[CA.FX]
+            o[QC.FY_HUB] = cax[CA.FY]
+            o[QC.FZ_HUB] = cax[CA.FZ] - mu * a_u   # load-cell reading, tared with the wheel hanging free
+            o[QC.Z_BODY] = zs
+            o[QC.VZ_BODY] = vs
+            o[QC.F_SUSP] = fsp
             row += 1
-        state[Q_VS] = vs + dt * a_s
-        state[Q_VU] = vu + dt * a_u
-        state[Q_ZS] = zs + dt * state[Q_VS]
-        state[Q_ZU] = zu + dt * state[Q_VU]
+        state[Q.VS] = vs + dt * a_s
+        state[Q.VU] = vu + dt * a_u
+        state[Q.ZS] = zs + dt * state[Q.VS]
+        state[Q.ZU] = zu + dt * state[Q.VU]
         # linearly implicit Euler: the slip stiffness makes the spin stiff
-        state[Q_W] += dt * spin / (qp.spin_inertia - dt * min(f.dspin_domega, 0.0))
-        state[Q_T] = t + dt
+        state[Q.W] += dt * spin / (qp.spin_inertia - dt * min(f.dspin_domega, 0.0))
+        state[Q.T] = t + dt
     return row
 

@@ -22,7 +22,8 @@ import numba as nb
 import numpy as np
 
 from ..tyre.wheel import WheelPose, wheel_step
-from .frames import N_WHEEL, WHEEL_CHANNELS, wheel_row
+from ..core.named_index import named_index
+from .frames import CA, N_C_AXIS, WHEEL_CHANNELS, wheel_row
 
 
 class TrailerParams(NamedTuple):
@@ -47,13 +48,17 @@ class TrailerParams(NamedTuple):
     road_y: float
 
 
-# state layout (this module's own array)
-S_THETA, S_PHI, S_DTHETA, S_DPHI, S_WR, S_WL, S_T, S_VXR, S_VYR, S_VZR = range(10)
-S_SIZE = 10
+#: the state array of :func:`trailer_steps`, in this order: pitch, roll [rad] and
+#: their rates, the right (test) and left wheels' spins [rad/s], time [s], the
+#: test wheel centre's velocity at the last step (its load cells' inertia force)
+STATE = ("THETA", "PHI", "DTHETA", "DPHI", "WR", "WL", "T", "VXR", "VYR", "VZR")
+S = named_index("TrailerStateIndex", STATE)
+S_SIZE = len(STATE)
 
-# output columns
+#: output columns: the test wheel's, then the load cells, the left wheel's load and the frame
 CHANNELS = WHEEL_CHANNELS + ("FX_HUB", "FY_HUB", "FZ_HUB", "FZ_LEFT", "PITCH", "ROLL")
 N_CH = len(CHANNELS)
+TC = named_index("TrailerChannelIndex", CHANNELS)
 
 
 @nb.njit(cache=True)
@@ -83,7 +88,7 @@ def trailer_steps(right, left, tp, state, n_steps, dt, out_every, out, row0, x_s
     """
     R = np.empty((3, 3))
     Ib = tp.inertia
-    cax = np.empty(6)
+    cax = np.empty(N_C_AXIS)
     L = tp.hitch_to_axle
     half = 0.5 * tp.track
     V = tp.speed
@@ -94,11 +99,11 @@ def trailer_steps(right, left, tp, state, n_steps, dt, out_every, out, row0, x_s
     road_y = tp.road_y
     row = row0
     for step in range(n_steps):
-        th = state[S_THETA]
-        ph = state[S_PHI]
-        dth = state[S_DTHETA]
-        dph = state[S_DPHI]
-        t = state[S_T]
+        th = state[S.THETA]
+        ph = state[S.PHI]
+        dth = state[S.DTHETA]
+        dph = state[S.DPHI]
+        t = state[S.T]
         _rotation(th, ph, R)
         hx = x_start + V * t
         hz = tp.hitch_height
@@ -128,10 +133,10 @@ def trailer_steps(right, left, tp, state, n_steps, dt, out_every, out, row0, x_s
             vz = wx * ry - wy * rx
             if side == 0:
                 f = wheel_step(right, WheelPose(cx, cy + road_y, cz, ax, ay, az, vx, vy, vz,
-                                                state[S_WR]), dt)
+                                                state[S.WR]), dt)
             else:
                 f = wheel_step(left, WheelPose(cx, cy - road_y, cz, ax, ay, az, vx, vy, vz,
-                                               state[S_WL]), dt)
+                                               state[S.WL]), dt)
             # moment about the hitch: the force at the wheel centre plus the
             # tyre's moment about the centre
             tau0 += ry * f.fz - rz * f.fy + f.mx
@@ -146,31 +151,31 @@ def trailer_steps(right, left, tp, state, n_steps, dt, out_every, out, row0, x_s
                 if (step % out_every) == 0 and row < out.shape[0]:
                     o = out[row]
                     # the world pose (the wheel's road is shifted by road_y)
-                    wheel_row(o, t, 0.0, WheelPose(cx, cy, cz, ax, ay, az, vx, vy, vz, state[S_WR]),
+                    wheel_row(o, t, 0.0, WheelPose(cx, cy, cz, ax, ay, az, vx, vy, vz, state[S.WR]),
                               f, cax, -road_y)
                     # load-cell reading: tyre force less the wheel's inertia force,
                     # load cells tared with the wheel hanging free
                     if step > 0:
-                        acx = (vx - state[S_VXR]) / dt
-                        acy = (vy - state[S_VYR]) / dt
-                        acz = (vz - state[S_VZR]) / dt
+                        acx = (vx - state[S.VXR]) / dt
+                        acy = (vy - state[S.VYR]) / dt
+                        acz = (vz - state[S.VZR]) / dt
                     else:
                         acx = 0.0
                         acy = 0.0
                         acz = 0.0
-                    o[N_WHEEL] = cax[0] - mw * (acx * R[0, 0] + acy * R[1, 0] + acz * R[2, 0])
-                    o[N_WHEEL + 1] = cax[1] - mw * (acx * ax + acy * ay + acz * az)
-                    o[N_WHEEL + 2] = cax[2] - mw * (acx * R[0, 2] + acy * R[1, 2] + acz * R[2, 2])
-                    o[N_WHEEL + 4] = th
-                    o[N_WHEEL + 5] = ph
-                state[S_VXR] = vx
-                state[S_VYR] = vy
-                state[S_VZR] = vz
+                    o[TC.FX_HUB] = cax[CA.FX] - mw * (acx * R[0, 0] + acy * R[1, 0] + acz * R[2, 0])
+                    o[TC.FY_HUB] = cax[CA.FY] - mw * (acx * ax + acy * ay + acz * az)
+                    o[TC.FZ_HUB] = cax[CA.FZ] - mw * (acx * R[0, 2] + acy * R[1, 2] + acz * R[2, 2])
+                    o[TC.PITCH] = th
+                    o[TC.ROLL] = ph
+                state[S.VXR] = vx
+                state[S.VYR] = vy
+                state[S.VZR] = vz
             else:
                 spinL = sm
                 dspinL = dsm
                 if (step % out_every) == 0 and row < out.shape[0]:
-                    out[row, N_WHEEL + 3] = f.fzw
+                    out[row, TC.FZ_LEFT] = f.fzw
         if (step % out_every) == 0 and row < out.shape[0]:
             row += 1
         # gravity about the hitch: r_cg x (0, 0, -m g)
@@ -214,14 +219,14 @@ def trailer_steps(right, left, tp, state, n_steps, dt, out_every, out, row0, x_s
         ddth = (m22 * q1 - m12 * q2) / det
         ddph = (m11 * q2 - m12 * q1) / det
         # semi-implicit Euler
-        state[S_DTHETA] = dth + dt * ddth
-        state[S_DPHI] = dph + dt * ddph
-        state[S_THETA] = th + dt * state[S_DTHETA]
-        state[S_PHI] = ph + dt * state[S_DPHI]
+        state[S.DTHETA] = dth + dt * ddth
+        state[S.DPHI] = dph + dt * ddph
+        state[S.THETA] = th + dt * state[S.DTHETA]
+        state[S.PHI] = ph + dt * state[S.DPHI]
         # linearly implicit Euler for the spins: the slip stiffness makes them
         # stiff (time constant I V / (r^2 C_kappa), below a millisecond)
-        state[S_WR] += dt * spinR / (ispin - dt * min(dspinR, 0.0))
-        state[S_WL] += dt * spinL / (ispin - dt * min(dspinL, 0.0))
-        state[S_T] = t + dt
+        state[S.WR] += dt * spinR / (ispin - dt * min(dspinR, 0.0))
+        state[S.WL] += dt * spinL / (ispin - dt * min(dspinL, 0.0))
+        state[S.T] = t + dt
     return row
 

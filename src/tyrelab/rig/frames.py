@@ -1,10 +1,24 @@
-"""From road-frame forces to the TYDEX C-axis system of a wheel (compiled)."""
+"""From road-frame forces to the TYDEX C-axis system of a wheel (compiled), and the
+channels every rig writes first.
+
+Output rows are flat arrays whose slots are decided by a rig's channel tuple
+alone: :data:`WHEEL_CHANNELS` here, extended by each rig
+(``CHANNELS = WHEEL_CHANNELS + (...)``); code writes them through the
+:func:`~tyrelab.core.named_index.named_index` of that tuple (``o[WC.FX]``), never
+by a number.
+"""
 
 import math
 
 import numba as nb
 
+from ..core.named_index import named_index
 from ..core.vec3 import cross, wheel_axes
+
+#: the loads :func:`c_axis_loads` writes, in this order
+C_AXIS = ("FX", "FY", "FZ", "MX", "MY", "MZ")
+CA = named_index("CAxisIndex", C_AXIS)
+N_C_AXIS = len(C_AXIS)
 
 
 @nb.njit(cache=True)
@@ -14,26 +28,30 @@ def c_axis_loads(pose, f, out):
     ``f`` is a :class:`~tyrelab.tyre.wheel.WheelLoads` (force and moment
     about the wheel centre, road frame) of a wheel at ``pose``. C-axis: x
     forward in the wheel plane parallel to the ground, y the spin axis,
-    z = x cross y (upward). Writes FX, FY, FZ, MX, MY, MZ into ``out[0:6]``.
+    z = x cross y (upward). Writes :data:`C_AXIS` into ``out`` (``out[CA.FX]``, ...).
     """
     ax, ay, az = pose.ax, pose.ay, pose.az
     ex, ey, ez, _, _, _ = wheel_axes(ax, ay, az)
     zx, zy, zz = cross(ex, ey, ez, ax, ay, az)
     fx, fy, fz = f.fx, f.fy, f.fz
     mx, my, mz = f.mx, f.my, f.mz
-    out[0] = fx * ex + fy * ey + fz * ez
-    out[1] = fx * ax + fy * ay + fz * az
-    out[2] = fx * zx + fy * zy + fz * zz
-    out[3] = mx * ex + my * ey + mz * ez
-    out[4] = mx * ax + my * ay + mz * az
-    out[5] = mx * zx + my * zy + mz * zz
+    out[CA.FX] = fx * ex + fy * ey + fz * ez
+    out[CA.FY] = fx * ax + fy * ay + fz * az
+    out[CA.FZ] = fx * zx + fy * zy + fz * zz
+    out[CA.MX] = mx * ex + my * ey + mz * ez
+    out[CA.MY] = mx * ax + my * ay + mz * az
+    out[CA.MZ] = mx * zx + my * zy + mz * zz
 
 
-#: the channels every rig writes first, in this order (see :func:`wheel_row`)
+#: the channels every rig writes first, in this order (see :func:`wheel_row`); a
+#: rig's own channels follow (its ``CHANNELS``)
 WHEEL_CHANNELS = ("RUNTIME", "DISTANCE", "FX", "FY", "FZ", "MX", "MY", "MZ", "FXW", "FYW", "FZW",
                   "X_WC", "Y_WC", "Z_WC", "VX_WC", "VY_WC", "VZ_WC", "ROTSPEED", "INCLANGL",
                   "DEFLECT", "X_CP", "Y_CP", "Z_CP", "LONGSLIP", "SLIPANGL")
 N_WHEEL = len(WHEEL_CHANNELS)
+#: positions of :data:`WHEEL_CHANNELS` in an output row (also those of a rig's
+#: ``CHANNELS``, which begin with them)
+WC = named_index("WheelChannelIndex", WHEEL_CHANNELS)
 
 
 @nb.njit(cache=True)
@@ -43,29 +61,33 @@ def wheel_row(o, t, dist, pose, f, cax, y_offset=0.0):
     ``f`` is the wheel's :class:`~tyrelab.tyre.wheel.WheelLoads` at ``pose``
     (``y_offset`` moves its contact point from the wheel's road frame to the
     rig's world frame: world y = road y + y_offset). The
-    C-axis loads (FX, FY, FZ, MX, MY, MZ) are also left in ``cax`` for the
+    C-axis loads (:data:`C_AXIS`) are also left in ``cax`` for the
     rig's own channels (load cells).
     """
     c_axis_loads(pose, f, cax)
-    o[0] = t
-    o[1] = dist
-    for k in range(6):
-        o[2 + k] = cax[k]
-    o[8] = f.fxw
-    o[9] = f.fyw
-    o[10] = f.fzw
-    o[11] = pose.cx
-    o[12] = pose.cy
-    o[13] = pose.cz
-    o[14] = pose.vx
-    o[15] = pose.vy
-    o[16] = pose.vz
-    o[17] = pose.omega
+    o[WC.RUNTIME] = t
+    o[WC.DISTANCE] = dist
+    o[WC.FX] = cax[CA.FX]
+    o[WC.FY] = cax[CA.FY]
+    o[WC.FZ] = cax[CA.FZ]
+    o[WC.MX] = cax[CA.MX]
+    o[WC.MY] = cax[CA.MY]
+    o[WC.MZ] = cax[CA.MZ]
+    o[WC.FXW] = f.fxw
+    o[WC.FYW] = f.fyw
+    o[WC.FZW] = f.fzw
+    o[WC.X_WC] = pose.cx
+    o[WC.Y_WC] = pose.cy
+    o[WC.Z_WC] = pose.cz
+    o[WC.VX_WC] = pose.vx
+    o[WC.VY_WC] = pose.vy
+    o[WC.VZ_WC] = pose.vz
+    o[WC.ROTSPEED] = pose.omega
     # inclination: angle of the wheel plane to the road normal (TYDEX, sin g = a . n)
-    o[18] = math.asin(max(-1.0, min(1.0, pose.ax * f.nx + pose.ay * f.ny + pose.az * f.nz)))
-    o[19] = f.deflection if f.deflection > 0.0 else 0.0
-    o[20] = f.px
-    o[21] = f.py + y_offset
-    o[22] = f.pz
-    o[23] = f.kappa
-    o[24] = f.alpha
+    o[WC.INCLANGL] = math.asin(max(-1.0, min(1.0, pose.ax * f.nx + pose.ay * f.ny + pose.az * f.nz)))
+    o[WC.DEFLECT] = f.deflection if f.deflection > 0.0 else 0.0
+    o[WC.X_CP] = f.px
+    o[WC.Y_CP] = f.py + y_offset
+    o[WC.Z_CP] = f.pz
+    o[WC.LONGSLIP] = f.kappa
+    o[WC.SLIPANGL] = f.alpha

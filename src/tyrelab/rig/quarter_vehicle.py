@@ -99,9 +99,9 @@ class QuarterVehicle:
             spin_inertia=float(max(tyre.wheel_spin_inertia, 1e-3)), gravity=G,
             x_start=float(x0_road))
         state = np.zeros(K.Q_SIZE)
-        state[K.Q_ZU] = zu
-        state[K.Q_ZS] = zu + self.spring_length
-        state[K.Q_W] = omega0
+        state[K.Q.ZU] = zu
+        state[K.Q.ZS] = zu + self.spring_length
+        state[K.Q.W] = omega0
         wheel = self.model.wheel(levelled_grid(road, x0_road), wheel_load, state=model_state)
         n_steps = int(round(duration / dt))
         out_every = max(1, int(round(1.0 / (output_rate * dt))))

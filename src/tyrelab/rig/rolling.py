@@ -15,6 +15,7 @@ from __future__ import annotations
 import numba as nb
 import numpy as np
 
+from ..core.named_index import named_index
 from ..errors import InputError
 from ..road.spec import road_from_spec
 from ..tyre.model import TyreModel
@@ -25,12 +26,15 @@ from .trailer import load_case_wheel_load
 
 CHANNELS = WHEEL_CHANNELS
 N_CH = len(CHANNELS)
+#: the state array of :func:`rolling_steps`: axle x [m], spin [rad/s], time [s]
+STATE = ("X", "OMEGA", "T")
+R = named_index("RollingStateIndex", STATE)
 
 
 @nb.njit(cache=True)
 def rolling_steps(wheel, x_start, height, speed, inertia, state, n_steps, dt, out_every, out,
                   row0):
-    """Roll ``n_steps`` from ``state = [x, omega, t]``; rows of :data:`CHANNELS` into ``out``.
+    """Roll ``n_steps`` from ``state`` (:data:`STATE`); rows of :data:`CHANNELS` into ``out``.
 
     The spin follows the tyre's moment about the axle, linearly implicit in
     the slip stiffness (explicit for models that report none, as the ring).
@@ -39,15 +43,15 @@ def rolling_steps(wheel, x_start, height, speed, inertia, state, n_steps, dt, ou
     cax = np.empty(6)
     row = row0
     for step in range(n_steps):
-        x, omega, t = state[0], state[1], state[2]
+        x, omega, t = state[R.X], state[R.OMEGA], state[R.T]
         pose = WheelPose(x, 0.0, height, 0.0, 1.0, 0.0, speed, 0.0, 0.0, omega)
         f = wheel_step(wheel, pose, dt)
         if (step % out_every) == 0 and row < out.shape[0]:
             wheel_row(out[row], t, x - x_start, pose, f, cax)
             row += 1
-        state[1] = omega + dt * f.my / (inertia - dt * min(f.dspin_domega, 0.0))
-        state[0] = x + speed * dt
-        state[2] = t + dt
+        state[R.OMEGA] = omega + dt * f.my / (inertia - dt * min(f.dspin_domega, 0.0))
+        state[R.X] = x + speed * dt
+        state[R.T] = t + dt
     return row
 
 
@@ -92,11 +96,13 @@ def roll(model: TyreModel, road="cleat:50x50", speed: float = 0.5, height: float
     if eq is None:
         state_load = float(tyre.vertical_law.static_load(tyre.unloaded_radius - height))
         wheel = model.wheel(grid, state_load)
-        state = np.array([x0, speed / height, 0.0])
+        spin = speed / height
     else:
         state_load = wheel_load
         wheel = model.wheel(grid, wheel_load, state=eq.state)
-        state = np.array([x0, eq.spin, 0.0])
+        spin = eq.spin
+    state = np.zeros(len(STATE))
+    state[R.X], state[R.OMEGA] = x0, spin
     inertia = max(tyre.wheel_spin_inertia, 1.0)
     n_steps = int(round(duration / dt))
     out_every = max(1, int(round(1.0 / (output_rate * dt))))

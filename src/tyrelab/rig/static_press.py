@@ -25,7 +25,7 @@ from ..errors import InputError
 from ..road.obstacles import Cleat, Flat, Ridge
 from ..tyre.contact.shape import carcass_discs
 from ..tyre.model import TyreModel
-from ..tyre.static import DT, HOLD, PRESS_COLUMNS, PRESS_RATE, WINDOW, press_path
+from ..tyre.static import DT, HOLD, PC, PRESS_COLUMNS, PRESS_RATE, WINDOW, press_path
 
 DIRECTIONS = ("lateral", "longitudinal")
 #: the rim starts this far above first touch [m]
@@ -53,7 +53,8 @@ def pressed_wheel(model: TyreModel, grid, top: float, deflections):
     """Press ``model`` on ``grid`` through ``deflections`` [m] (from first touch of ``top``).
 
     Returns ``(wheel, result)``: the wheel record in its final pressed state
-    and the ``(k, 7)`` array of :data:`PRESS_COLUMNS`, rows in the order given.
+    and the ``(k, len(PRESS_COLUMNS))`` array of :data:`PRESS_COLUMNS` (columns
+    ``PC.FZ``, ...), rows in the order given.
     """
     d = np.atleast_1d(np.asarray(deflections, float))
     if np.any(~np.isfinite(d)) or np.any(d < 0):
@@ -80,8 +81,8 @@ def static_press(model: TyreModel, deflection, test: str = "plate",
     road, top = press_road(test, direction)
     d = np.atleast_1d(np.asarray(deflection, float))
     _, out = pressed_wheel(model, road.grid(), top, d)
-    return pd.DataFrame({"deflection": d, "load": out[:, 2], "FX": out[:, 0], "FY": out[:, 1],
-                         "DEFLECT": np.maximum(out[:, 3], 0.0)})
+    return pd.DataFrame({"deflection": d, "load": out[:, PC.FZ], "FX": out[:, PC.FX], "FY": out[:, PC.FY],
+                         "DEFLECT": np.maximum(out[:, PC.DEFLECT], 0.0)})
 
 
 #: sampling pitch along x of the geometric footprint of analytic models [m]
@@ -119,8 +120,8 @@ def footprint(model: TyreModel, load: float | None = None,
     wheel, res = pressed_wheel(model, Flat().grid(), 0.0, [d])
     hook = model.contact_model.footprint
     if hook is not None:
-        return hook(wheel, float(res[0, 2]), d, tyre)
-    return geometric_footprint(tyre, d, float(res[0, 2]))
+        return hook(wheel, float(res[0, PC.FZ]), d, tyre)
+    return geometric_footprint(tyre, d, float(res[0, PC.FZ]))
 
 
 def geometric_footprint(tyre, deflection: float, load: float) -> dict:

@@ -271,22 +271,22 @@ class Trailer:
         tp = self.params(speed)
         L = self.geometry.hitch_to_axle
         state = np.zeros(K.S_SIZE)
-        state[K.S_THETA] = pitch0
-        state[K.S_PHI] = roll0
-        state[K.S_WR], state[K.S_WL] = spins
+        state[K.S.THETA] = pitch0
+        state[K.S.PHI] = roll0
+        state[K.S.WR], state[K.S.WL] = spins
         x_start = x0_road + L * math.cos(pitch0)  # test wheel centre starts at run_start
         n_steps = int(round(duration / dt))
         out_every = max(1, int(round(1.0 / (output_rate * dt))))
 
-        states = states or (None, None)
-        right = self.model.wheel(grid, wheel_load, state=states[0])
-        left = self.left.wheel(Flat().grid(), wheel_load, state=states[1])
+        right_state, left_state = states or (None, None)
+        right = self.model.wheel(grid, wheel_load, state=right_state)
+        left = self.left.wheel(Flat().grid(), wheel_load, state=left_state)
 
         def advance(n, out, row):
             return K.trailer_steps(right, left, tp, state, n, dt, out_every, out, row, x_start)
 
         data = run_chunks(advance, n_steps, out_every, K.N_CH, dt, progress)
-        data[:, K.CHANNELS.index("DISTANCE")] = data[:, K.CHANNELS.index("X_WC")] - x0_road
+        data[:, K.TC.DISTANCE] = data[:, K.TC.X_WC] - x0_road
         s = self.setup
         meta = {"rig": rig, "tyre": self.model.tyre.name, "model": self.model.contact,
                 "left_wheel": self.left.contact,

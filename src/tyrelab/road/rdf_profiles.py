@@ -147,7 +147,8 @@ class RdfRoad(Road):
     def extent(self):
         u0, u1, v0, v1 = self._extent
         if self._square() and self._cos < 0:  # mirrored: keep the nodes on the profile's lattice
-            u1 = u0 + self._spacing[0] * math.ceil((u1 - u0) / self._spacing[0] - 1e-9)
+            du, _ = self._spacing
+            u1 = u0 + du * math.ceil((u1 - u0) / du - 1e-9)
         x, y = self._to_road(np.array([u0, u1, u0, u1]), np.array([v0, v0, v1, v1]))
         return (float(x.min()), float(x.max()), float(y.min()), float(y.max()))
 
@@ -165,7 +166,7 @@ class RdfRoad(Road):
     def run_start(self) -> float:
         """``RUN_IN`` before the first point of the road (x) where the profile changes."""
         u0, u1 = self._feature
-        v0, v1 = self._extent[2:]
+        _, _, v0, v1 = self._extent
         x, _ = self._to_road(np.array([u0, u1, u0, u1]), np.array([v0, v0, v1, v1]))
         return float(x.min()) - RUN_IN if not isinstance(self, FlatRdf) else 0.0
 

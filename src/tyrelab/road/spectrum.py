@@ -33,7 +33,7 @@ def road_profile(road: Road, y: float = 0.0, spacing: float | None = None) -> tu
     roads are read at their nodes) or 0.01 m if that is coarser than 0.05 m.
     """
     xmin, xmax, _, _ = road.extent()
-    own = road.default_spacing[0]
+    own, _ = road.default_spacing   # (along x, across)
     dx = float(spacing or (own if own <= 0.05 else 0.01))
     x = xmin + dx * np.arange(int(np.floor((xmax - xmin) / dx + 1e-9)) + 1)
     return x, road.height(x, np.full_like(x, y))
@@ -47,8 +47,8 @@ def _profiles(data, spacing, y, lines) -> tuple[list[np.ndarray], float]:
             ys = np.linspace(ymin, ymax, lines + 2)[1:-1]
         else:
             ys = [y]
-        profs = [road_profile(data, yy, spacing) for yy in ys]
-        return [p[1] for p in profs], float(profs[0][0][1] - profs[0][0][0])
+        xs, zs = zip(*(road_profile(data, yy, spacing) for yy in ys))
+        return list(zs), float(xs[0][1] - xs[0][0])
     if isinstance(data, tuple) and len(data) == 2:
         x, z = (np.asarray(d, float) for d in data)
         steps = np.diff(x)
@@ -109,7 +109,8 @@ def log_binned(phi: np.ndarray, s: np.ndarray, band=BAND,
 
 def _line_weights(phi: np.ndarray, band, per_decade: int = BINS_PER_DECADE) -> np.ndarray:
     """Weight of each spectral line: 1 / (lines in its logarithmic bin), so each bin weighs the same."""
-    edges = np.log10(band[0]) + np.arange(0, np.log10(band[1] / band[0]) * per_decade + 2) / per_decade
+    lo, hi = band
+    edges = np.log10(lo) + np.arange(0, np.log10(hi / lo) * per_decade + 2) / per_decade
     idx = np.digitize(np.log10(phi), edges)
     _, inverse, counts = np.unique(idx, return_inverse=True, return_counts=True)
     return 1.0 / counts[inverse]

@@ -17,6 +17,7 @@ import numba as nb
 import numpy as np
 import pandas as pd
 
+from ..core.named_index import named_index
 from ..road.grid import RoadGrid
 from ..road.obstacles import Flat
 from ..road.spec import road_from_spec
@@ -134,13 +135,18 @@ class TyreModel:
 
 #: number of fields of a :class:`ContactGeometry`
 N_GEOMETRY = len(ContactGeometry._fields)
+#: columns of the ``poses`` of :func:`wheel_positions`: a :class:`WheelPose`'s centre
+#: and spin axis
+POSE_COLUMNS = ("CX", "CY", "CZ", "AX", "AY", "AZ")
+PO = named_index("PoseColumnIndex", POSE_COLUMNS)
 
 
 @nb.njit(cache=True)
 def _geometry_many(params, road, poses, out):
     for k in range(poses.shape[0]):
         p = poses[k]
-        geo = contact_geometry(params, road, WheelPose(p[0], p[1], p[2], p[3], p[4], p[5],
+        geo = contact_geometry(params, road, WheelPose(p[PO.CX], p[PO.CY], p[PO.CZ],
+                                                       p[PO.AX], p[PO.AY], p[PO.AZ],
                                                        0.0, 0.0, 0.0, 0.0))
         for j in range(N_GEOMETRY):
             out[k, j] = geo[j]
@@ -184,23 +190,23 @@ def wheel_positions(road, x, y=0.0, z=None, axis=(0.0, 1.0, 0.0), unloaded_radiu
 
     ``road`` a name, Road or RoadGrid; ``x, y`` broadcast; ``z`` defaults to
     ``unloaded_radius`` above the road straight below the centre. ``poses``
-    rows are ``(cx, cy, cz, ax, ay, az)``.
+    rows are :data:`POSE_COLUMNS` (``cx, cy, cz, ax, ay, az``).
     """
     grid = road if isinstance(road, RoadGrid) else road_from_spec(road).grid()
     x, y = np.broadcast_arrays(np.asarray(x, float), np.asarray(y, float))
     x, y = x.ravel(), y.ravel()
     if z is None:
         z = grid.height(x, y) + float(unloaded_radius)
-    poses = np.empty((x.size, 6))
-    poses[:, 0], poses[:, 1] = x, y
-    poses[:, 2] = np.broadcast_to(np.asarray(z, float), x.shape)
-    poses[:, 3:6] = np.asarray(axis, float)
+    poses = np.empty((x.size, len(POSE_COLUMNS)))
+    poses[:, PO.CX], poses[:, PO.CY] = x, y
+    poses[:, PO.CZ] = np.broadcast_to(np.asarray(z, float), x.shape)
+    poses[:, [PO.AX, PO.AY, PO.AZ]] = np.asarray(axis, float)
     return grid, poses
 
 
 def positions_table(poses, values, columns) -> pd.DataFrame:
     """A table of ``x, y, z`` (from ``poses``) and the named ``values`` columns."""
     table = pd.DataFrame(values, columns=list(columns))
-    for k, name in ((2, "z"), (1, "y"), (0, "x")):
+    for k, name in ((PO.CZ, "z"), (PO.CY, "y"), (PO.CX, "x")):
         table.insert(0, name, poses[:, k])
     return table

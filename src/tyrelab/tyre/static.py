@@ -15,6 +15,7 @@ from __future__ import annotations
 import numba as nb
 import numpy as np
 
+from ..core.named_index import named_index
 from .wheel import WheelPose, wheel_step
 
 #: press rate [m/s], hold time [s], averaging window [s] and step [s]
@@ -22,8 +23,12 @@ PRESS_RATE = 0.25
 HOLD = 0.12
 WINDOW = 0.02
 DT = 1e-3
-#: channels of :func:`press_path`'s result rows
+#: channels of :func:`press_path`'s result rows, and their positions (``res[k, PC.FZ]``)
 PRESS_COLUMNS = ("FX", "FY", "FZ", "DEFLECT", "MX", "MY", "MZ")
+PC = named_index("PressColumnIndex", PRESS_COLUMNS)
+#: the state array of :func:`roll_in_place`: centre x [m], spin [rad/s]
+ROLL_STATE = ("X", "OMEGA")
+RS = named_index("RollStateIndex", ROLL_STATE)
 
 
 @nb.njit(cache=True)
@@ -53,13 +58,13 @@ def press_path(wheel, z_start, heights, rate, hold, window, dt, res):
         for s in range(n_hold):
             f = wheel_step(wheel, WheelPose(0.0, 0.0, zc, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0), dt)
             if s >= n_hold - n_win:
-                res[k, 0] += f.fx / n_win
-                res[k, 1] += f.fy / n_win
-                res[k, 2] += f.fz / n_win
-                res[k, 3] = f.deflection
-                res[k, 4] += f.mx / n_win
-                res[k, 5] += f.my / n_win
-                res[k, 6] += f.mz / n_win
+                res[k, PC.FX] += f.fx / n_win
+                res[k, PC.FY] += f.fy / n_win
+                res[k, PC.FZ] += f.fz / n_win
+                res[k, PC.DEFLECT] = f.deflection
+                res[k, PC.MX] += f.mx / n_win
+                res[k, PC.MY] += f.my / n_win
+                res[k, PC.MZ] += f.mz / n_win
     return zc
 
 
@@ -70,16 +75,16 @@ def roll_in_place(wheel, height, speed, inertia, state, n_steps, dt):
     the axle, as in :func:`tyrelab.rig.rolling.rolling_steps`); returns the mean
     vertical load on the rim [N].
 
-    ``state = [x, omega]`` is advanced in place. A model's rolling equilibrium
+    ``state`` (:data:`ROLL_STATE`: x, omega) is advanced in place. A model's rolling equilibrium
     (the ring's initial state at speed) is found with it.
     """
     fz = 0.0
     for s in range(n_steps):
-        x = state[0]
-        omega = state[1]
+        x = state[RS.X]
+        omega = state[RS.OMEGA]
         f = wheel_step(wheel, WheelPose(x, 0.0, height, 0.0, 1.0, 0.0, speed, 0.0, 0.0, omega),
                        dt)
-        state[1] = omega + dt * f.my / (inertia - dt * min(f.dspin_domega, 0.0))
-        state[0] = x + speed * dt
+        state[RS.OMEGA] = omega + dt * f.my / (inertia - dt * min(f.dspin_domega, 0.0))
+        state[RS.X] = x + speed * dt
         fz += f.fz
     return fz / n_steps

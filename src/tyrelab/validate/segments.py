@@ -216,7 +216,8 @@ def segments_from_contact(t, z_cp, obstacle_height: float, base: float = 0.0,
     on = (z - base) / obstacle_height > fraction
     if x_cp is not None and x_range is not None:
         x = np.asarray(x_cp, dtype=float)
-        on &= (x >= x_range[0]) & (x <= x_range[1])
+        x_lo, x_hi = x_range
+        on &= (x >= x_lo) & (x <= x_hi)
     return _span(t, on, "contact", response_seconds, "contact point")
 
 

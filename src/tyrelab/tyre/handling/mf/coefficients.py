@@ -1,8 +1,12 @@
 """Magic Formula 5.2 / 6.1 / 6.2 coefficients: reading, defaults, packing.
 
 A property file is reduced to one float64 vector (``pack``) that the
-compiled kernels index with the integer constants defined at the bottom of
-this module (``coefficients.PCX1`` is the position of PCX1 in the vector).
+compiled kernels index with the integer constants of :mod:`.coefficient_index`
+(``coefficient_index.PCX1`` is the position of PCX1 in the vector). That module
+is generated from :data:`NAMES` (:func:`index_module_source`, written by
+``python tools/make_mf_coefficient_index.py``) and checked in, so editors and
+linters see every name; ``tests/test_mf_coefficient_index.py`` fails, and
+:func:`pack` refuses to run, when it is not current.
 
 Defaults
 --------
@@ -30,13 +34,15 @@ from __future__ import annotations
 
 import math
 import warnings
+from pathlib import Path
 
 import numpy as np
 
 from ...tir import KEY_DIMENSIONS, TirFile, _units_factor, read_tir
 from ....errors import InputError
 
-#: (name, MFeval readTIR default). Order defines the packed vector.
+#: (name, MFeval readTIR default). Order defines the packed vector (and
+#: :mod:`.coefficient_index`: regenerate it after any change here).
 PARAMETERS: tuple[tuple[str, float], ...] = (
     # model, dimensions, operating conditions
     ("LONGVL", 16.7), ("VXLOW", 1.0),
@@ -105,10 +111,54 @@ NAMES: tuple[str, ...] = tuple(n for n, _ in PARAMETERS) + DERIVED
 INDEX: dict[str, int] = {n: i for i, n in enumerate(NAMES)}
 N_COEFFICIENTS = len(NAMES)
 
-# integer position constants, read by the compiled kernels as C.<NAME>
-for _name, _i in INDEX.items():
-    globals()[_name] = _i
-del _name, _i
+#: the generated module of positions (:mod:`.coefficient_index`)
+INDEX_MODULE = Path(__file__).with_name("coefficient_index.py")
+
+
+def index_module_source() -> str:
+    """The text of :mod:`.coefficient_index`: one ``NAME = position`` line per name of :data:`NAMES`."""
+    lines = ['"""Positions of the Magic Formula coefficients in the packed vector (generated: do not edit).',
+             "",
+             "Written by ``python tools/make_mf_coefficient_index.py`` from",
+             ":data:`tyrelab.tyre.handling.mf.coefficients.NAMES` (the property-file parameters,",
+             "then the derived slots); ``tests/test_mf_coefficient_index.py`` fails when this file",
+             "is not current. The compiled kernels read ``C.PCX1`` after ``from . import",
+             "coefficient_index as C``: numba freezes these integers into the machine code, and the",
+             "compile cache's digest covers this module (imported by the kernels at top level).",
+             '"""',
+             ""]
+    for i, name in enumerate(NAMES):
+        if i == len(PARAMETERS):
+            lines += ["", "# derived slots, filled by coefficients.pack"]
+        lines.append(f"{name} = {i}")
+    lines += ["", "#: length of the packed vector", f"N_COEFFICIENTS = {N_COEFFICIENTS}"]
+    return "\n".join(lines) + "\n"
+
+
+def stale_index_names() -> list[str]:
+    """Names whose position in :mod:`.coefficient_index` is not their position in
+    :data:`NAMES` (empty when the generated module is current)."""
+    from . import coefficient_index  # here: the generator runs before the module exists
+    stale = [n for i, n in enumerate(NAMES) if getattr(coefficient_index, n, None) != i]
+    if getattr(coefficient_index, "N_COEFFICIENTS", None) != N_COEFFICIENTS:
+        stale.append("N_COEFFICIENTS")
+    return stale
+
+
+_index_checked = False
+
+
+def _check_index_module() -> None:
+    """Refuse to pack for kernels that would read the wrong slots (a stale generated module)."""
+    global _index_checked
+    if not _index_checked:
+        stale = stale_index_names()
+        if stale:
+            raise RuntimeError(f"{INDEX_MODULE.name} is not current with coefficients.NAMES "
+                               f"({', '.join(stale[:5])}{' ...' if len(stale) > 5 else ''}): run "
+                               "python tools/make_mf_coefficient_index.py")
+        _index_checked = True
+
 
 #: keys with a physical dimension that tir.py may not convert, as
 #: (LENGTH, FORCE, ANGLE, MASS, TIME) exponents
@@ -173,6 +223,7 @@ def _default_contact_length(r0: float, cz0: float, fz0: float) -> tuple[float, f
 
 def pack(tir: TirFile, version: str | None = None) -> tuple[np.ndarray, str]:
     """Coefficient vector (SI) and version string of a parsed property file."""
+    _check_index_module()
     version = version or detect_version(tir)
     values = np.empty(N_COEFFICIENTS)
     units = tir.units

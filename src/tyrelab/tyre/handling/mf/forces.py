@@ -13,7 +13,7 @@ import math
 
 import numba
 
-from . import coefficients as C
+from . import coefficient_index as C
 
 EPS = 1e-6  # singularity guard epsilon_x,y,k (4.E6a)
 

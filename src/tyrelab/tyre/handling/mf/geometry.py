@@ -11,7 +11,7 @@ import math
 
 import numba
 
-from . import coefficients as C
+from . import coefficient_index as C
 
 
 @numba.njit(cache=True, error_model="numpy")

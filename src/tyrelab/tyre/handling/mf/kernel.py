@@ -8,29 +8,61 @@ arrays of inputs.
 from __future__ import annotations
 
 import math
+from typing import NamedTuple
 
 import numba
 import numpy as np
 
-from . import coefficients as C
+from ....core.named_index import named_index
+from . import coefficient_index as C
 from .forces import combined_fx_weight, combined_fy_weight, kappa_induced_fy, pure_fx, pure_fy, sign
 from .geometry import contact_patch, deflection_61, deflection_62, effective_rolling_radius, relaxation
 from .limits import NEGATIVE_MUY, NON_FINITE, decode_use_mode, prepare_inputs
 from .moments import aligning_moment, overturning_moment, rolling_resistance, trail_and_residual
 
-#: columns of the full output row written by :func:`mf_evaluate`
+#: columns of the full output row written by :func:`mf_evaluate`; :func:`mf_forces`
+#: writes the first six (Fx ... Mz and the flag word)
 OUTPUTS = ("Fx", "Fy", "Mx", "My", "Mz", "flags", "Fz", "kappa", "alpha", "gamma", "Vx", "P",
            "Re", "rho", "contact_length_2a", "t", "mux", "muy", "omega", "Rl",
            "contact_width_2b", "Mzr", "Cx", "Cy", "Cz", "Kya", "sigmax", "sigmay", "Kxk",
            "alpha_used")
 N_OUTPUTS = len(OUTPUTS)
-COL = {name: i for i, name in enumerate(OUTPUTS)}
-COL_FLAGS = 5
+#: positions of :data:`OUTPUTS` in an output row (``out[MFO.Fx]``), and as a dict for
+#: names known only at run time
+MFO = named_index("MFOutputIndex", OUTPUTS)
+COL = MFO._asdict()
+
+
+class SteadyState(NamedTuple):
+    """What :func:`_steady_state` finds for one sample (the inputs as used, the loads,
+    the friction and the stiffnesses the other outputs are made from)."""
+
+    fx: float
+    fy: float
+    mx: float
+    my: float
+    mz: float
+    flags: int
+    fz_u: float
+    fz: float
+    fz_low: float
+    kappa_out: float
+    alpha: float
+    alpha_out: float
+    gamma: float
+    p: float
+    dpi: float
+    t: float
+    mux: float
+    muy: float
+    mzr: float
+    kya: float
+    kxk: float
 
 
 @numba.njit(cache=True, error_model="numpy")
 def _steady_state(c, use_mode, fz, kappa, alpha, gamma, vx, pressure):
-    """All steady-state quantities of one sample, as a tuple (see ``mf_evaluate``)."""
+    """All steady-state quantities of one sample, a :class:`SteadyState` (see ``mf_evaluate``)."""
     check, star = decode_use_mode(use_mode)
     p = pressure if pressure > 0.0 else c[C.INFLPRES]
     kappa_in = kappa
@@ -68,8 +100,8 @@ def _steady_state(c, use_mode, fz, kappa, alpha, gamma, vx, pressure):
                                  kya_p, dt, bt, ct, et, dr, br, fx, fy, gyk * fy0_flat, svyk)
     if check and muy < 0.0:
         flags |= NEGATIVE_MUY
-    return (fx, fy, mx, my, mz, flags, fz_u, fz, fz_low, kappa_out, alpha, alpha_out, gamma, p,
-            dpi, t, mux, muy, mzr, kya, kxk)
+    return SteadyState(fx, fy, mx, my, mz, flags, fz_u, fz, fz_low, kappa_out, alpha, alpha_out,
+                       gamma, p, dpi, t, mux, muy, mzr, kya, kxk)
 
 
 @numba.njit(cache=True, error_model="numpy")
@@ -84,10 +116,10 @@ def _finite(value, flags):
 def mf_forces(coefficients, use_mode, fz, kappa, alpha, gamma, vx, pressure, out):
     """Steady-state Magic Formula forces and moments of one sample.
 
-    Writes Fx, Fy, Mx, My, Mz (N, N m) into ``out[0:5]``; if ``out`` has a
-    sixth element, ``out[5]`` receives the limit flag word (bits in
-    :mod:`.limits`). No allocation, no Python objects: call it from other
-    ``njit`` kernels.
+    Writes Fx, Fy, Mx, My, Mz (N, N m) into ``out[MFO.Fx]`` ... ``out[MFO.Mz]``
+    (the first five :data:`OUTPUTS`); if ``out`` has room for it,
+    ``out[MFO.flags]`` receives the limit flag word (bits in :mod:`.limits`).
+    No allocation, no Python objects: call it from other ``njit`` kernels.
 
     Sign convention: ISO-W (TYDEX W) axes as MFeval -- forces and moments
     of the road on the tyre, x forward along the wheel heading in the road
@@ -110,14 +142,14 @@ def mf_forces(coefficients, use_mode, fz, kappa, alpha, gamma, vx, pressure, out
     checked against MFeval.
     """
     r = _steady_state(coefficients, use_mode, fz, kappa, alpha, gamma, vx, pressure)
-    flags = r[5]
-    out[0], flags = _finite(r[0], flags)
-    out[1], flags = _finite(r[1], flags)
-    out[2], flags = _finite(r[2], flags)
-    out[3], flags = _finite(r[3], flags)
-    out[4], flags = _finite(r[4], flags)
-    if out.shape[0] > 5:
-        out[5] = flags
+    flags = r.flags
+    out[MFO.Fx], flags = _finite(r.fx, flags)
+    out[MFO.Fy], flags = _finite(r.fy, flags)
+    out[MFO.Mx], flags = _finite(r.mx, flags)
+    out[MFO.My], flags = _finite(r.my, flags)
+    out[MFO.Mz], flags = _finite(r.mz, flags)
+    if out.shape[0] > MFO.flags:
+        out[MFO.flags] = flags
 
 
 @numba.njit(cache=True, error_model="numpy")
@@ -134,18 +166,43 @@ def mf_evaluate(c, use_mode, fz, kappa, alpha, gamma, vx, pressure, out):
         rho, rl, cz = deflection_61(c, fz_low, fx, fy, omega, r_omega, dpi)
     a, b = contact_patch(c, fz_u, dpi)
     cx, cy, sx, sy = relaxation(c, fz_c, gamma_c, dpi, kxk, kya)
-    values = (fx, fy, mx, my, mz, float(flags), fz_u, kappa_out, alpha_out, gamma, vx, p,
-              re, rho, 2.0 * a, t, mux, abs(muy) if check else muy, omega, rl, 2.0 * b, mzr,
-              cx, cy, cz, kya, sx, sy, kxk, alpha_c)
+    out[MFO.Fx] = fx
+    out[MFO.Fy] = fy
+    out[MFO.Mx] = mx
+    out[MFO.My] = my
+    out[MFO.Mz] = mz
+    out[MFO.flags] = float(flags)
+    out[MFO.Fz] = fz_u
+    out[MFO.kappa] = kappa_out
+    out[MFO.alpha] = alpha_out
+    out[MFO.gamma] = gamma
+    out[MFO.Vx] = vx
+    out[MFO.P] = p
+    out[MFO.Re] = re
+    out[MFO.rho] = rho
+    out[MFO.contact_length_2a] = 2.0 * a
+    out[MFO.t] = t
+    out[MFO.mux] = mux
+    out[MFO.muy] = abs(muy) if check else muy
+    out[MFO.omega] = omega
+    out[MFO.Rl] = rl
+    out[MFO.contact_width_2b] = 2.0 * b
+    out[MFO.Mzr] = mzr
+    out[MFO.Cx] = cx
+    out[MFO.Cy] = cy
+    out[MFO.Cz] = cz
+    out[MFO.Kya] = kya
+    out[MFO.sigmax] = sx
+    out[MFO.sigmay] = sy
+    out[MFO.Kxk] = kxk
+    out[MFO.alpha_used] = alpha_c
     bad = False
-    for i in range(len(values)):
-        value = values[i]
-        if not math.isfinite(value):
-            value = 0.0
+    for i in range(N_OUTPUTS):  # a non-finite output is reported as 0 and flagged
+        if not math.isfinite(out[i]):
+            out[i] = 0.0
             bad = True
-        out[i] = value
     if bad:
-        out[COL_FLAGS] = float(flags | NON_FINITE)
+        out[MFO.flags] = float(flags | NON_FINITE)
 
 
 @numba.njit(cache=True, error_model="numpy")
@@ -157,7 +214,7 @@ def mf_evaluate_many(c, use_mode, fz, kappa, alpha, gamma, vx, pressure, out):
 
 @numba.njit(cache=True, error_model="numpy")
 def mf_forces_many(c, use_mode, fz, kappa, alpha, gamma, vx, pressure, out):
-    """``mf_forces`` over 1-D arrays; ``out`` has shape (n, 5) or (n, 6)."""
+    """``mf_forces`` over 1-D arrays; ``out`` has shape (n, 5) or (n, 6) (:data:`OUTPUTS`' first)."""
     for i in range(fz.shape[0]):
         mf_forces(c, use_mode, fz[i], kappa[i], alpha[i], gamma[i], vx[i], pressure[i], out[i])
 

@@ -14,7 +14,7 @@ import math
 
 import numba
 
-from . import coefficients as C
+from . import coefficient_index as C
 
 # flag bits
 ALPHA_LOW, ALPHA_HIGH = 1, 2

@@ -10,7 +10,7 @@ import numpy as np
 from ....errors import InputError
 from ...tir import TirFile
 from . import coefficients as C
-from .kernel import COL, N_OUTPUTS, mf_evaluate_many
+from .kernel import COL, MFO, N_OUTPUTS, mf_evaluate_many
 from .limits import describe_flags
 
 #: use modes checked against MFeval (turn slip, units digit 2, is not implemented)
@@ -101,7 +101,7 @@ class MagicFormula:
                 raise InputError(f"{name} contains NaN or infinite values", field=name)
         out = np.empty((flat[0].size, N_OUTPUTS))
         mf_evaluate_many(self.coefficients, mode, *flat, out)
-        self._warn(out[:, COL["flags"]])
+        self._warn(out[:, MFO.flags])
         return self._pack_outputs(out, shape)
 
     def _warn(self, flags: np.ndarray) -> None:
@@ -121,7 +121,7 @@ class MagicFormula:
             if name == "phit":
                 result[name] = np.zeros(shape)
             elif name == "iKya":
-                result[name] = _instantaneous_kya(out[:, COL["Fy"]], out[:, COL["alpha_used"]]).reshape(shape)
+                result[name] = _instantaneous_kya(out[:, MFO.Fy], out[:, MFO.alpha_used]).reshape(shape)
             else:
                 result[name] = out[:, COL[name]].reshape(shape)
         return result

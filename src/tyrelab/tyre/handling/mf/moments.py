@@ -10,7 +10,7 @@ import math
 
 import numba
 
-from . import coefficients as C
+from . import coefficient_index as C
 from .forces import EPS, cos_atan, sign, sign1
 
 HALF_PI = 0.5 * math.pi

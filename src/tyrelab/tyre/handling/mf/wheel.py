@@ -9,7 +9,7 @@ import numpy as np
 
 from ...registry import HandlingModel, register_handling
 from ..slip import DKAPPA, slip
-from .kernel import mf_forces
+from .kernel import MFO, mf_forces
 
 #: the MFeval use mode the rigs run (limit checks and low-speed model on)
 RIG_USE_MODE = 111
@@ -36,13 +36,13 @@ def magic_formula_params(tyre) -> MagicFormulaParams:
 def mf_wheel_forces(params, fz, v_long, v_slip_x, v_slip_y, gamma):
     """``(FXW, FYW, MZW, kappa, alpha, dFXW/dkappa)`` of the Magic Formula."""
     kappa, alpha = slip(v_long, v_slip_x, v_slip_y)
-    out = np.empty(6)
+    out = np.empty(MFO.flags + 1)  # mf_forces's row: Fx ... Mz and the flag word
     mf_forces(params.coefficients, params.use_mode, fz, kappa + DKAPPA, alpha, gamma, v_long,
               params.pressure, out)
-    fx2 = out[0]
+    fx2 = out[MFO.Fx]
     mf_forces(params.coefficients, params.use_mode, fz, kappa, alpha, gamma, v_long,
               params.pressure, out)
-    return out[0], out[1], out[4], kappa, alpha, (fx2 - out[0]) / DKAPPA
+    return out[MFO.Fx], out[MFO.Fy], out[MFO.Mz], kappa, alpha, (fx2 - out[MFO.Fx]) / DKAPPA
 
 
 register_handling(HandlingModel("mf", MagicFormulaParams, magic_formula_params, mf_wheel_forces,
