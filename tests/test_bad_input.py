@@ -294,12 +294,15 @@ def test_internal_error_is_one_line_and_debug_shows_it(work, capsys, monkeypatch
 def test_divergence_is_one_line_naming_step_and_parameter(tmp_path, capsys, monkeypatch):
     """A divergence no check foresaw (the rig forced to report one) is one line naming the
     step size and the likely parameter; nothing is written."""
-    from tyrelab import api
+    import dataclasses
+
+    from tyrelab.rig import registry
     from tyrelab.rig.simulation import SimulationError
 
-    def diverging(*args, **kwargs):
+    def diverging(request):
         raise SimulationError("the simulation diverged (non-finite FZW, Z_WC); try a smaller time step")
-    monkeypatch.setattr(api, "_run_rig", diverging)
+    quarter = registry.rig_named("quarter-vehicle")
+    monkeypatch.setitem(registry._RIGS, "quarter-vehicle", dataclasses.replace(quarter, run=diverging))
     code, lines, _ = run_cli(["simulate", "--rig", "quarter-vehicle", "--road", "flat", "--dt", "0.002",
                               "--duration", "1", "-o", tmp_path / "o.parquet"], capsys)
     assert code == 2 and len(lines) == 1, lines

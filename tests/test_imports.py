@@ -32,11 +32,11 @@ PACKAGE = Path(__file__).resolve().parents[1] / "src" / "tyrelab"
 LAYERS = (
     ("tyrelab.core",),
     ("tyrelab._version", "tyrelab.errors", "tyrelab.limits", "tyrelab.io_atomic", "tyrelab.signal",
-     "tyrelab.guards", "tyrelab.stop"),
+     "tyrelab.guards", "tyrelab.stop", "tyrelab.plugins"),
     ("tyrelab.road",),
     ("tyrelab.tyre",),
     ("tyrelab.rig",),
-    ("tyrelab.api", "tyrelab"),
+    ("tyrelab.api", "tyrelab.registry", "tyrelab"),
     ("tyrelab.measure",),
     ("tyrelab.validate",),
     ("tyrelab.fit",),

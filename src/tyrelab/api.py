@@ -14,9 +14,6 @@ from .tyre.model import TyreModel
 from .tyre.library import DEFAULT_TYRE, load_tyre
 from .tyre.params import Tyre
 
-#: rigs that :func:`simulate` drives: the towed trailer, the quarter vehicle, the
-#: fixed-height rolling test, the trailer's drop test (thesis 3.4.1), a single wheel dropped
-RIGS = ("trailer", "quarter-vehicle", "rolling", "drop", "wheel-drop")
 #: output sample rate [Hz] when none is given (every step when the step is longer than 1 ms)
 DEFAULT_OUTPUT_RATE = 1000.0
 
@@ -113,7 +110,9 @@ def simulate(tyre: str | Tyre = DEFAULT_TYRE, model: str = "point", road="cleat:
         Vertical stiffness: load-deflection spline or linear.
     handling : {"none", "pac89", "mf"}, optional
         Tangential force model; by default the one the property file describes.
-    rig : {"trailer", "quarter-vehicle", "rolling", "drop", "wheel-drop"}
+    rig : str
+        A registered rig (:func:`tyrelab.registry.rigs`; built in: ``"trailer"``,
+        ``"quarter-vehicle"``, ``"rolling"``, ``"drop"``, ``"wheel-drop"``).
         ``rolling``: the axle at the static height of ``load``, rolled at
         ``speed`` (:mod:`tyrelab.rig.rolling`); ``drop``: the trailer at rest
         lifted until its wheels leave the ground and dropped (thesis 3.4.1;
@@ -146,11 +145,10 @@ def simulate(tyre: str | Tyre = DEFAULT_TYRE, model: str = "point", road="cleat:
     table's ``attrs["metadata"]["physics_warnings"]``).
     """
     from . import guards, limits
+    from .rig.registry import RigRequest, rig_named
 
-    if rig not in RIGS:
-        raise InputError(f"unknown rig '{rig}', expected one of {', '.join(RIGS)}", field="rig")
-    drop = rig in ("drop", "wheel-drop")
-    if not drop:
+    the_rig = rig_named(rig)
+    if the_rig.rolls:
         speed = limits.check_speed(speed)
     dt = limits.check_dt(dt)
     if output_rate is None:
@@ -159,26 +157,24 @@ def simulate(tyre: str | Tyre = DEFAULT_TYRE, model: str = "point", road="cleat:
     if duration is not None:
         duration = limits.check_duration(duration, dt, output_rate)
     tm = make_tyre_model(tyre, model, pressure, stiffness, handling, options)
-    if left_wheel is not None and rig not in ("trailer", "drop"):
-        raise InputError(f"left_wheel applies to the trailer rigs, not to '{rig}'", field="left_wheel")
+    if left_wheel is not None and the_rig.wheels < 2:
+        raise InputError(f"left_wheel applies to rigs with two wheels, not to '{rig}'", field="left_wheel")
     if isinstance(load, str):
         from .rig.trailer import load_case_wheel_load
         wheel_load = limits.check_wheel_load(load_case_wheel_load(load), tm.tyre)
     else:
         wheel_load = limits.check_wheel_load(load, tm.tyre)
     guards.check_load_range(tm.tyre, wheel_load)
-    if rig in ("quarter-vehicle", "wheel-drop") and tm.tyre.wheel_mass * 9.80665 >= wheel_load:
-        raise InputError(f"wheel load {wheel_load:.6g} N does not exceed the weight of the wheel "
-                         f"({tm.tyre.wheel_mass:.6g} kg) the quarter vehicle carries; allowed: above "
-                         f"{tm.tyre.wheel_mass * 9.80665:.6g} N", field="load")
+    if the_rig.check is not None:
+        the_rig.check(tm, wheel_load)
     left = None
-    if rig in ("trailer", "drop") and left_wheel is not None and left_wheel != tm.contact:
+    if the_rig.wheels > 1 and left_wheel is not None and left_wheel != tm.contact:
         left = TyreModel(tm.tyre, contact=left_wheel, handling=tm.handling)
-    # the wheels the rig runs: the trailer has two, the left one on flat ground
-    models = [tm, left or tm] if rig in ("trailer", "drop") else [tm]
+    # the wheels the rig runs: a second one (the trailer's left) on flat ground
+    models = [tm] + [left or tm] * (the_rig.wheels - 1)
     limits.check_stable_step(dt, [tm] if left is None else [tm, left], wheel_load)
     cells = 0
-    if not drop:
+    if the_rig.rolls:
         from .road.spec import road_from_spec
         road = road_from_spec(road, force=force)
         run_time = _default_duration(road, speed) if duration is None else duration
@@ -189,43 +185,19 @@ def simulate(tyre: str | Tyre = DEFAULT_TYRE, model: str = "point", road="cleat:
         cells = limits.grid_cells(road)
         guards.check_road_for_tyre(road, tm.tyre)
     else:
-        run_time = duration or (3.0 if rig == "drop" else 2.0)
+        road = None
+        duration = run_time = duration or the_rig.default_duration
     limits.check_resources(f"a {run_time:.6g} s run at a {dt:g} s step",
                            memory=limits.run_memory(run_time, dt, output_rate, cells),
                            wall_time=limits.run_wall_time(models, run_time, dt), force=force,
                            hint="use a larger time step, a shorter duration or a higher speed")
+    request = RigRequest(model=tm, left=left, road=road, speed=speed, load=load, wheel_load=wheel_load,
+                         duration=duration, dt=dt, output_rate=output_rate, progress=progress)
     try:
-        table = _run_rig(tm, left, rig, road if not drop else None, speed, load, duration, dt,
-                         output_rate, progress)
+        table = the_rig.run(request)
     except SimulationError as exc:
         raise _diverged(exc, tm, dt, wheel_load) from None
     found = guards.check_run(table, tm.tyre)
     if found:
         table.attrs["metadata"]["physics_warnings"] = found
     return table
-
-
-def _run_rig(tm, left, rig, road, speed, load, duration, dt, output_rate, progress):
-    if rig in ("trailer", "drop"):
-        from .rig.trailer import Trailer
-        trailer = Trailer(tm, load, left=left)
-        if rig == "drop":
-            return trailer.drop(duration=duration or 3.0, dt=dt, output_rate=output_rate,
-                                progress=progress)
-        return trailer.run(road, speed, duration, dt, output_rate, progress)
-    if rig == "rolling":
-        from .rig.rolling import roll
-        return roll(tm, road, speed, load=load, duration=duration, dt=dt,
-                    output_rate=output_rate, progress=progress)
-    from .rig.quarter_vehicle import G, QuarterVehicle
-    if isinstance(load, str):
-        from .rig.trailer import load_case_wheel_load
-        wheel = load_case_wheel_load(load)
-    else:
-        wheel = float(load)
-    mu = tm.tyre.wheel_mass or 0.1 * wheel / G
-    quarter = QuarterVehicle(tm, sprung_mass=wheel / G - mu, unsprung_mass=mu)
-    if rig == "wheel-drop":
-        return quarter.drop(duration=duration or 2.0, dt=dt, output_rate=output_rate,
-                            progress=progress)
-    return quarter.run(road, speed, duration, dt, output_rate, progress)

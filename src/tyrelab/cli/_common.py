@@ -132,22 +132,23 @@ def add_force(parser) -> None:
                              f"{MAX_MEMORY / 1024 ** 3:g} GiB of memory or {MAX_WALL_TIME / 60:g} min")
 
 
-#: suffixes of the files commands read (road files may carry an ``@OFFSET``)
+#: suffixes of the files commands read besides road files (those: tyrelab.road.formats, with an
+#: optional ``@OFFSET``)
 INPUT_SUFFIXES = (".tir", ".json", ".tdx", ".csv", ".parquet", ".toml")
-ROAD_SUFFIXES = (".crg", ".rdf", ".obj")
 
 
 def input_files(*values) -> list[str]:
     """The file paths among command values (a tyre file, a road file ``FILE[@V]`` ...), to keep
     outputs off them."""
+    from ..road.formats import road_file
     out = []
     for v in values:
         if v is None:
             continue
         text = str(v)
-        road = text.partition("@")[0]
-        if road.lower().endswith(ROAD_SUFFIXES):
-            out.append(road)
+        named = road_file(text)
+        if named is not None:
+            out.append(named[1])
         elif text.lower().endswith(INPUT_SUFFIXES):
             out.append(text)
     return out

@@ -20,12 +20,15 @@ def _image_path(text: str, inputs=()) -> Path:
 
 
 def register(sub):
+    from ..road.formats import road_formats, writable_suffixes
+
+    road_help = f"road name, track or FILE{'|'.join(road_formats())}[@V]"
     p = sub.add_parser("road", help="show a road, its spectrum (A, n), or export it as OpenCRG")
     rs = p.add_subparsers(dest="road_command", metavar="ACTION")
     rs.required = True
 
     show = rs.add_parser("show", help="heightmap and a longitudinal cut")
-    show.add_argument("road", metavar="ROAD", help="road name, track or FILE.crg|.rdf|.obj[@V]")
+    show.add_argument("road", metavar="ROAD", help=road_help)
     show.add_argument("-o", "--output", default="road.png", help="image file (default road.png)")
     show.add_argument("--y", type=bounded_float("y", -MAX_ROAD_WIDTH, MAX_ROAD_WIDTH, "m"), default=0.0,
                       help="lateral position of the cut [m]")
@@ -33,7 +36,7 @@ def register(sub):
     show.set_defaults(func=run_show)
 
     spec = rs.add_parser("spectrum", help="displacement spectral density and power-law fit (eq. 3.8)")
-    spec.add_argument("road", metavar="ROAD", help="road name, track or FILE.crg|.rdf|.obj[@V]")
+    spec.add_argument("road", metavar="ROAD", help=road_help)
     spec.add_argument("-o", "--output", default=None, help="image file for the DSD plot")
     spec.add_argument("--y", type=bounded_float("y", -MAX_ROAD_WIDTH, MAX_ROAD_WIDTH, "m"), default=0.0,
                       help="lateral position of the profile [m]")
@@ -45,10 +48,12 @@ def register(sub):
     add_force(spec)
     spec.set_defaults(func=run_spectrum)
 
-    exp = rs.add_parser("export", help="write the road as an OpenCRG, Adams .rdf or .obj file")
-    exp.add_argument("road", metavar="ROAD", help="road name, track or FILE.crg|.rdf|.obj[@V]")
+    exp = rs.add_parser("export", help="write the road as an OpenCRG, Adams .rdf or .obj file (or a "
+                                       "plugin's format)")
+    exp.add_argument("road", metavar="ROAD", help=road_help)
     exp.add_argument("-o", "--output", required=True,
-                     help="the file to write: .crg (OpenCRG), .rdf (Adams road data) or .obj (mesh)")
+                     help="the file to write: " + ", ".join(
+                         f"{s} ({road_formats()[s].name})" for s in writable_suffixes()))
     exp.add_argument("--spacing", nargs=2, default=None,
                      type=bounded_float("spacing", MIN_GRID_SPACING, MAX_GRID_SPACING, "m"),
                      metavar=("DX", "DY"),
@@ -121,23 +126,15 @@ def run_export(args) -> int:
 
     from ..io_atomic import check_output_path
 
-    out = check_output_path(args.output, (".crg", ".rdf", ".obj"), "-o", input_files(args.road))
+    from ..road.formats import format_named, writable_suffixes
+
+    out = check_output_path(args.output, writable_suffixes(), "-o", input_files(args.road))
     road = _road(args.road, args.force)
     spacing = tuple(args.spacing) if args.spacing else None
-    suffix = Path(out).suffix.lower()
-    if suffix == ".rdf":
-        from ..road.rdf_write import write_rdf
-        method = args.method or ("3D" if road.varies_in_y() else "2D")
-        path = write_rdf(road, out, method=method, spacing=spacing, mu=args.mu)
-        print(f"{path}: {road.name} as an Adams road data file ({method})")
-    elif suffix == ".obj":
-        from ..road.mesh_files import write_obj
-        path = write_obj(road, out, spacing=spacing)
-        print(f"{path}: {road.name} as a triangle mesh")
-    else:
-        from ..road.crg import write_crg
-        path = write_crg(road, out, spacing=spacing, fmt=args.format, force=args.force)
-        print(f"{path}: {road.name} as OpenCRG {args.format}")
+    fmt = format_named(Path(out).suffix)
+    options = {name: getattr(args, name) for name in fmt.write_options}
+    path, what = fmt.write(road, out, spacing=spacing, force=args.force, **options)
+    print(f"{path}: {road.name} as {what}")
     return 0
 
 

@@ -12,10 +12,13 @@ from ._common import (add_force, add_options, bounded_float, input_files, load_v
 OPTIONS = {"speed": "--speed", "duration": "--duration", "dt": "--dt", "output_rate": "--rate",
            "load": "--load", "pressure": "--pressure", "rig": "--rig", "left_wheel": "--left-wheel",
            "stiffness": "--stiffness", "tyre": "--tyre", "model": "--model", "road": "--road",
-           "options": "--option"}
+           "options": "--option", "handling": "--handling"}
 
 
 def register(sub):
+    from ..rig.registry import rigs
+    from ..road.formats import road_suffixes
+
     p = sub.add_parser("simulate", help="run a tyre model over a road on the test trailer",
                        description="Run a tyre model on the towed test trailer (or a quarter "
                                    "vehicle) over a road and write the signal table. Every value "
@@ -31,21 +34,21 @@ def register(sub):
     p.add_argument("--stiffness", choices=("table", "linear"), default=None,
                    help="vertical stiffness: load-deflection spline (table, default when the file has one) "
                         "or linear")
-    p.add_argument("--handling", choices=("none", "pac89", "mf"), default=None,
-                   help="tangential force model (default: what the property file describes)")
+    p.add_argument("--handling", default=None,
+                   help="tangential force model: none, pac89, mf or a plugin's (tyrelab models lists "
+                        "them; default: what the property file describes)")
     p.add_argument("--road", default="cleat:50x50",
                    help="road: flat, cleat:WxH[@ANGLE], bump:H, step:H, pothole:DxL[xW], a track name "
-                        "or FILE.crg|.rdf|.obj (sizes in mm; default cleat:50x50)")
+                        f"or FILE{'|'.join(road_suffixes())}[@V] (sizes in mm; default cleat:50x50)")
     p.add_argument("--speed", type=bounded_float("speed", MIN_SPEED * 3.6, MAX_SPEED * 3.6, "km/h",
                                                  scale=1 / 3.6),
                    default=12 / 3.6, metavar="KMH",
                    help=f"towing speed in km/h, {MIN_SPEED * 3.6:g} to {MAX_SPEED * 3.6:g} (default 12)")
     p.add_argument("--load", type=load_value, default="LC1",
                    help="load case LC1, LC2, LC3 (thesis Table 3-4) or a wheel load in N (default LC1)")
-    p.add_argument("--rig", choices=("trailer", "quarter-vehicle", "rolling", "drop", "wheel-drop"),
-                   default="trailer",
-                   help="trailer (default), quarter-vehicle, rolling (axle at fixed height), "
-                        "drop (the trailer's drop test, thesis 3.4.1), wheel-drop")
+    known = rigs()
+    p.add_argument("--rig", choices=tuple(known), default="trailer",
+                   help="; ".join(f"{name}: {r.summary}" for name, r in known.items()) + " (default trailer)")
     p.add_argument("--left-wheel", default=None, metavar="MODEL",
                    help="trailer rigs: contact model of the left wheel on flat ground (default: --model), "
                         "e.g. point: the same tyre and vertical law at a fraction of a ring's cost")

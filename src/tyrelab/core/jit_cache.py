@@ -54,6 +54,7 @@ from __future__ import annotations
 
 import gc
 import hashlib
+from importlib import metadata
 import os
 import re
 import sys
@@ -135,12 +136,38 @@ def kernel_modules(package: Path = _PACKAGE) -> list[Path]:
     return sorted(found)
 
 
+#: the entry-point group of tyrelab's plugins (tyrelab.plugins.GROUP; this layer cannot import it)
+PLUGIN_GROUP = "tyrelab.plugins"
+
+
+def plugin_sources() -> list[tuple[str, bytes]]:
+    """``(name, bytes)`` of the Python files of every installed plugin distribution.
+
+    A plugin's model record enters the signatures of tyrelab's rig loops, which are cached
+    here, and its compiled code is inlined into them: an edited or upgraded plugin must not
+    meet the loops compiled with its old code. Read from the distributions' file lists
+    (nothing is imported)."""
+    out = []
+    for ep in sorted(metadata.entry_points(group=PLUGIN_GROUP), key=lambda e: (e.name, e.value)):
+        dist = ep.dist
+        for f in sorted(dist.files or (), key=str) if dist is not None else ():
+            if str(f).endswith(".py"):
+                try:
+                    out.append((f"{dist.name}/{f}", Path(f.locate()).read_bytes()))
+                except OSError:
+                    continue
+    return out
+
+
 def kernel_digest(package: Path = _PACKAGE) -> str:
-    """SHA-256 of the kernel modules (relative paths and contents), numba's and Python's versions."""
+    """SHA-256 of the kernel modules (relative paths and contents), the installed plugins'
+    Python files (:func:`plugin_sources`), numba's and Python's versions."""
     h = hashlib.sha256(f"numba {numba.__version__}\0python {sys.version}\0".encode())
     for path in kernel_modules(package):
         h.update(path.relative_to(package).as_posix().encode() + b"\0")
         h.update(path.read_bytes() + b"\0")
+    for name, content in plugin_sources():
+        h.update(b"plugin\0" + name.encode() + b"\0" + content + b"\0")
     return h.hexdigest()
 
 

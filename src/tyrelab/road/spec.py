@@ -10,9 +10,10 @@ Grammar (sizes in millimetres, angles in degrees, as engineers say them)::
     iso8608:CLASS[@SEED]        ISO 8608 random road, class A-H, 100 m x 4 m
     powerlaw:A,N[@SEED]         random road with S = A phi^-N (thesis eq. 3.8)
     <track name>                a built-in test track (see :func:`road_names`)
-    path/to/file.crg[@V]        an OpenCRG road, driven at lateral offset V [m]
-    path/to/file.rdf[@V]        an Adams road data file (2D road types, 3D shell)
-    path/to/file.obj[@V]        a triangle mesh (Wavefront OBJ, metres, z up)
+    path/to/file.SUFFIX[@V]     a road file, driven at lateral offset V [m]: a
+                                format of :mod:`tyrelab.road.formats` -- .crg
+                                (OpenCRG), .rdf (Adams road data: 2D road types,
+                                3D shell), .obj (triangle mesh), a plugin's
 
 Every obstacle starts at x = 5 m so a run can settle first.
 """
@@ -24,6 +25,7 @@ from pathlib import Path
 
 from ..errors import InputError
 from .base import Road
+from .formats import road_file, road_suffixes
 
 #: where each obstacle starts [m]; the wheel starts at x = 0
 OBSTACLE_START = 5.0
@@ -45,7 +47,7 @@ def road_names() -> list[str]:
     """Names accepted by :func:`road_from_spec` besides the obstacle grammar."""
     return ["flat", "cleat:WxH[@ANGLE]", "bump:H[xRAMPxTOP]", "step:H",
             "pothole:DEPTHxLENGTH[xWIDTH]", "iso8608:CLASS[@SEED]", "powerlaw:A,N[@SEED]",
-            *sorted(_tracks()), "FILE.crg[@V]", "FILE.rdf[@V]", "FILE.obj[@V]"]
+            *sorted(_tracks()), *(f"FILE{suffix}[@V]" for suffix in road_suffixes())]
 
 
 def _numbers(text: str, spec: str, count_min: int, count_max: int) -> list[float]:
@@ -123,26 +125,18 @@ def road_from_spec(spec: str | Road, force: bool = False) -> Road:
     tracks = _tracks()
     if text.lower() in tracks:
         return tracks[text.lower()]()
-    path_text, _, offset = text.partition("@")
-    suffix = Path(path_text).suffix.lower()
-    if suffix in (".crg", ".rdf", ".obj"):
+    named = road_file(text)
+    if named is not None:
+        fmt, path_text, offset = named
         path = Path(path_text)
-        what = {".crg": "OpenCRG", ".rdf": "Adams road data", ".obj": "OBJ mesh"}[suffix]
         if not path.is_file():
-            raise InputError(f"no such {what} file", source=str(path))
+            raise InputError(f"no such {fmt.name} file", source=str(path))
         v = 0.0
         if offset:
             if not re.fullmatch(_NUM, offset):
                 raise InputError(f"cannot read lateral offset '{offset}' in road '{text}'; expected metres",
                                  field="road")
             v = float(offset)
-        if suffix == ".rdf":
-            from .rdf import read_rdf
-            return read_rdf(path, y_offset=v)
-        if suffix == ".obj":
-            from .mesh_files import read_obj
-            return read_obj(path, y_offset=v)
-        from .crg import CrgRoad
-        return CrgRoad(path, v_offset=v, force=force)
+        return fmt.read(path, v, force)
     raise InputError(f"unknown road '{text}'; expected one of: {', '.join(road_names())}",
                      field="road")

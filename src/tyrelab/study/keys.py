@@ -85,26 +85,15 @@ def tyre_digest(tyre: TyreSpec) -> str:
     return h.hexdigest()
 
 
-def _file_digest(path: Path) -> str:
-    st = path.stat()
-    return _file_digest_of(str(path), st.st_mtime_ns, st.st_size)
-
-
-@functools.lru_cache(maxsize=64)
-def _file_digest_of(path: str, mtime_ns: int, size: int) -> str:
-    return hashlib.sha256(Path(path).read_bytes()).hexdigest()
-
-
 def _road_identity(road: str):
-    """The road as it enters a run key: its name, or a road file's content digest and offset."""
-    path_text, _, offset = road.partition("@")
-    suffix = Path(path_text).suffix.lower()
-    if suffix == ".crg":
-        return {"crg_sha256": _file_digest(Path(path_text)), "offset": offset or "0"}
-    if suffix in (".rdf", ".obj"):
-        return {"road_file_sha256": _file_digest(Path(path_text)), "kind": suffix,
-                "offset": offset or "0"}
-    return road
+    """The road as it enters a run key: its name, or a road file's identity as its format gives
+    it (:attr:`tyrelab.road.formats.RoadFormat.identity`: the file's content digest and offset)."""
+    from ..road.formats import road_file
+    named = road_file(road)
+    if named is None:
+        return road
+    fmt, path_text, offset = named
+    return fmt.identity(fmt, Path(path_text), offset)
 
 
 @functools.lru_cache(maxsize=None)

@@ -10,10 +10,8 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from ..rig.registry import rig_named
 from .keys import run_key, tyre_digest
-
-#: rigs with a left wheel (the towed trailer and its drop test)
-TRAILER_RIGS = ("trailer", "drop")
 
 
 @dataclass(frozen=True)
@@ -115,9 +113,9 @@ class RunSpec:
 
     @property
     def left_contact(self) -> str | None:
-        """The trailer's left-wheel contact model when it differs from the test wheel's
-        (None: the same model, or a rig without a left wheel)."""
-        if self.rig not in TRAILER_RIGS or self.left_wheel in (None, self.model.contact):
+        """The other wheel's contact model of a two-wheel rig (the trailer's left) when it
+        differs from the test wheel's (None: the same model, or a rig with one wheel)."""
+        if rig_named(self.rig).wheels < 2 or self.left_wheel in (None, self.model.contact):
             return None
         return self.left_wheel
 

@@ -33,7 +33,7 @@ Schema (km/h, kPa, mm at this edge, as the command line; SI in the parsed object
     road = "cleat:50x50"                # a road name (tyrelab.road.spec) or a .crg/.rdf/.obj path [@offset]
     speeds_kmh = [12, 18, 42]           # 0 < v <= 200 km/h
     loads = ["LC1"]                     # "LC1".."LC3" (thesis Table 3-4) or a wheel load in N
-    rig = "trailer"                     # optional (tyrelab.api.RIGS)
+    rig = "trailer"                     # optional (tyrelab.registry.rigs())
     duration = 6.0                      # [s] optional (default: the rig runs to the road's end)
     reference = { model = "FTire TP" }  # optional: a model label of this spec, or
     # reference = { files = ["field/c50_12.tdx", "field/c50_18.tdx", "field/c50_42.tdx"] }
@@ -78,7 +78,7 @@ from ..errors import InputError
 from .checker import Checker
 from .keys import run_key, tyre_digest  # noqa: F401 - part of this module's API
 from .records import (ModelSpec, ReferenceFile, RunSpec, StudySpec, TestSpec,  # noqa: F401
-                      TyreSpec, TRAILER_RIGS)
+                      TyreSpec)
 from .spec_tests import DEFAULT_DT, DEFAULT_OUTPUT_RATE, GROUPS, MAX_SPEED_KMH, MIN_SPEED_KMH, _tests  # noqa: F401
 
 #: the built-in thesis campaign (package data)

@@ -12,7 +12,6 @@ from __future__ import annotations
 import json
 import math
 import re
-from pathlib import Path
 
 from .. import limits
 from ..errors import InputError
@@ -36,6 +35,7 @@ _DISCRETE_TRACKS = ("trapezoidal-bump",)
 
 def _road(ck: Checker, value, path) -> tuple[str, str]:
     """A road name checked without building it: ``(road for simulate, inferred group)``."""
+    from ..road.formats import road_file
     from ..road.spec import _NUM, _tracks, road_from_spec, road_names
 
     text = ck.string(value, path, "a road name").strip()
@@ -44,12 +44,12 @@ def _road(ck: Checker, value, path) -> tuple[str, str]:
     lower = text.lower()
     if lower in _tracks():  # built-in tracks are large: known by name, built when run
         return lower, "discrete obstacles" if lower in _DISCRETE_TRACKS else "rough tracks"
-    path_text, _, offset = text.partition("@")
-    if path_text.lower().endswith((".crg", ".rdf", ".obj")):
+    named = road_file(text)
+    if named is not None:
+        fmt, path_text, offset = named
         if offset and not re.fullmatch(_NUM, offset):
             ck.fail(path, f"cannot read lateral offset '{offset}' in road '{text}'; expected metres")
-        what = {".crg": "OpenCRG file", ".rdf": "Adams road data file", ".obj": "OBJ mesh file"}
-        file = ck.path(path_text, path, what[Path(path_text).suffix.lower()])
+        file = ck.path(path_text, path, f"{fmt.name} file")
         return f"{file}@{offset}" if offset else str(file), "rough tracks"
     kind, _, args = text.partition(":")
     kind = kind.lower()
@@ -156,7 +156,7 @@ def _reference(ck: Checker, raw, path, speeds, loads, models, cases):
 
 def _tests(ck: Checker, doc, models, dt: float = DEFAULT_DT,
            rate: float = DEFAULT_OUTPUT_RATE) -> tuple[TestSpec, ...]:
-    from ..api import RIGS
+    from ..rig.registry import rigs
     from ..tyre.library import load_cases
 
     cases = list(load_cases().index)
@@ -182,7 +182,7 @@ def _tests(ck: Checker, doc, models, dt: float = DEFAULT_DT,
             if load in loads:
                 ck.fail(path + ("loads", k), f"duplicate load {v!r}")
             loads.append(load)
-        rig = ck.choice(t.get("rig", "trailer"), path + ("rig",), RIGS, "rig")
+        rig = ck.choice(t.get("rig", "trailer"), path + ("rig",), tuple(rigs()), "rig")
         duration = None
         if "duration" in t:
             duration = ck.number(t["duration"], path + ("duration",), "a duration > 0 [s]", low=0.0)

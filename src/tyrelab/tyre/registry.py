@@ -21,6 +21,7 @@ from typing import Any, Callable
 
 import numpy as np
 
+from .. import plugins
 from ..errors import InputError
 
 #: modules that register the built-in contact models (one line per model module)
@@ -92,6 +93,10 @@ class ContactModel:
     parameterization : str
         What the model must be given, measured (thesis chapter 4), in a few
         words: the study report's cost table.
+    fit_steps : tuple of str
+        The steps of ``tyrelab fit`` (:data:`tyrelab.fit.workflow.STEPS`) that
+        identify its parameters from a test campaign; a model with none here
+        is not predicted by the fit's held-out cleat tests.
     options : dict
         The options ``build`` takes that a user may set (``simulate(options=...)``,
         ``--option KEY=VALUE``, a study spec's ``options`` table), name -> type
@@ -112,6 +117,7 @@ class ContactModel:
     options: dict = field(default_factory=dict)
     cost: float | None = None
     parameterization: str = ""
+    fit_steps: tuple = ()
 
     def __post_init__(self):
         if (self.geometry is None) == (self.step is None):
@@ -156,11 +162,13 @@ def register_handling(model: HandlingModel) -> HandlingModel:
 
 
 def _load_builtins() -> None:
+    """Import the built-in models' modules, then the plugins (:mod:`tyrelab.plugins`)."""
     global _loaded
     if not _loaded:
         _loaded = True
         for module in BUILTIN_CONTACT + BUILTIN_HANDLING:
             importlib.import_module(module)
+    plugins.load()
 
 
 def _ordered(registry, builtin):
