@@ -43,6 +43,7 @@ from ..tyre.ring.modal import ring_modal
 from ..tyre.ring.model import RELAX_RATE, nominal_state, ring_params
 from ..tyre.ring.parameters import RingParameters
 from ..tyre.ring.static import block_positions, settle
+from ..tyre.static import PC
 from ..tyre.tir import TirFile, write_tir
 from .damping import ring_drop_test_damping
 
@@ -102,7 +103,7 @@ def press_plate(tyre, rp, deflections):
     state = nominal_state(params)
     d = np.asarray(deflections, float)
     res = settle(params, state, grid.surface(), tyre.unloaded_radius - d)
-    return res[:, 2], contact_half_length_of_state(params, state, tyre.unloaded_radius - d[-1])
+    return res[:, PC.FZ], contact_half_length_of_state(params, state, tyre.unloaded_radius - d[-1])
 
 
 def contact_half_length_of_state(params, state, height):
