@@ -82,12 +82,13 @@ def _diverged(exc: Exception, tm: TyreModel, dt: float, wheel_load: float) -> Si
                            "try a smaller time step or check the property file")
 
 
-def simulate(tyre: str | Tyre = DEFAULT_TYRE, model: str = "point", road="cleat:50x50",
+def simulate(tyre: str | Tyre = DEFAULT_TYRE, model: str = "point", road=None,
              speed: float = 12 / 3.6, load="LC1", pressure: float | None = None,
              stiffness: str | None = None, handling: str | None = None,
              rig: str = "trailer", duration: float | None = None,
              dt: float = 1e-3, output_rate: float | None = None, progress: bool | None = None,
-             left_wheel: str | None = None, force: bool = False, options: dict | None = None):
+             left_wheel: str | None = None, force: bool = False, options: dict | None = None,
+             terrain=None, rig_options: dict | None = None):
     """Run a tyre model on a rig over a road; returns the signal table.
 
     Parameters
@@ -96,8 +97,10 @@ def simulate(tyre: str | Tyre = DEFAULT_TYRE, model: str = "point", road="cleat:
         Built-in name (``"xzl-16.00R20"``) or path to a ``.tir`` file.
     model : str
         Contact model (``"point"``).
-    road : str or Road
-        A road name (see :func:`tyrelab.road.spec.road_from_spec`).
+    road : str or Road, optional
+        A road name (see :func:`tyrelab.road.spec.road_from_spec`); on soil, the
+        soil's undisturbed surface. Default: the rig's (``cleat:50x50``; ``flat``
+        for the single-wheel tester).
     speed : float
         Towing speed [m/s], :data:`tyrelab.limits.MIN_SPEED` to
         :data:`~tyrelab.limits.MAX_SPEED`.
@@ -137,6 +140,14 @@ def simulate(tyre: str | Tyre = DEFAULT_TYRE, model: str = "point", road="cleat:
         (:attr:`tyrelab.tyre.registry.ContactModel.options` lists each
         model's; an unknown key is refused with the allowed ones named). The
         trailer's left wheel (``left_wheel``, another model) takes none.
+    terrain : str or Soil, optional
+        A deformable ground: a built-in soil's name (``"lete-sand"``,
+        :func:`tyrelab.road.soil.soil_names`) or a soil file ``FILE.toml``; the
+        road gives its initial surface. Rigs that run on soil only (the
+        ``single-wheel`` tester) need one.
+    rig_options : dict, optional
+        The rig's own options (:attr:`tyrelab.rig.registry.Rig.options`), e.g.
+        ``{"slip": 0.2}`` for the single-wheel tester.
 
     Every argument is checked before any work (:mod:`tyrelab.limits`); a run
     that leaves the physics the models hold for (rim contact, an overturned
@@ -145,9 +156,22 @@ def simulate(tyre: str | Tyre = DEFAULT_TYRE, model: str = "point", road="cleat:
     table's ``attrs["metadata"]["physics_warnings"]``).
     """
     from . import guards, limits
-    from .rig.registry import RigRequest, rig_named
+    from .rig.registry import RigRequest, check_rig_options, rig_named, rigs
 
     the_rig = rig_named(rig)
+    rig_options = check_rig_options(the_rig, rig_options)
+    if road is None:
+        road = the_rig.default_road
+    if terrain is None and the_rig.terrain == "soil":
+        raise InputError(f"the {rig} rig runs on soil: give a terrain (a soil's name or FILE.toml)",
+                         field="terrain")
+    if terrain is not None and the_rig.terrain == "rigid":
+        soil_rigs = [name for name, r in rigs().items() if r.terrain != "rigid"]
+        raise InputError(f"the {rig} rig runs on the rigid road only; rigs on soil: "
+                         f"{', '.join(soil_rigs)}", field="terrain")
+    if terrain is not None:
+        from .road.soil import load_soil
+        load_soil(terrain)  # a bad soil name or file: refused before any work
     if the_rig.rolls:
         speed = limits.check_speed(speed)
     dt = limits.check_dt(dt)
@@ -192,7 +216,8 @@ def simulate(tyre: str | Tyre = DEFAULT_TYRE, model: str = "point", road="cleat:
                            wall_time=limits.run_wall_time(models, run_time, dt), force=force,
                            hint="use a larger time step, a shorter duration or a higher speed")
     request = RigRequest(model=tm, left=left, road=road, speed=speed, load=load, wheel_load=wheel_load,
-                         duration=duration, dt=dt, output_rate=output_rate, progress=progress)
+                         duration=duration, dt=dt, output_rate=output_rate, progress=progress,
+                         terrain=terrain, options=rig_options)
     try:
         table = the_rig.run(request)
     except SimulationError as exc:

@@ -73,6 +73,8 @@ CHANNELS: dict[str, tuple[str, str]] = {
     "Z_BODY": ("m", "quarter vehicle: sprung-mass height"),
     "VZ_BODY": ("m/s", "quarter vehicle: sprung-mass vertical velocity"),
     "F_SUSP": ("N", "quarter vehicle: suspension force (compression positive)"),
+    "SINKAGE": ("m", "soil: depth of the wheel's lowest point below the undisturbed surface"),
+    "TORQUE": ("N m", "single-wheel tester: driving torque the axle applies (positive driving)"),
 }
 
 #: Channels that a force signal must never carry as NaN or negative.
@@ -110,7 +112,37 @@ def make_signal(data: dict[str, np.ndarray], metadata: dict | None = None) -> pd
                       metadata)
 
 
-def write_signal(df: pd.DataFrame, path) -> None:
+#: Parquet compressions of :func:`write_signal`: ``"snappy"`` is pyarrow's default (dictionary
+#: encoding, snappy: every file tyrelab wrote before the compact study store, and still
+#: ``tyrelab simulate -o``'s),
+#: ``"zstd"`` is zstd at :data:`ZSTD_LEVEL` with the float columns byte-stream split and no
+#: dictionary: lossless too, and 45 % smaller on the thesis campaign's runs
+#: (``benchmarks/store_format.py``)
+PARQUET_COMPRESSIONS = ("snappy", "zstd")
+ZSTD_LEVEL = 3
+#: the largest relative change of a value stored as float32 (round to nearest: half its ulp)
+FLOAT32_RELATIVE_ERROR = 2.0 ** -24
+_FLOAT32_MAX = float(np.finfo(np.float32).max)
+
+
+def _narrowed(df: pd.DataFrame, float32) -> tuple[pd.DataFrame, list[str]]:
+    """``df`` with the float64 columns of ``float32`` rounded to float32 (those whose finite
+    values all fit; a larger one stays float64), and the names of the rounded columns."""
+    wanted = set(float32)
+    narrow = []
+    for col in df.columns:
+        if col in wanted and df[col].dtype == np.float64:
+            values = df[col].to_numpy()
+            finite = values[np.isfinite(values)]
+            if finite.size == 0 or np.abs(finite).max() <= _FLOAT32_MAX:
+                narrow.append(col)
+    if not narrow:
+        return df, []
+    return df.astype({c: np.float32 for c in narrow}), narrow
+
+
+def write_signal(df: pd.DataFrame, path, *, compression: str = "snappy", float32=(),
+                 storage: dict | None = None) -> None:
     """Write a signal table as Parquet (``.parquet``) or CSV (``.csv``).
 
     Units and run metadata go into the Parquet schema metadata, or into
@@ -119,6 +151,16 @@ def write_signal(df: pd.DataFrame, path) -> None:
     so an interrupted run never leaves a file that looks finished. A missing
     folder, a folder as ``path`` or a table with no rows is an
     :class:`InputError` before anything is written.
+
+    Parquet only (a CSV is written as before, and these must keep their defaults):
+    ``compression`` one of :data:`PARQUET_COMPRESSIONS` (default ``"snappy"``, the
+    form of every earlier file); ``float32`` the columns to store rounded to float32
+    (each value within :data:`FLOAT32_RELATIVE_ERROR` of the original, relative;
+    a column with a finite value beyond float32's range stays float64);
+    ``storage`` a JSON-able description of the form, kept in the file with
+    the rounded columns' names (``"storage"`` of the schema metadata, read back
+    into ``attrs["storage"]``). :func:`read_signal` returns float64 columns
+    whatever was stored.
     """
 
     path = Path(path)
@@ -126,6 +168,10 @@ def write_signal(df: pd.DataFrame, path) -> None:
     if suffix not in (".parquet", ".csv"):
         raise InputError(f"unknown output format '{path.suffix}', expected .parquet or .csv",
                          source=str(path))
+    if compression not in PARQUET_COMPRESSIONS:
+        raise ValueError(f"compression {compression!r}: expected one of {PARQUET_COMPRESSIONS}")
+    if suffix == ".csv" and (compression != "snappy" or list(float32) or storage):
+        raise ValueError("compression, float32 and storage apply to Parquet files only")
     if len(df) == 0:
         raise InputError("refusing to write a signal table with no rows", source=str(path))
     meta = {"units": df.attrs.get("units", units(df.columns)),
@@ -134,10 +180,18 @@ def write_signal(df: pd.DataFrame, path) -> None:
         if suffix == ".parquet":
             import pyarrow as pa
             import pyarrow.parquet as pq
-            table = pa.Table.from_pandas(df, preserve_index=False)
+            data, narrow = _narrowed(df, float32)
+            if storage is not None or narrow:
+                meta["storage"] = {**(storage or {}), "float32": narrow}
+            table = pa.Table.from_pandas(data, preserve_index=False)
             old = table.schema.metadata or {}
             table = table.replace_schema_metadata({**old, b"tyrelab": json.dumps(meta).encode()})
-            pq.write_table(table, tmp)
+            if compression == "snappy":
+                pq.write_table(table, tmp)  # pyarrow's defaults: the form of every earlier file
+            else:
+                floats = [f.name for f in table.schema if pa.types.is_floating(f.type)]
+                pq.write_table(table, tmp, compression="zstd", compression_level=ZSTD_LEVEL,
+                               use_dictionary=False, use_byte_stream_split=floats or False)
         else:
             with open(tmp, "w", encoding="utf-8", newline="") as fh:
                 fh.write("# tyrelab " + json.dumps(meta) + "\n")
@@ -159,6 +213,9 @@ def read_signal(path) -> pd.DataFrame:
             raw = (table.schema.metadata or {}).get(b"tyrelab")
             meta = json.loads(raw) if raw else {}
             df = table.to_pandas()
+            narrow = {c: np.float64 for c in df.columns if df[c].dtype == np.float32}
+            if narrow:  # stored as float32 (a compact study store): read as every other table
+                df = df.astype(narrow)
         elif suffix == ".csv":
             with open(path, encoding="utf-8") as fh:
                 first = fh.readline()
@@ -179,4 +236,6 @@ def read_signal(path) -> pd.DataFrame:
             raise InputError(f"sample {row + 1} is infinite ({values[row]})", source=str(path), field=col)
     df.attrs["units"] = meta.get("units", units(df.columns))
     df.attrs["metadata"] = meta.get("metadata", {})
+    if "storage" in meta:  # how a compact store kept it (write_signal)
+        df.attrs["storage"] = meta["storage"]
     return df

@@ -12,7 +12,8 @@ from ._common import (add_force, add_options, bounded_float, input_files, load_v
 OPTIONS = {"speed": "--speed", "duration": "--duration", "dt": "--dt", "output_rate": "--rate",
            "load": "--load", "pressure": "--pressure", "rig": "--rig", "left_wheel": "--left-wheel",
            "stiffness": "--stiffness", "tyre": "--tyre", "model": "--model", "road": "--road",
-           "options": "--option", "handling": "--handling"}
+           "options": "--option", "handling": "--handling", "terrain": "--terrain",
+           "rig_options": "--slip", "slip": "--slip"}
 
 
 def register(sub):
@@ -37,9 +38,15 @@ def register(sub):
     p.add_argument("--handling", default=None,
                    help="tangential force model: none, pac89, mf or a plugin's (tyrelab models lists "
                         "them; default: what the property file describes)")
-    p.add_argument("--road", default="cleat:50x50",
+    p.add_argument("--terrain", default=None, metavar="SOIL",
+                   help="deformable ground: a built-in soil (lete-sand, dry-sand, sandy-loam, clayey-soil, "
+                        "snow, chrono-demo) or a soil file FILE.toml; the road is its initial surface")
+    p.add_argument("--slip", type=bounded_float("slip", 0.0, 0.99), default=None,
+                   metavar="S", help="single-wheel tester: the slip s = 1 - V / (R0 omega), 0 to 0.99")
+    p.add_argument("--road", default=None,
                    help="road: flat, cleat:WxH[@ANGLE], bump:H, step:H, pothole:DxL[xW], a track name "
-                        f"or FILE{'|'.join(road_suffixes())}[@V] (sizes in mm; default cleat:50x50)")
+                        f"or FILE{'|'.join(road_suffixes())}[@V] (sizes in mm; default cleat:50x50, "
+                        "flat for the single-wheel tester)")
     p.add_argument("--speed", type=bounded_float("speed", MIN_SPEED * 3.6, MAX_SPEED * 3.6, "km/h",
                                                  scale=1 / 3.6),
                    default=12 / 3.6, metavar="KMH",
@@ -73,13 +80,14 @@ def run(args) -> int:
     from ..errors import InputError
     from ..signal import write_signal
 
-    out = output_path(args.output, inputs=input_files(args.tyre, args.road))
+    out = output_path(args.output, inputs=input_files(args.tyre, args.road, args.terrain))
     try:
         table = simulate(tyre=args.tyre, model=args.model, road=args.road, speed=args.speed,
                          load=args.load, pressure=args.pressure, stiffness=args.stiffness,
                          handling=args.handling, rig=args.rig, left_wheel=args.left_wheel,
                          duration=args.duration, dt=args.dt, output_rate=args.rate, force=args.force,
-                         options=model_options(args.option))
+                         options=model_options(args.option), terrain=args.terrain,
+                         rig_options=None if args.slip is None else {"slip": args.slip})
     except InputError as exc:
         raise renamed(exc, OPTIONS) from None
     write_signal(table, out)

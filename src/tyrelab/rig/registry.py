@@ -13,7 +13,7 @@ registered below; a plugin (:mod:`tyrelab.plugins`) registers its own with
 from __future__ import annotations
 
 import importlib
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any, Callable
 
 from .. import plugins
@@ -31,7 +31,9 @@ class RigRequest:
     other wheel's of a two-wheel rig when it differs (None: the same model);
     ``road`` a :class:`~tyrelab.road.base.Road` (None for a rig that does not roll);
     ``load`` the load case name or wheel load as given and ``wheel_load`` the
-    static wheel load it means [N]; ``duration`` [s] is None for "to the road's end"."""
+    static wheel load it means [N]; ``duration`` [s] is None for "to the road's end";
+    ``terrain`` the deformable ground's name or file (None: the rigid road); ``options``
+    the rig's own options (:attr:`Rig.options`), checked."""
 
     model: Any
     left: Any
@@ -43,6 +45,8 @@ class RigRequest:
     dt: float
     output_rate: float
     progress: bool | None
+    terrain: Any = None
+    options: dict = field(default_factory=dict)
 
 
 @dataclass(frozen=True)
@@ -73,6 +77,13 @@ class Rig:
         ``check(model, wheel_load)``: what the rig asks of the tyre beyond the
         wheel interface, raising :class:`~tyrelab.errors.InputError` when it is not
         met (the quarter vehicle carries the wheel's mass on the tyre).
+    options : dict
+        The rig's own options (``simulate(rig_options=...)``, ``--slip``), name -> type.
+    terrain : str
+        ``"rigid"``: runs on the rigid road only; ``"soil"``: needs a deformable
+        terrain (``--terrain``); ``"any"``: either.
+    default_road : str
+        The road (the soil's initial surface for a soil rig) when none is given.
     """
 
     name: str
@@ -83,6 +94,9 @@ class Rig:
     default_duration: float | None = None
     channels: str = ""
     check: Callable[..., None] | None = None
+    options: dict = field(default_factory=dict)
+    terrain: str = "rigid"
+    default_road: str = "cleat:50x50"
 
     @property
     def channel_names(self) -> tuple[str, ...]:
@@ -104,6 +118,26 @@ def rigs() -> dict[str, Rig]:
     """Every registered rig by name: the built-in ones, then the plugins' in their order."""
     plugins.load()
     return dict(_RIGS)
+
+
+def check_rig_options(rig: Rig, options: dict | None) -> dict:
+    """``options`` for ``rig`` (a new dict), or InputError naming the unknown keys and the ones
+    the rig takes; numbers are floats."""
+    options = dict(options or {})
+    unknown = sorted(set(options) - set(rig.options))
+    if unknown:
+        allowed = ", ".join(rig.options) if rig.options else "none"
+        raise InputError(f"unknown option(s) {', '.join(unknown)} of the '{rig.name}' rig; it takes: "
+                         f"{allowed}", field="rig_options")
+    for key, value in options.items():
+        kind = rig.options[key]
+        if kind is float and isinstance(value, int) and not isinstance(value, bool):
+            value = float(value)
+        if not isinstance(value, kind) or isinstance(value, bool) and kind is not bool:
+            raise InputError(f"option {key} of the '{rig.name}' rig: expected {kind.__name__}, got "
+                             f"{value!r}", field="rig_options")
+        options[key] = value
+    return options
 
 
 def rig_named(name: str) -> Rig:
@@ -161,6 +195,13 @@ def _carries_wheel_mass(model, wheel_load: float) -> None:
                          f"{weight:.6g} N", field="load")
 
 
+def _single_wheel(req: RigRequest):
+    from .single_wheel import single_wheel
+    return single_wheel(req.model, req.terrain, req.wheel_load, req.speed, slip=req.options.get("slip", 0.0),
+                        duration=req.duration, dt=req.dt, output_rate=req.output_rate,
+                        progress=req.progress, road=req.road)
+
+
 register_rig(Rig("trailer", _trailer, "the towed test trailer (thesis 3.4), two wheels", wheels=2,
                  channels="tyrelab.rig._trailer_kernel:CHANNELS"))
 register_rig(Rig("quarter-vehicle", _quarter_run, "a sprung mass over one wheel",
@@ -172,3 +213,6 @@ register_rig(Rig("drop", _trailer_drop, "the trailer's drop test (thesis 3.4.1)"
 register_rig(Rig("wheel-drop", _quarter_drop, "the quarter vehicle dropped the same way",
                  rolls=False, default_duration=2.0, channels="tyrelab.rig._quarter_kernel:CHANNELS",
                  check=_carries_wheel_mass))
+register_rig(Rig("single-wheel", _single_wheel, "a soil bin's single-wheel tester: prescribed speed "
+                 "and slip, dead-weight load", channels="tyrelab.rig.single_wheel:CHANNELS",
+                 options={"slip": float}, terrain="soil", default_road="flat"))

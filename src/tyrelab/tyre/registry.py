@@ -31,6 +31,7 @@ BUILTIN_CONTACT = (
     "tyrelab.tyre.contact.enveloping",
     "tyrelab.tyre.contact.enveloping_edge",
     "tyrelab.tyre.ring.model",
+    "tyrelab.tyre.contact.rigid",
 )
 #: modules that register the built-in handling models
 BUILTIN_HANDLING = (
@@ -93,6 +94,9 @@ class ContactModel:
     parameterization : str
         What the model must be given, measured (thesis chapter 4), in a few
         words: the study report's cost table.
+    terrains : tuple of str
+        The kinds of ground it runs on (:func:`tyrelab.registry.terrains`):
+        ``("rigid",)`` for the road models, ``("soil",)`` for the rigid wheel.
     fit_steps : tuple of str
         The steps of ``tyrelab fit`` (:data:`tyrelab.fit.workflow.STEPS`) that
         identify its parameters from a test campaign; a model with none here
@@ -118,6 +122,7 @@ class ContactModel:
     cost: float | None = None
     parameterization: str = ""
     fit_steps: tuple = ()
+    terrains: tuple = ("rigid",)
 
     def __post_init__(self):
         if (self.geometry is None) == (self.step is None):

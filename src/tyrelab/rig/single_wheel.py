@@ -1,0 +1,180 @@
+"""The single-wheel tester: a soil bin's carriage over deformable soil (terramechanics' test).
+
+As in Wong's and Bekker's soil bins: the carriage moves forward at a prescribed speed
+``V``, the wheel is driven at the spin that gives the prescribed slip
+``s = 1 - V / (R0 omega)`` (R0 the unloaded radius; s = 0 rolls at the unloaded
+radius, s = 1 spins in place), and the vertical load is a dead weight: the carriage
+and wheel, of mass ``W / g``, are free to sink. It starts at rest in static
+equilibrium in the soil (the sinkage at which the soil carries ``W``), then drives.
+
+Channels: the wheel channels (``FX`` the drawbar pull, positive forward; ``FZ``;
+``MY`` the soil's moment on the wheel about its axis; ``LONGSLIP``), plus ``SINKAGE``
+(depth of the wheel's lowest point below the undisturbed surface) and ``TORQUE``
+(the driving torque the axle applies, ``-MY``: the wheel's spin is held).
+"""
+
+from __future__ import annotations
+
+import numba as nb
+import numpy as np
+
+from ..core.named_index import named_index
+from ..errors import InputError
+from ..tyre.wheel import Wheel, WheelPose, wheel_step
+from .frames import WHEEL_CHANNELS, WC, wheel_row
+from .simulation import run_chunks, to_signal
+
+G = 9.80665
+CHANNELS = WHEEL_CHANNELS + ("SINKAGE", "TORQUE")
+SC = named_index("SingleWheelChannelIndex", CHANNELS)
+#: the carriage's state: height of the wheel centre [m], its vertical speed [m/s], time [s]
+STATE = ("Z", "VZ", "T")
+S = named_index("SingleWheelStateIndex", STATE)
+#: where the carriage starts along the bin [m]
+X_START = 0.0
+#: the static equilibrium is found to this height [m]
+SETTLE_TOLERANCE = 1e-7
+
+
+@nb.njit(cache=True)
+def single_wheel_steps(wheel, mass, speed, omega, state, n_steps, dt, out_every, out, row0):
+    """Drive ``n_steps`` from ``state`` (:data:`STATE`); rows of :data:`CHANNELS` into ``out``.
+
+    The carriage's height follows the soil's vertical force against the dead weight
+    (semi-implicit Euler); x and the spin are prescribed. Returns the next free row.
+    """
+    cax = np.empty(6)
+    row = row0
+    for step in range(n_steps):
+        z, vz, t = state[S.Z], state[S.VZ], state[S.T]
+        x = X_START + speed * t
+        pose = WheelPose(x, 0.0, z, 0.0, 1.0, 0.0, speed, 0.0, vz, omega)
+        f = wheel_step(wheel, pose, dt)
+        if (step % out_every) == 0 and row < out.shape[0]:
+            o = out[row]
+            wheel_row(o, t, x - X_START, pose, f, cax)
+            o[SC.SINKAGE] = f.deflection if f.deflection > 0.0 else 0.0
+            o[SC.TORQUE] = -o[WC.MY]
+            row += 1
+        vz += dt * (f.fz - mass * G) / mass
+        state[S.VZ] = vz
+        state[S.Z] = z + dt * vz
+        state[S.T] = t + dt
+    return row
+
+
+@nb.njit(cache=True)
+def _vertical_force(wheel, z):
+    """The ground's vertical force on the wheel standing at centre height ``z`` (dt = 0: the
+    shear does not grow; the nodes' plastic sinkage does -- call on a copy of the ground)."""
+    pose = WheelPose(X_START, 0.0, z, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0)
+    return wheel_step(wheel, pose, 0.0).fz
+
+
+def _fresh(wheel):
+    """The wheel on a copy of its ground's node state (an equilibrium trial leaves no rut)."""
+    g = wheel.road
+    return wheel._replace(road=g._replace(sp=g.sp.copy(), j=g.j.copy(), sigma=g.sigma.copy()))
+
+
+def static_height(wheel, load: float, top: float, radius: float) -> float:
+    """The centre height [m] at which the ground carries ``load`` [N] under the wheel at rest
+    (bisection between touching the highest ground, ``top``, and a full radius deep)."""
+    lo, hi = top, top + radius        # the force falls as the wheel rises
+    if _vertical_force(_fresh(wheel), lo) < load:
+        raise InputError(f"the soil does not carry {load:.6g} N under this wheel even a full radius "
+                         "deep; a lighter load or a stiffer soil", field="load")
+    while hi - lo > SETTLE_TOLERANCE:
+        mid = 0.5 * (lo + hi)
+        if _vertical_force(_fresh(wheel), mid) > load:
+            lo = mid
+        else:
+            hi = mid
+    return 0.5 * (lo + hi)
+
+
+def single_wheel(model, soil, load: float, speed: float, slip: float = 0.0, length: float = 10.0,
+                 width: float = 2.0, spacing: float = 0.01, duration: float | None = None,
+                 dt: float = 1e-3, output_rate: float = 1000.0, progress: bool | None = None,
+                 road=None, passes: int = 1):
+    """Drive ``model`` through a soil bin; returns the signal table (a list of them, one per
+    pass over the same bed, when ``passes`` > 1).
+
+    Parameters
+    ----------
+    model : TyreModel
+        A contact model that runs on soil (``rigid``).
+    soil : str or Soil
+        A built-in soil's name or a soil file (:func:`tyrelab.road.soil.load_soil`).
+    load : float
+        Dead weight on the wheel [N].
+    speed : float
+        Carriage speed [m/s].
+    slip : float
+        ``s = 1 - V / (R0 omega)``, 0 to below 1.
+    length, width, spacing : float
+        The soil bed [m] and its node spacing [m]; the bed starts 1 m behind the wheel.
+    duration, dt, output_rate : float
+        Simulated time [s] (default: until the wheel is 1 m from the bed's end), step [s],
+        output rate [Hz].
+    road : Road, optional
+        The undisturbed surface (default flat).
+    passes : int
+        Runs over the same bed, each from the start, in static equilibrium on the rut the
+        earlier ones left (the soil keeps its plastic sinkage).
+    """
+    from ..road.obstacles import Flat
+    from ..road.soil import load_soil
+    from ..road.soil.scm import soil_bed
+    if not 0.0 <= slip < 1.0:
+        raise InputError(f"slip must be in [0, 1), got {slip!r}", field="slip")
+    if "soil" not in model.contact_model.terrains:
+        from ..tyre.registry import contact_models
+        on_soil = [n for n, m in contact_models().items() if "soil" in m.terrains]
+        raise InputError(f"the '{model.contact}' model does not run on soil yet; models that do: "
+                         f"{', '.join(on_soil)}", field="model")
+    if duration is not None:
+        length = max(length, X_START + speed * duration + 2.0)
+    soil_params, soil_name = load_soil(soil)
+    road = road or Flat()
+    x_end = X_START + length - 1.0
+    ground = soil_bed(soil_params, _bed_grid(road, X_START - 1.0, x_end + 1.0, width, spacing))
+    params = model.contact_model.build(model.tyre, ground, **model.options)
+    wheel = Wheel(model.tyre.vertical_law, params, model.handling_params(), ground,
+                  model.initial_state(load, params))
+    radius = model.tyre.unloaded_radius
+    if duration is None:
+        duration = (x_end - X_START) / speed
+    omega = speed / (radius * (1.0 - slip))
+    n_steps = int(round(duration / dt))
+    out_every = max(1, int(round(1.0 / (output_rate * dt))))
+    tables = []
+    for _ in range(passes):
+        z0 = static_height(wheel, load, ground.zmax, radius)
+        _vertical_force(wheel, z0)          # the bed pressed where the wheel stands at the start
+        state = np.zeros(len(STATE))
+        state[S.Z] = z0
+
+        def advance(n, out, row, state=state):
+            return single_wheel_steps(wheel, load / G, float(speed), omega, state, n, dt, out_every,
+                                      out, row)
+
+        data = run_chunks(advance, n_steps, out_every, len(CHANNELS), dt, progress)
+        meta = {"rig": "single-wheel", "tyre": model.tyre.name, "model": model.contact,
+                "soil": soil_name, "road": road.name, "speed_m_s": speed, "slip": slip,
+                "static_wheel_load_N": load, "pass": len(tables) + 1,
+                "static_sinkage_m": float(road.height(X_START, 0.0) - (z0 - radius)),
+                "soil_spacing_m": spacing, "dt_s": dt, "output_rate_Hz": 1.0 / (out_every * dt)}
+        tables.append(to_signal(data, CHANNELS, meta))
+    return tables[0] if passes == 1 else tables
+
+
+def _bed_grid(road, x0: float, x1: float, width: float, spacing: float):
+    """The road's heights on the bed's node grid (x from ``x0`` to ``x1``, y across ``width``)."""
+    from ..road.grid import RoadGrid
+    nx = int(np.ceil((x1 - x0) / spacing)) + 1
+    ny = int(np.ceil(width / spacing)) + 1
+    xs = x0 + spacing * np.arange(nx)
+    ys = -0.5 * width + spacing * np.arange(ny)
+    X, Y = np.meshgrid(xs, ys, indexing="ij")
+    return RoadGrid(x0, -0.5 * width, spacing, spacing, road.height(X, Y))

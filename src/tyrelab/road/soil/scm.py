@@ -1,0 +1,207 @@
+"""Soil as a terrain of the SCM class: a node grid with plastic sinkage memory (compiled).
+
+After Krenn & Hirzinger's Soil Contact Model (2009) as Project Chrono's SCMTerrain
+implements it, with one deliberate difference. Each grid node (spacing ``dx``,
+``dy``) keeps its undisturbed height ``h0``, its plastic sinkage ``sp`` (the rut
+left behind) and its accumulated shear displacement ``j``. Where a wheel's surface
+lies below a node's current surface the node is in contact, at total sinkage
+``s = h0 - w`` (``w`` the wheel surface's height above the node), and carries:
+
+* a normal stress (Bekker 1969; elastic unloading and reloading after Krenn &
+  Hirzinger 2009)::
+
+      sigma = min(K_e (s - sp), (k_c / b + k_phi) s^n)
+
+  the first term the elastic reloading line of slope ``K_e``
+  (``elastic_stiffness``), the second Bekker's pressure-sinkage law, which bounds
+  it: where it is reached the soil yields and ``sp = s - sigma / K_e`` (the node
+  stays down by the plastic part when the wheel leaves). ``b`` is the contact's
+  smaller dimension, here the wheel's width;
+* a shear stress (Mohr-Coulomb strength, Janosi & Hanamoto 1961)::
+
+      tau = (c + sigma tan(phi)) (1 - exp(-j / K)),   j = integral of |v_t| dt
+
+  ``v_t`` the wheel surface's sliding velocity over the node, tangent to the
+  surface, accumulated while the node stays in contact (Wong & Reece 1967's
+  ``j(theta)`` for a rigid wheel in steady state).
+
+Each node's stresses act on the wheel surface element above it, whose area is the
+node's cell ``dx dy`` divided by the cosine of the surface's slope: the normal
+stress along the wheel surface's normal, the shear along its tangent against the
+sliding velocity -- as in Wong & Reece's analysis, so the horizontal part of the
+normal stress is the compaction resistance in the drawbar pull. (Chrono's SCM
+applies the normal stress along the undisturbed terrain normal and the shear
+horizontally, which drops that resistance.) Bulldozing (soil pushed beside and
+ahead of the rut) is not modelled.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import NamedTuple
+
+import numba as nb
+import numpy as np
+
+from .params import Soil
+
+#: the wheel surface's slope beyond which a node's cell is not scaled further: cos >= this
+MIN_COS = 0.2
+
+
+class SoilSurface(NamedTuple):
+    """A soil bed: its parameters and the state of every node (arrays ``(nx, ny)``).
+
+    Node ``(i, j)`` sits at ``(x0 + i dx, y0 + j dy)``. ``h0`` the undisturbed height
+    [m], ``sp`` the plastic sinkage [m] (the surface is ``h0 - sp`` where nothing
+    presses it), ``j`` the shear displacement [m] accumulated in the current
+    contact, ``sigma`` the last normal stress [Pa] (for plots of the patch); ``zmax`` the
+    highest undisturbed height [m] (bounds the nodes a wheel can reach).
+    """
+
+    soil: Soil
+    x0: float
+    y0: float
+    dx: float
+    dy: float
+    h0: np.ndarray
+    sp: np.ndarray
+    j: np.ndarray
+    sigma: np.ndarray
+    zmax: float
+
+
+class CylinderLoads(NamedTuple):
+    """Loads of the soil on a rigid cylinder, about its centre (road frame) [N], [N m];
+    ``sinkage`` the depth of its lowest point below the undisturbed surface there [m];
+    ``area`` the horizontal area in contact [m^2]."""
+
+    fx: float
+    fy: float
+    fz: float
+    mx: float
+    my: float
+    mz: float
+    sinkage: float
+    area: float
+
+
+def soil_bed(soil: Soil, road_grid) -> SoilSurface:
+    """A fresh soil bed over a road's grid (its heights the undisturbed surface)."""
+    h0 = np.ascontiguousarray(road_grid.z, dtype=np.float64).copy()
+    zeros = np.zeros_like(h0)
+    return SoilSurface(soil, float(road_grid.x0), float(road_grid.y0), float(road_grid.dx),
+                       float(road_grid.dy), h0, zeros, zeros.copy(), zeros.copy(), float(h0.max()))
+
+
+@nb.njit(cache=True)
+def node_stress(soil, s, sp, width):
+    """Normal stress [Pa] of a node pressed to total sinkage ``s`` with plastic sinkage ``sp``,
+    and its plastic sinkage after (see the module docstring)."""
+    if s <= 0.0:
+        return 0.0, sp
+    elastic = soil.elastic_stiffness * (s - sp)
+    if elastic <= 0.0:
+        return 0.0, sp
+    bekker = (soil.kc / width + soil.kphi) * s ** soil.n
+    if elastic < bekker:
+        return elastic, sp
+    return bekker, s - bekker / soil.elastic_stiffness
+
+
+@nb.njit(cache=True)
+def cylinder_loads(bed, cx, cy, cz, ax, ay, az, vx, vy, vz, omega, radius, width, dt, update):
+    """Loads of the soil on a rigid cylinder (centre ``c``, unit axis ``a``, centre velocity
+    ``v``, spin ``omega`` about ``a``; ``radius``, ``width`` [m]) over one step ``dt`` [s].
+
+    Every node under the cylinder's footprint is visited: the cylinder's lower surface above
+    it (the lower root of ``|q|^2 = R^2``, ``q`` the node's offset from the axis) gives its
+    total sinkage; the node's stresses act on the surface element above it. With ``update``
+    the nodes' plastic sinkage and shear displacement advance (a step of the run); without,
+    the bed is only read (an equilibrium search).
+    """
+    soil = bed.soil
+    nx, ny = bed.h0.shape
+    tanphi = math.tan(soil.friction_angle)
+    # the nodes that can touch: within the chord the highest soil cuts from the cylinder along
+    # its heading, and its width (plus the tilt of its axis) across
+    depth = bed.zmax - (cz - radius)
+    if depth <= 0.0:
+        return CylinderLoads(0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
+    chord = math.sqrt(max(0.0, radius * radius - (radius - min(depth, radius)) ** 2))
+    across = 0.5 * width + radius * abs(az)
+    reach_x = chord * math.sqrt(max(0.0, 1.0 - ax * ax)) + across * abs(ax) + bed.dx
+    reach_y = chord * abs(ax) + across * math.sqrt(max(0.0, 1.0 - ax * ax)) + bed.dy
+    i0 = max(0, int(math.floor((cx - reach_x - bed.x0) / bed.dx)))
+    i1 = min(nx - 1, int(math.ceil((cx + reach_x - bed.x0) / bed.dx)))
+    k0 = max(0, int(math.floor((cy - reach_y - bed.y0) / bed.dy)))
+    k1 = min(ny - 1, int(math.ceil((cy + reach_y - bed.y0) / bed.dy)))
+    cell = bed.dx * bed.dy
+    # m = e_z - a_z a: how the offset from the axis changes with the height below the centre
+    mx_, my_, mzz = -az * ax, -az * ay, 1.0 - az * az
+    mm = mx_ * mx_ + my_ * my_ + mzz * mzz
+    fx = fy = fz = mx = my = mz = 0.0
+    deepest = 0.0
+    area = 0.0
+    for i in range(i0, i1 + 1):
+        x = bed.x0 + i * bed.dx
+        for k in range(k0, k1 + 1):
+            y = bed.y0 + k * bed.dy
+            # offset from the axis in the horizontal plane through the centre
+            d0x, d0y = x - cx, y - cy
+            la = d0x * ax + d0y * ay
+            q0x, q0y, q0z = d0x - la * ax, d0y - la * ay, -la * az
+            qm = q0x * mx_ + q0y * my_ + q0z * mzz
+            qq = q0x * q0x + q0y * q0y + q0z * q0z
+            disc = qm * qm - mm * (qq - radius * radius)
+            inside = False
+            zr = 0.0
+            if disc > 0.0 and mm > 0.0:
+                zr = (-qm - math.sqrt(disc)) / mm          # the lower surface, below the axis
+                lateral = la + zr * az
+                inside = abs(lateral) <= 0.5 * width
+            surface = bed.h0[i, k] - bed.sp[i, k]
+            if not inside or cz + zr >= surface:
+                if update:
+                    bed.j[i, k] = 0.0                        # a new contact starts afresh
+                    bed.sigma[i, k] = 0.0
+                continue
+            w = cz + zr
+            s = bed.h0[i, k] - w
+            sigma, sp_new = node_stress(soil, s, bed.sp[i, k], width)
+            # the surface point and its outward normal (from the axis)
+            rx, ry, rz = q0x + zr * mx_, q0y + zr * my_, q0z + zr * mzz
+            rn = math.sqrt(rx * rx + ry * ry + rz * rz)
+            nxw, nyw, nzw = rx / rn, ry / rn, rz / rn
+            px, py, pz = d0x, d0y, zr                        # from the centre
+            # the surface's velocity: v + omega a x p
+            ux = vx + omega * (ay * pz - az * py)
+            uy = vy + omega * (az * px - ax * pz)
+            uz = vz + omega * (ax * py - ay * px)
+            un = ux * nxw + uy * nyw + uz * nzw
+            tx, ty, tz = ux - un * nxw, uy - un * nyw, uz - un * nzw
+            speed = math.sqrt(tx * tx + ty * ty + tz * tz)
+            sigma += soil.damping * max(0.0, un) if sigma > 0.0 else 0.0  # compressing: un > 0
+            jn = bed.j[i, k] + speed * dt
+            tau = (soil.cohesion + sigma * tanphi) * (1.0 - math.exp(-jn / soil.janosi_k)) \
+                if sigma > 0.0 else 0.0
+            a_s = cell / max(abs(nzw), MIN_COS)              # the surface element above the cell
+            gx, gy, gz = -sigma * a_s * nxw, -sigma * a_s * nyw, -sigma * a_s * nzw
+            if speed > 0.0:
+                gx -= tau * a_s * tx / speed
+                gy -= tau * a_s * ty / speed
+                gz -= tau * a_s * tz / speed
+            fx += gx
+            fy += gy
+            fz += gz
+            mx += py * gz - pz * gy
+            my += pz * gx - px * gz
+            mz += px * gy - py * gx
+            if sigma > 0.0:
+                area += cell
+                deepest = max(deepest, s)
+            if update:
+                bed.sp[i, k] = sp_new
+                bed.j[i, k] = jn
+                bed.sigma[i, k] = sigma
+    return CylinderLoads(fx, fy, fz, mx, my, mz, deepest, area)
