@@ -115,3 +115,11 @@ def test_more_slip_pulls_more_and_the_soil_state_is_kept():
     sink1 = first["SINKAGE"].iloc[-1000:].mean()
     sink2 = second["SINKAGE"].iloc[-1000:].mean()        # below the undisturbed surface, in total
     assert 0.0 <= sink2 - sink1 < 0.5 * sink1               # the rut sinks further, but far less
+
+
+def test_halving_the_bed_spacing_moves_the_pull_by_under_three_percent():
+    from tyrelab.rig.single_wheel import BED_SPACING, single_wheel
+    tm = tyrelab.make_tyre_model(model="rigid")
+    pulls = [single_wheel(tm, "sandy-loam", LOAD, SPEED, slip=0.2, duration=3.0, spacing=d)["FX"]
+             .iloc[-1000:].mean() for d in (BED_SPACING, BED_SPACING / 2)]
+    assert abs(pulls[1] - pulls[0]) < 0.03 * abs(pulls[1])

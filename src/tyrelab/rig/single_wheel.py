@@ -32,6 +32,9 @@ STATE = ("Z", "VZ", "T")
 S = named_index("SingleWheelStateIndex", STATE)
 #: where the carriage starts along the bin [m]
 X_START = 0.0
+#: the soil bed's node spacing [m]: halving it moves the pull of the XZL's rigid wheel on LETE
+#: sand at s = 0.2 by 0.15 % and its sinkage by 1.8 %, and costs four times the time
+BED_SPACING = 0.02
 #: the static equilibrium is found to this height [m]
 SETTLE_TOLERANCE = 1e-7
 
@@ -94,7 +97,7 @@ def static_height(wheel, load: float, top: float, radius: float) -> float:
 
 
 def single_wheel(model, soil, load: float, speed: float, slip: float = 0.0, length: float = 10.0,
-                 width: float = 2.0, spacing: float = 0.01, duration: float | None = None,
+                 width: float = 2.0, spacing: float = BED_SPACING, duration: float | None = None,
                  dt: float = 1e-3, output_rate: float = 1000.0, progress: bool | None = None,
                  road=None, passes: int = 1):
     """Drive ``model`` through a soil bin; returns the signal table (a list of them, one per
