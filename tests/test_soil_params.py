@@ -78,3 +78,26 @@ def test_the_library_reads_and_names_its_sources():
         text = resources.files("tyrelab.road.soil").joinpath("data", f"{name}.toml").read_text()
         assert "Source:" in text, name               # every built-in soil says where it comes from
         assert label and soil.kc + soil.kphi > 0
+
+
+def test_soil_curve_command_writes_the_steady_table(tmp_path):
+    """tyrelab soil curve: one run per slip, the table's pull rising with slip and its load the
+    dead weight; a slip outside [0, 0.99] or an unknown soil is one line, exit 2, nothing written."""
+    import subprocess
+    import sys
+
+    import pandas as pd
+    cmd = [sys.executable, "-m", "tyrelab.cli.main", "soil", "curve", "--terrain", "lete-sand",
+           "--duration", "1", "--load", "20000"]
+    done = subprocess.run(cmd + ["--slips", "0.05,0.3", "-o", str(tmp_path / "c.csv")],
+                          capture_output=True, text=True, timeout=600)
+    assert done.returncode == 0, done.stderr
+    curve = pd.read_csv(tmp_path / "c.csv")
+    assert list(curve["slip"]) == [0.05, 0.3]
+    assert curve["FX"].iloc[0] < curve["FX"].iloc[1]
+    assert curve["FZ"].to_numpy() == pytest.approx(20000.0, rel=2e-3)
+    for bad in (["--slips", "0,1.5"], ["--slips", "0.2", "--terrain", "quicksand"]):
+        out = tmp_path / "bad.csv"
+        done = subprocess.run(cmd + bad + ["-o", str(out)], capture_output=True, text=True, timeout=600)
+        assert done.returncode == 2 and len(done.stderr.strip().splitlines()) == 1, done.stderr
+        assert not out.exists()

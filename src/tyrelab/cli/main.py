@@ -34,7 +34,8 @@ from .. import stop
 from ..errors import InputError
 
 #: subcommand modules, in the order ``tyrelab --help`` lists them
-SUBCOMMANDS = ["simulate", "plot", "static", "road", "fit", "modal", "validate", "mf", "study", "models"]
+SUBCOMMANDS = ["simulate", "plot", "static", "road", "fit", "modal", "validate", "mf", "study", "soil",
+               "models"]
 #: longest message printed for an unexpected error [characters]
 MAX_MESSAGE = 400
 

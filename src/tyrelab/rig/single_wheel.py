@@ -99,9 +99,10 @@ def static_height(wheel, load: float, top: float, radius: float) -> float:
 def single_wheel(model, soil, load: float, speed: float, slip: float = 0.0, length: float = 10.0,
                  width: float = 2.0, spacing: float = BED_SPACING, duration: float | None = None,
                  dt: float = 1e-3, output_rate: float = 1000.0, progress: bool | None = None,
-                 road=None, passes: int = 1):
+                 road=None, passes: int = 1, return_bed: bool = False):
     """Drive ``model`` through a soil bin; returns the signal table (a list of them, one per
-    pass over the same bed, when ``passes`` > 1).
+    pass over the same bed, when ``passes`` > 1; with ``return_bed`` also the soil bed after,
+    a :class:`~tyrelab.road.soil.scm.SoilSurface`).
 
     Parameters
     ----------
@@ -169,7 +170,31 @@ def single_wheel(model, soil, load: float, speed: float, slip: float = 0.0, leng
                 "static_sinkage_m": float(road.height(X_START, 0.0) - (z0 - radius)),
                 "soil_spacing_m": spacing, "dt_s": dt, "output_rate_Hz": 1.0 / (out_every * dt)}
         tables.append(to_signal(data, CHANNELS, meta))
-    return tables[0] if passes == 1 else tables
+    result = tables[0] if passes == 1 else tables
+    return (result, wheel.road) if return_bed else result
+
+
+#: the part of a slip-curve run whose mean is its steady state: the second half
+STEADY_FRACTION = 0.5
+
+
+def slip_curve(model, soil, load: float, speed: float, slips, duration: float = 3.0,
+               progress=None, **bed):
+    """Steady drawbar pull, torque, sinkage and load against slip: one single-wheel run per
+    slip, averaged over the last :data:`STEADY_FRACTION` of its ``duration`` [s].
+
+    Returns a table with columns ``slip``, ``FX`` [N] (pull), ``TORQUE`` [N m], ``SINKAGE``
+    [m], ``FZ`` [N]; ``progress(done)`` is called after each run."""
+    import pandas as pd
+    rows = []
+    for k, s in enumerate(slips):
+        run = single_wheel(model, soil, load, speed, slip=float(s), duration=duration, **bed)
+        steady = run[run["RUNTIME"] >= (1.0 - STEADY_FRACTION) * duration]
+        rows.append({"slip": float(s), **{c: float(steady[c].mean())
+                                          for c in ("FX", "TORQUE", "SINKAGE", "FZ")}})
+        if progress:
+            progress(k + 1)
+    return pd.DataFrame(rows)
 
 
 def _bed_grid(road, x0: float, x1: float, width: float, spacing: float):
