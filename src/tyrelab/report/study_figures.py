@@ -1,8 +1,8 @@
 """Interactive figures of the study report (:mod:`.study_report`), drawn with plotly.
 
-Each function returns a ``plotly.graph_objects.Figure``; :func:`figure_html`
-turns it into a ``<div>`` of the page, with plotly.js inline in the first
-figure only, so the page opens offline and carries the library once.
+Each function returns a ``plotly.graph_objects.Figure``; the page holds it as a
+compressed data block that its loader draws (:mod:`.figure_embed`: plotly.js
+once, offline).
 
 * :func:`overlay_figure` - every model's compared channel on the reference
   over time, the disturbance and response segments shaded and their bounds
@@ -16,24 +16,25 @@ figure only, so the page opens offline and carries the library once.
   from :func:`cost_points`).
 
 :func:`condition_figures` draws the figures of one test condition from the
-study's signals; :class:`FigureSink` numbers the figures and puts plotly.js
-into the first. The page's self-checks: :data:`ERRORS_SCRIPT` (first in the
-page) records script errors, :data:`RENDERED_SCRIPT` (last) counts the
-figures plotly drew.
+study's signals into a :class:`.figure_embed.FigureSink`.
 
-Decimation (:func:`decimate_minmax`): a trace longer than ``max_points``
-samples (default :data:`MAX_POINTS`, 20 000) is cut into
-``(max_points - 2) // 2`` buckets of consecutive samples of (nearly) equal
-count; each bucket keeps its smallest and its largest sample, in time
-order, and the first and last samples are kept too. Every kept point is an
-original sample, so every peak and trough (the largest and smallest value
-of each bucket, hence of the whole trace) is kept at its exact value and
-time; only what lies between extremes of a bucket is dropped. A 6 s cleat
-run at 1 kHz is not decimated at all; a 100 m track at 3 km/h (120 000
-samples) keeps 20 000. Non-finite samples (gaps in a measurement) are left
-out. In the page, the kept times and forces are stored as 32-bit floats
-(7 significant digits: 0.01 N at 100 kN, 8 us at 2 min), half the bytes of
-64-bit ones.
+Decimation (:func:`decimate_minmax`), to what a screen shows: a trace of
+``n`` samples, more than ``max_points`` (default :data:`MAX_POINTS`, 4000),
+is cut into ``c = (max_points - 2) // 2`` columns (1999: about the pixel
+columns of a wide screen; a figure of the page is at most about 1100 px
+wide), column ``k`` the samples ``k n // c`` to ``(k + 1) n // c - 1``; each
+column keeps its smallest and its largest sample, in time order, and the
+first and last samples are kept too: the min/max envelope per pixel column,
+which is what a line plot draws.
+Every kept point is an original sample, so every peak and trough (the
+largest and smallest value of each column, hence of the whole trace) is kept
+at its exact time; only what lies between a column's extremes is dropped. A
+6 s cleat run at 1 kHz keeps 4000 of its 6000 samples, a 100 m track at
+3 km/h (126 000 samples) 4000. Non-finite samples (gaps in a measurement)
+are left out. In the page the kept values are rounded to the figure's
+quantum (0.2 N to 2 N on a wheel-load figure, :func:`.figure_embed.value_quantum`)
+and the times kept exactly; each overlay's caption says both. With
+``max_points=None`` (the full-resolution page) nothing is dropped.
 """
 
 from __future__ import annotations
@@ -45,68 +46,18 @@ import numpy as np
 import pandas as pd
 
 from ..errors import InputError
+from .figure_embed import value_quantum
 from ..validate.compare import THESIS_CLEAT, THESIS_TRACK
 from ..validate.distributions import fit_normal, histogram_density
 from ..validate.tables import DEFAULT_LIMITS
 
 #: most points per trace in an overlay (see the module docstring)
-MAX_POINTS = 20_000
+MAX_POINTS = 4000
 
 #: colour of the reference trace; models cycle through :data:`PALETTE`
 REFERENCE_COLOUR = "#000000"
 PALETTE = ("#1f77b4", "#d62728", "#2ca02c", "#ff7f0e", "#9467bd", "#8c564b", "#e377c2",
            "#17becf", "#bcbd22", "#7f7f7f")
-
-#: the page's first script: records script errors, failed resource loads, unhandled
-#: promise rejections and ``console.error`` calls in ``<pre id="tyrelab-errors">``
-ERRORS_SCRIPT = """<script>(function () {
-  var errors = [];
-  function show() {
-    var el = document.getElementById('tyrelab-errors');
-    if (el) { el.textContent = errors.join('\\n'); }
-    if (errors.length) { document.documentElement.setAttribute('data-script-errors', errors.length); }
-  }
-  function record(msg) { errors.push(String(msg)); show(); }
-  window.addEventListener('error', function (e) {
-    if (e.target && e.target !== window && (e.target.src || e.target.href)) {
-      record('failed to load ' + (e.target.src || e.target.href));
-    } else {
-      record('error: ' + e.message + ' (' + (e.filename || '') + ':' + (e.lineno || 0) + ')');
-    }
-  }, true);
-  window.addEventListener('unhandledrejection', function (e) {
-    var r = e.reason; record('unhandled rejection: ' + ((r && r.stack) || r));
-  });
-  var consoleError = console.error;
-  console.error = function () {
-    record('console.error: ' + Array.prototype.slice.call(arguments).join(' '));
-    return consoleError.apply(console, arguments);
-  };
-  document.addEventListener('DOMContentLoaded', show);
-})();</script>"""
-
-#: the page's last script: sets the body's ``data-figures-rendered`` to the number of
-#: drawn figures (``.js-plotly-plot`` holding an ``svg.main-svg``) and ``data-figures-done``
-#: to "yes" once it reaches ``<meta name="tyrelab-figures">`` (or "timeout" after 10 s)
-RENDERED_SCRIPT = """<script>(function () {
-  var meta = document.querySelector('meta[name="tyrelab-figures"]');
-  var want = meta ? Number(meta.content) : 0, tries = 0;
-  function count() {
-    var n = 0, divs = document.querySelectorAll('.js-plotly-plot');
-    for (var i = 0; i < divs.length; i++) { if (divs[i].querySelector('svg.main-svg')) { n++; } }
-    return n;
-  }
-  function mark() {
-    var n = count();
-    document.body.setAttribute('data-figures-rendered', String(n));
-    if (n < want && tries++ < 200) { setTimeout(mark, 50); }
-    else { document.body.setAttribute('data-figures-done', n >= want ? 'yes' : 'timeout'); }
-  }
-  if (document.readyState === 'complete') { mark(); } else { window.addEventListener('load', mark); }
-})();</script>"""
-
-_CONFIG = {"displaylogo": False, "responsive": True, "scrollZoom": False,
-           "modeBarButtonsToRemove": ["select2d", "lasso2d"]}
 
 
 def _e(x) -> str:
@@ -129,42 +80,37 @@ def title_text(main: str, note: str, width: int = 110) -> str:
     return "<br>".join(_e(line) for line in lines)
 
 
-def decimate_minmax(t, y, max_points: int = MAX_POINTS) -> tuple[np.ndarray, np.ndarray]:
+def decimate_minmax(t, y, max_points: int | None = MAX_POINTS) -> tuple[np.ndarray, np.ndarray]:
     """At most ``max_points`` samples of ``(t, y)`` keeping every extreme exactly.
 
-    The rule is the module docstring's: buckets of consecutive samples, the
+    The rule is the module docstring's: columns of consecutive samples, the
     minimum and maximum of each kept in time order, plus the first and last
     sample. Non-finite samples are left out first. With no more than
-    ``max_points`` samples the trace is returned whole. Returns copies
-    (float64) of original samples; never interpolates.
+    ``max_points`` samples, or ``max_points=None``, the (finite) trace is
+    returned whole. Returns copies (float64) of original samples; never
+    interpolates.
     """
     t = np.asarray(t, dtype=float)
     y = np.asarray(y, dtype=float)
     if t.shape != y.shape or t.ndim != 1:
         raise InputError("time and values must be 1-D arrays of one length", field="signal")
-    if max_points < 4:
+    if max_points is not None and max_points < 4:
         raise InputError(f"max_points must be at least 4, got {max_points}", field="max_points")
     finite = np.isfinite(t) & np.isfinite(y)
     if not finite.all():
         t, y = t[finite], y[finite]
     n = y.size
-    if n <= max_points:
+    if max_points is None or n <= max_points:
         return t.copy(), y.copy()
-    buckets = (max_points - 2) // 2
-    size = -(-n // buckets)                       # ceil: every sample in some bucket
-    padded = np.concatenate([y, np.full(buckets * size - n, y[-1])]).reshape(buckets, size)
-    base = np.arange(buckets) * size
-    i_min = np.minimum(base + np.argmin(padded, axis=1), n - 1)
-    i_max = np.minimum(base + np.argmax(padded, axis=1), n - 1)
+    columns = (max_points - 2) // 2
+    edges = np.arange(columns + 1) * n // columns         # column k: samples edges[k] to edges[k+1] - 1
+    idx = edges[:-1, None] + np.arange(-(-n // columns))[None, :]
+    inside = idx < edges[1:, None]
+    idx = np.minimum(idx, n - 1)
+    i_min = idx[np.arange(columns), np.argmin(np.where(inside, y[idx], np.inf), axis=1)]
+    i_max = idx[np.arange(columns), np.argmax(np.where(inside, y[idx], -np.inf), axis=1)]
     keep = np.unique(np.concatenate([[0, n - 1], i_min, i_max]))
     return t[keep], y[keep]
-
-
-def figure_html(fig, div_id: str, include_plotlyjs: bool) -> str:
-    """The figure as a ``<div>``; plotly.js inline when ``include_plotlyjs``."""
-    height = fig.layout.height or 420
-    return fig.to_html(full_html=False, include_plotlyjs=bool(include_plotlyjs), div_id=div_id,
-                       config=_CONFIG, default_height=f"{height}px")
 
 
 def _layout(fig, title: str, xtitle: str, ytitle: str, height: int = 440) -> None:
@@ -179,7 +125,7 @@ def _layout(fig, title: str, xtitle: str, ytitle: str, height: int = 440) -> Non
 
 
 def overlay_figure(reference, models, channel: str, title: str, segments=None,
-                   max_points: int = MAX_POINTS):
+                   max_points: int | None = MAX_POINTS):
     """Every model's ``channel`` on the reference's over time (thesis Figures 5-2..5-6).
 
     Parameters
@@ -196,24 +142,28 @@ def overlay_figure(reference, models, channel: str, title: str, segments=None,
         ``{"disturbance": (start, end), "response": (start, end)}`` [s];
         shaded spans with vertical lines at their bounds, and buttons that
         zoom onto the disturbance or back to the whole record.
-    max_points : int
-        Decimation limit per trace (:func:`decimate_minmax`).
+    max_points : int or None
+        Decimation limit per trace (:func:`decimate_minmax`; None: every sample).
 
     Returns
     -------
     (plotly.graph_objects.Figure, dict)
-        The figure and ``{"samples": total, "kept": total kept}``.
+        The figure and ``{"samples": total, "kept": total kept, "range": (smallest,
+        largest) kept value}`` (the range the page's rounding step comes from).
     """
     import plotly.graph_objects as go
     fig = go.Figure()
     samples = kept = 0
+    y_lo, y_hi = np.inf, -np.inf
     traces = [(label, t, y, colour, False) for label, t, y, colour in models]
     traces.append((reference[0], reference[1], reference[2], REFERENCE_COLOUR, True))
     for label, t, y, colour, is_ref in traces:
         td, yd = decimate_minmax(t, y, max_points)
         samples += len(t)
         kept += len(td)
-        fig.add_trace(go.Scatter(x=td.astype(np.float32), y=yd.astype(np.float32), name=label,
+        if len(yd):
+            y_lo, y_hi = min(y_lo, yd.min()), max(y_hi, yd.max())
+        fig.add_trace(go.Scatter(x=td, y=yd, name=label,
                                  mode="lines", line={"color": colour, "width": 2.2 if is_ref else 1.3,
                                                      "dash": "solid" if is_ref else "dash"}))
     _layout(fig, title, "time [s]", f"{channel} [N]")
@@ -238,7 +188,7 @@ def overlay_figure(reference, models, channel: str, title: str, segments=None,
                      "args": [{"xaxis.range": [lo - pad, hi + pad], "yaxis.autorange": True}]},
                     {"label": "whole record", "method": "relayout",
                      "args": [{"xaxis.autorange": True, "yaxis.autorange": True}]}]}])
-    return fig, {"samples": samples, "kept": kept}
+    return fig, {"samples": samples, "kept": kept, "range": (float(y_lo), float(y_hi))}
 
 
 def distribution_figure(series, channel: str, title: str, bins: int = 40):
@@ -323,17 +273,20 @@ def cost_points(metrics, cost) -> pd.DataFrame:
                                         "runs"])
 
 
-class FigureSink:
-    """Collects figures; plotly.js goes inline into the first one only."""
-
-    def __init__(self):
-        self.count = 0
-
-    def add(self, fig, kind: str, caption: str) -> str:
-        self.count += 1
-        div = figure_html(fig, f"tyrelab-fig-{self.count}", include_plotlyjs=self.count == 1)
-        return (f"<figure class='tyrelab-figure' data-kind='{kind}'>{div}"
-                f"<figcaption>{_e(caption)}</figcaption></figure>\n")
+def _stored_text(n: dict, max_points: int | None, exact: bool) -> str:
+    """What the page holds of an overlay's traces (its caption's sentence)."""
+    if n["kept"] == n["samples"]:
+        kept = f"every sample shown ({n['samples']})"
+    else:
+        kept = (f"{n['kept']} of {n['samples']} samples shown: at most {max_points} per trace, the "
+                f"minimum and maximum of each of {(max_points - 2) // 2} pixel columns (every peak "
+                "kept)")
+    lo, hi = n["range"]
+    if exact:
+        return kept + ", exact values (full resolution)"
+    if not lo <= hi:
+        return kept
+    return f"{kept}, values rounded to {value_quantum(lo, hi):g} N, times exact"
 
 
 def _signal(study, key, channel):
@@ -348,8 +301,9 @@ def condition_figures(study, cond, rows, refs, note, figs, colours, max_points) 
 
     ``cond`` is (test, speed_kmh, load); ``rows`` the condition's compared
     rows of ``study.metrics`` (no repeatability, no error); ``refs`` maps run
-    keys to reference labels; ``figs`` a :class:`FigureSink`. A signal that
-    cannot be read is named in the caption instead of failing the page.
+    keys to reference labels; ``figs`` a :class:`.figure_embed.FigureSink`;
+    ``max_points`` as :func:`decimate_minmax`'s. A signal that cannot be read is
+    named in the caption instead of failing the page.
     """
     out = []
     for ref_key, sub in rows.groupby("reference", sort=False):
@@ -376,16 +330,14 @@ def condition_figures(study, cond, rows, refs, note, figs, colours, max_points) 
                 seg[name] = (float(lo.iloc[0]), float(hi.iloc[0]))
         title = title_text(f"{condition_text(*cond)}: {channel} of every model on {ref_label}", note)
         fig, n = overlay_figure(ref, models, channel, title, seg, max_points)
-        kept = ("no decimation (every sample shown)" if n["kept"] == n["samples"] else
-                f"decimated to at most {max_points} points per trace, keeping the minimum and "
-                f"maximum of each bucket (every peak exact): {n['kept']} of {n['samples']} samples")
+        kept = _stored_text(n, max_points, figs.exact)
         span = "; ".join(f"{k} {a:.3f}-{b:.3f} s" for k, (a, b) in seg.items())
         caption = (f"{condition_text(*cond)}: {channel} over time, every model (dashed) on {ref_label} "
                    f"(solid black), as thesis Figures 5-2 to 5-6"
                    + (f"; segments from the reference: {span}" if span else " (Figure 5-11 for a track)")
                    + f". Drag to zoom, double-click to reset. {kept}."
                    + (f" Not shown: {'; '.join(missing)}." if missing else "") + f" {note}")
-        out.append(figs.add(fig, "overlay", caption))
+        out.append(figs.add(fig, "overlay", caption, packed=True))
         if "disturbance" not in seg:
             series = [(m[0], m[2], m[3], False) for m in models] + [(ref_label, ref[2],
                                                                      REFERENCE_COLOUR, True)]

@@ -2,8 +2,11 @@
 
 :func:`write_study_report` takes a study's results object (``tyrelab.study``)
 and writes one HTML file, atomically (temporary name, then rename). The page
-carries plotly.js once (inline, in the first figure), so every figure can be
-zoomed - e.g. into a cleat impact - with no network.
+carries plotly.js once (compressed, inline), so every figure can be zoomed -
+e.g. into a cleat impact - with no network. This module assembles the page;
+the tables come from :mod:`.study_sections`, the figures from
+:mod:`.study_figures`, and :mod:`.figure_embed` puts plotly.js and the
+figures' data into the page.
 
 Sections, in order:
 
@@ -36,23 +39,30 @@ Sections, in order:
 6. **Accuracy against cost**: each model's wall time per simulated second
    against its mean error (a scatter), and the parameterization it needs.
 
-Long signals are decimated for the overlays (at most ``max_points`` points
-per trace, the minimum and maximum of each bucket kept, so no peak is lost;
-:func:`tyrelab.report.study_figures.decimate_minmax`); each overlay's caption
-states how many samples were kept.
+Size: the page holds plotly.js once and each figure's data compressed
+(:mod:`.figure_embed`), the overlays' traces decimated to what a screen shows:
+at most ``max_points`` (4000) points per trace, the minimum and maximum of
+each of 1999 pixel columns, so no peak is lost
+(:func:`tyrelab.report.study_figures.decimate_minmax`), their values rounded to
+the figure's quantum (0.2 N to 2 N for a wheel load); each overlay's caption
+says how many samples it shows and how they were rounded. The built-in
+campaign's page (200 runs, 32 figures) is 3.9 MB (35 MB before decimation to
+a screen and compression). ``full_resolution=True`` writes every sample with
+its exact value instead (for zooming into a single impact at the sample
+rate; a page of about 70 MB for that campaign).
 
 Checks: a tiny script at the top of the page records script errors, failed
 resource loads, unhandled promise rejections and ``console.error`` calls in
 ``<pre id="tyrelab-errors">``; one at the bottom sets the body's
 ``data-figures-rendered`` to the number of plotly figures drawn (divs
 ``.js-plotly-plot`` holding an ``svg.main-svg``), to be compared with the
-count the page declares in ``<meta name="tyrelab-figures">``.
+count the page declares in ``<meta name="tyrelab-figures">``
+(:mod:`.figure_embed`).
 """
 
 from __future__ import annotations
 
 import datetime
-import html
 import os
 from pathlib import Path
 from types import SimpleNamespace
@@ -61,16 +71,14 @@ import numpy as np
 import pandas as pd
 
 from .._version import __version__
-from .consistency_section import consistency_html
 from ..io_atomic import atomic_output
-from ..validate.compare import METRICS, THESIS_CLEAT, THESIS_TRACK
-from ..validate.tables import _fmt, summary_html, table_html
-from .study_figures import (ERRORS_SCRIPT, MAX_POINTS, PALETTE, RENDERED_SCRIPT, FigureSink,
-                            condition_figures, condition_text, cost_figure, cost_points, load_text,
-                            primary_metrics, title_text)
+from ..validate.compare import METRICS
+from .figure_embed import ERRORS_SCRIPT, RENDERED_SCRIPT, FigureSink
+from .study_figures import (MAX_POINTS, PALETTE, condition_figures, condition_text, cost_figure,
+                            cost_points, title_text)
+from .study_sections import (COND, REPEATABILITY, compared_ok, esc, frame_html, metric_tables,
+                             near_zero, num, run_matrix, summary_section, thesis_section)
 
-REPEATABILITY = "measured repeatability"
-_COND = ["test", "speed_kmh", "load"]
 #: columns of ``study.index`` and ``study.metrics`` the report reads
 INDEX_COLUMNS = ["key", "tyre", "model", "contact", "stiffness", "test", "group", "road",
                  "speed_kmh", "load", "rig", "dt", "status", "wall_time_s", "simulated_s", "error"]
@@ -92,42 +100,6 @@ figcaption{font-size:.9em;color:#444}.meta{color:#555}
 """
 
 
-def _e(x) -> str:
-    return html.escape(str(x))
-
-
-def _num(v) -> str:
-    """A metric value as the thesis tables print it (:func:`.tables._fmt`)."""
-    try:
-        v = float(v)
-    except (TypeError, ValueError):
-        return _e(v)
-    return _fmt(v) if np.isfinite(v) else "&ndash;"
-
-
-def _g(v) -> str:
-    """Any other cell: integers whole, other numbers to 3 significant digits, text escaped."""
-    if isinstance(v, (bool, np.bool_)) or not isinstance(v, (int, float, np.number)):
-        return _e(_text(v))
-    if isinstance(v, (int, np.integer)) or (np.isfinite(v) and float(v).is_integer()):
-        return f"{int(v)}"
-    return f"{v:.3g}" if np.isfinite(v) else "&ndash;"
-
-
-def _text(v) -> str:
-    return "" if v is None or (isinstance(v, float) and np.isnan(v)) else str(v)
-
-
-def _frame_html(df: pd.DataFrame, caption: str | None = None) -> str:
-    """A plain table: text left, numbers right (:func:`_g`)."""
-    out = ["<table>"] + ([f"<caption>{_e(caption)}</caption>"] if caption else [])
-    out.append("<tr>" + "".join(f"<th>{_e(c)}</th>" for c in df.columns) + "</tr>")
-    for row in df.itertuples(index=False):
-        out.append("<tr>" + "".join(f"<td>{_g(v)}</td>" if isinstance(v, (int, float, np.number))
-                                    else f"<td class='text'>{_g(v)}</td>" for v in row) + "</tr>")
-    return "<div class='scroll'>" + "\n".join(out + ["</table>"]) + "</div>\n"
-
-
 def _study_name(study, fallback: str | None) -> str:
     spec = getattr(study, "spec", None)
     if spec is not None and getattr(spec, "name", None):
@@ -144,233 +116,57 @@ def _header(study, name: str, note: str) -> str:
     done = int((idx["status"] == "done").sum()) if len(idx) else 0
     failed = int((idx["status"] == "failed").sum()) if len(idx) else 0
     when = datetime.datetime.now().astimezone().strftime("%Y-%m-%d %H:%M %Z")
-    return (f"<header><h1>Study report: {_e(name)}</h1>"
-            f"<p class='meta'>Generated {_e(when)} by tyrelab {_e(__version__)}; {len(idx)} runs: "
+    return (f"<header><h1>Study report: {esc(name)}</h1>"
+            f"<p class='meta'>Generated {esc(when)} by tyrelab {esc(__version__)}; {len(idx)} runs: "
             f"{done} done, {failed} failed.</p>"
-            f"<div class='reference-note' id='reference-note' role='note'>{_e(note)}</div>"
+            f"<div class='reference-note' id='reference-note' role='note'>{esc(note)}</div>"
             "</header>\n")
 
 
-def _run_matrix(index: pd.DataFrame) -> str:
-    """Test conditions x models, each cell the runs' status and wall time."""
-    if index is None or len(index) == 0:
-        return "<section id='runs'><h2>Run matrix</h2><p>The study has no runs.</p></section>\n"
-    several = index["tyre"].nunique() > 1
-    label = (index["tyre"].astype(str) + " / " + index["model"].astype(str)) if several \
-        else index["model"].astype(str)
-    cols = list(dict.fromkeys(label))
-    out = ["<section id='runs'><h2>Run matrix</h2><table class='run-matrix'><tr><th>test</th>"
-           "<th>speed</th><th>load</th>" + "".join(f"<th>{_e(c)}</th>" for c in cols) + "</tr>"]
-    for (test, speed, load), runs in index.assign(_label=label).groupby(_COND, sort=False):
-        cells = []
-        for c in cols:
-            sel = runs[runs["_label"] == c]
-            if sel.empty:
-                cells.append("<td class='text'>&ndash;</td>")
-                continue
-            bad = sel["status"] != "done"
-            parts = [("&#10003; " + _g(r.wall_time_s) + " s") if r.status == "done"
-                     else "&#10007; " + _e(r.status) for r in sel.itertuples()]
-            tip = "; ".join(_text(e) for e in sel.loc[bad].get("error", []) if _text(e))
-            cls = "failed" if bad.any() else "done"
-            cells.append(f"<td class='{cls}' title='{_e(tip)}'>" + "<br>".join(parts) + "</td>")
-        out.append(f"<tr><th class='text'>{_e(test)}</th><td>{float(speed):g} km/h</td>"
-                   f"<td>{_e(load_text(load))}</td>" + "".join(cells) + "</tr>")
-    out.append("</table>")
-    wall, sim = index["wall_time_s"].sum(), index["simulated_s"].sum()
-    out.append(f"<p>Total wall time {_g(wall)} s for {_g(sim)} s simulated.</p>")
-    failed = index[index["status"] == "failed"]
-    if len(failed):
-        out.append(f"<h3>Failed runs ({len(failed)})</h3><table class='failed-runs'><tr><th>key</th>"
-                   "<th>tyre</th><th>model</th><th>test</th><th>speed</th><th>load</th>"
-                   "<th>error</th></tr>")
-        for r in failed.itertuples():
-            out.append(f"<tr><td class='text'>{_e(r.key)}</td><td class='text'>{_e(r.tyre)}</td>"
-                       f"<td class='text'>{_e(r.model)}</td><td class='text'>{_e(r.test)}</td>"
-                       f"<td>{float(r.speed_kmh):g} km/h</td><td>{_e(load_text(r.load))}</td>"
-                       f"<td class='text'><pre class='error'>{_e(_text(getattr(r, 'error', '')))}"
-                       "</pre></td></tr>")
-        out.append("</table>")
-    return "\n".join(out) + "</section>\n"
-
-
-def _ok(rows: pd.DataFrame) -> pd.Series:
-    return rows["error"].map(_text) == "" if "error" in rows.columns else \
-        pd.Series(True, index=rows.index)
-
-
-def _finite_columns(rows: pd.DataFrame, names) -> list[str]:
-    return [m for m in names if m in rows.columns and len(rows)
-            and np.all(np.isfinite(rows[m].to_numpy(dtype=float)))]
-
-
-def _metric_tables(rows, rep, caption: str) -> str:
-    """The marked models x metrics tables of one condition, repeatability below."""
-    is_cleat = np.isfinite(rows["disturbance_start_s"].to_numpy(dtype=float)).any()
-    primary = _finite_columns(rows, THESIS_CLEAT if is_cleat else THESIS_TRACK)
-    further = _finite_columns(rows, [m for m in METRICS if m not in THESIS_CLEAT + THESIS_TRACK])
-    labels = rows["model"].astype(str)
-    if labels.duplicated().any():
-        labels = rows["tyre"].astype(str) + " / " + labels
-    out = []
-    for cols, what in ((primary, caption), (further, "Further metrics: " + caption)):
-        if not cols:
-            continue
-        table = pd.DataFrame(rows[cols].to_numpy(dtype=float), index=list(labels), columns=cols)
-        text = table_html(table, caption=what)
-        for r in rep.itertuples():
-            cells = "".join(f"<td>{_num(getattr(r, c))}</td>" for c in cols)
-            text = text.replace("</table>", f"<tr class='repeatability'><th>{REPEATABILITY}</th>"
-                                f"{cells}</tr>\n</table>", 1)
-        out.append(text)
-    units = "; ".join(f"{m}: {METRICS[m][1]} [{METRICS[m][0]}]" for m in primary)
-    return "".join(out) + (f"<p class='meta'>{_e(units)}</p>" if units else "")
-
-
-def _near_zero(rows) -> str:
-    items = []
-    for r in rows.itertuples():
-        n = getattr(r, "near_zero_samples", None)
-        if n is not None and not pd.isna(n) and n > 0:
-            items.append(f"<li>{_e(r.model)}: the near-zero rule touched {int(n)} of "
-                         f"{_g(r.compared_samples)} samples</li>")
-    return ("<ul class='near-zero'>" + "".join(items) + "</ul>") if items else ""
-
-
 def _conditions(study, note, figs, colours, max_points) -> str:
+    """Each test condition: its tables, the reference's self-check, its figures."""
     metrics = study.metrics
     out = ["<section id='conditions'><h2>Per test condition</h2>"]
     if metrics is None or len(metrics) == 0:
         return out[0] + "<p>No run was compared.</p></section>\n"
+    if max_points is not None:
+        out.append("<p class='meta' id='resolution'>The overlays show what a screen resolves: long "
+                   "traces as the minimum and maximum of each pixel column (every peak kept), values "
+                   "rounded as each caption says. Every sample at its exact value: <code>"
+                   "tyrelab.report.study_report.write_study_report(tyrelab.study.open(folder), path, "
+                   "full_resolution=True)</code>.</p>")
     index = study.index
     refs = {k: f"{m} (reference)" for k, m in zip(index["key"], index["model"])}
     rep_mask = metrics["model"] == REPEATABILITY
-    for n, (cond, rows) in enumerate(metrics[~rep_mask].groupby(_COND, sort=False), start=1):
+    for n, (cond, rows) in enumerate(metrics[~rep_mask].groupby(COND, sort=False), start=1):
         rep = metrics[rep_mask]
-        for col, value in zip(_COND, cond):
+        for col, value in zip(COND, cond):
             rep = rep[rep[col] == value]
-        ok = _ok(rows)
+        ok = compared_ok(rows)
         good = rows[ok]
         ref_names = sorted({refs.get(k, str(k)) for k in rows["reference"]})
         group = str(rows["group"].iloc[0])
-        out.append(f"<section class='condition' id='condition-{n}'><h3>{_e(condition_text(*cond))}"
-                   f" <small>({_e(group)})</small></h3>")
+        out.append(f"<section class='condition' id='condition-{n}'><h3>{esc(condition_text(*cond))}"
+                   f" <small>({esc(group)})</small></h3>")
         if len(good):
             caption = (f"{condition_text(*cond)}: models against {', '.join(ref_names)}; best three per "
                        f"metric green, orange, red (as thesis Tables 5-2 to 5-14). {note}")
-            out.append(_metric_tables(good, rep[_ok(rep)], caption))
-            out.append(_near_zero(pd.concat([good, rep[_ok(rep)]])))
+            out.append(metric_tables(good, rep[compared_ok(rep)], caption))
+            out.append(near_zero(pd.concat([good, rep[compared_ok(rep)]])))
         own = study.self_checks
-        for col, value in zip(_COND, cond):
+        for col, value in zip(COND, cond):
             own = own[own[col] == value]
         if len(own):
             worst = np.nanmax(np.abs(own[[m for m in METRICS if m in own]].to_numpy(dtype=float)),
                               initial=0.0)
             out.append(f"<p class='meta'>The reference compared with itself (a check of the chain): "
-                       f"largest |metric| {_num(worst)}.</p>")
+                       f"largest |metric| {num(worst)}.</p>")
         for r in rows[~ok].itertuples():
-            out.append(f"<p class='compare-error'>{_e(r.model)} could not be compared: "
-                       f"{_e(r.error)}</p>")
+            out.append(f"<p class='compare-error'>{esc(r.model)} could not be compared: "
+                       f"{esc(r.error)}</p>")
         if len(good):
             out.append(condition_figures(study, cond, good, refs, note, figs, colours, max_points))
         out.append("</section>")
-    return "\n".join(out) + "</section>\n"
-
-
-def _run_text(run) -> str:
-    """A run of the rules' set-aside list: ``{"test": .., "speed_kmh": 18.0}`` as text."""
-    if isinstance(run, dict):
-        return ", ".join(f"{k} {v:g}" if isinstance(v, float) else f"{k} {v}" for k, v in run.items())
-    return _text(run)
-
-
-def _summary(study) -> str:
-    """Table 5-15 form, the recommended model per group and its expected error."""
-    summary = getattr(study, "summary", None)
-    out = ["<section id='summary'><h2>Summary (thesis Table 5-15)</h2>"]
-    if summary is None or len(summary) == 0:
-        return out[0] + "<p>No summary: no run was compared.</p></section>\n"
-    out.append(summary_html(summary))
-    metrics = study.metrics
-    good = metrics[(metrics["model"] != REPEATABILITY) & _ok(metrics)]
-    rec = []
-    for group, cells in summary.groupby(level=0, sort=False):
-        score = {m: ((cells[m].astype(str).str.endswith(", best")).sum(),
-                     cells[m].astype(str).str.startswith("comparable").sum()) for m in cells.columns}
-        best = max(score, key=lambda m: score[m])
-        if score[best][1] == 0:
-            rec.append(f"<tr><th class='text'>{_e(group)}</th><td class='text' colspan='2'>no model "
-                       "is comparable</td></tr>")
-            continue
-        rows = good[(good["group"] == group) & (good["model"] == best)]
-        errs = []
-        for m in primary_metrics(group, rows):
-            v = rows[m].abs().dropna()
-            if len(v):
-                errs.append(f"{m}: {_fmt(v.mean())} mean, {_fmt(v.max())} worst "
-                            f"[{METRICS[m][0]}] over {len(v)} run{'s' if len(v) > 1 else ''}")
-        verdicts = ", ".join(sorted(set(cells[best].astype(str))))
-        rec.append(f"<tr><th class='text'>{_e(group)}</th><td class='text'>{_e(best)} "
-                   f"({_e(verdicts)})</td><td class='text'>{_e('; '.join(errs) or 'no metrics')}"
-                   "</td></tr>")
-    out.append("<h3>Recommended model per group</h3><table class='recommended'><tr><th>group</th>"
-               "<th>model</th><th>expected error (|primary metric|)</th></tr>" + "".join(rec)
-               + "</table>")
-    left = summary.attrs.get("left_out") or []
-    if left:
-        out.append("<h3>Left out of the summary (comparison failed)</h3><ul>" + "".join(
-            f"<li>{_e(a.get('model'))}: {_e(a.get('test'))}, {_e(a.get('speed_kmh'))} km/h, "
-            f"{_e(a.get('load'))}</li>" for a in left) + "</ul>")
-    aside = summary.attrs.get("set_aside") or []
-    if aside:
-        out.append("<h3>Set aside by the rules</h3><ul>" + "".join(
-            f"<li>{_e(a.get('obstacle'))} ({_e(_run_text(a.get('run')))}): {_e(a.get('reason'))}</li>"
-            for a in aside) + "</ul>")
-    out.append(_rules_on_thesis())
-    return "\n".join(out) + "</section>\n"
-
-
-def _rules_on_thesis() -> str:
-    """The same rules applied to the thesis's own published metrics, cell by cell, with
-    each cell they do not reproduce argued (:func:`tyrelab.validate.thesis.rules_on_thesis`)."""
-    from ..validate.thesis import rules_on_thesis
-    cells = rules_on_thesis()
-    rows = "".join(
-        f"<tr><td class='text'>{_e(r.group)}</td><td class='text'>{_e(r.obstacle)}</td>"
-        f"<td class='text'>{_e(r.model)}</td><td class='text'>{_e(r.rules)}</td>"
-        f"<td class='text'>{_e(r.thesis)}</td><td class='text'>{'yes' if r.match else 'no: ' + _e(r.why)}"
-        "</td></tr>" for r in cells.itertuples())
-    return (f"<h3>These rules on the thesis's own metrics</h3><p>Applied to the metrics the "
-            f"thesis published (Tables 5-2 to 5-14), the rules above give {int(cells['match'].sum())} "
-            f"of the {len(cells)} cells of its Table 5-15 that those metrics cover; each other "
-            "cell is argued below.</p><table class='rules-on-thesis'><tr><th>group</th>"
-            "<th>obstacle</th><th>model</th><th>these rules</th><th>thesis Table 5-15</th>"
-            f"<th>same?</th></tr>{rows}</table>")
-
-
-def _thesis(study) -> str:
-    """Our metrics beside the thesis's, and the rank agreement."""
-    thesis = getattr(study, "thesis", None)
-    if thesis is None or len(thesis) == 0:
-        return ""
-    t = thesis.reset_index() if any(n is not None for n in thesis.index.names) else thesis
-    keys = [c for c in t.columns if not (c.endswith("_ours") or c.endswith("_thesis"))]
-    pairs = [c[:-5] for c in t.columns if c.endswith("_ours") and c[:-5] + "_thesis" in t.columns]
-    out = ["<section id='thesis'><h2>Against the thesis</h2><div class='scroll'><table class='thesis'><tr>"
-           + "".join(f"<th rowspan='2'>{_e(k)}</th>" for k in keys)
-           + "".join(f"<th colspan='2'>{_e(m)}</th>" for m in pairs) + "</tr><tr>"
-           + "<th>ours</th><th>thesis</th>" * len(pairs) + "</tr>"]
-    for _, r in t.iterrows():
-        out.append("<tr>" + "".join(f"<td class='text'>{_g(r[k])}</td>" for k in keys)
-                   + "".join(f"<td>{_num(r[m + '_ours'])}</td><td>{_num(r[m + '_thesis'])}</td>"
-                             for m in pairs) + "</tr>")
-    out.append("</table></div>")
-    ra = getattr(study, "rank_agreement", None)
-    if ra is not None:
-        out.append(f"<p>Rank agreement with the thesis (Spearman's rho of the models' ranks per "
-                   f"run and metric, 1 = same order): mean <b>{_num(ra.mean)}</b>.</p>")
-        out.append(_frame_html(ra.per_run, "Rank agreement per run"))
-    out.append(consistency_html(getattr(study, "consistency", None)))
     return "\n".join(out) + "</section>\n"
 
 
@@ -380,7 +176,7 @@ def _cost(study, note, figs, colours) -> str:
     if cost is None or len(cost) == 0:
         return ""
     metrics = study.metrics
-    good = metrics[(metrics["model"] != REPEATABILITY) & _ok(metrics)]
+    good = metrics[(metrics["model"] != REPEATABILITY) & compared_ok(metrics)]
     pts = cost_points(good, cost)
     table = cost[[c for c in ("model", "contact", "runs", "wall_per_simulated_s", "parameterization")
                   if c in cost.columns]].rename(
@@ -395,7 +191,7 @@ def _cost(study, note, figs, colours) -> str:
                    "the mean over the compared runs of the mean |primary metric| (obstacles: m%RE "
                    "of disturbance and response; tracks: mu%err and sigma%err). " + note)
         out.append(figs.add(cost_figure(pts, title, colours), "cost", caption))
-    out.append(_frame_html(table, "Cost and the parameterization data each model needs"))
+    out.append(frame_html(table, "Cost and the parameterization data each model needs"))
     return "\n".join(out) + "</section>\n"
 
 
@@ -417,7 +213,8 @@ def _normalised(study) -> SimpleNamespace:
     return out
 
 
-def study_report_html(study, *, name: str | None = None, max_points: int = MAX_POINTS) -> str:
+def study_report_html(study, *, name: str | None = None, max_points: int = MAX_POINTS,
+                      full_resolution: bool = False) -> str:
     """The whole page as text (see the module docstring); ``name`` if the study has none."""
     study = _normalised(study)
     note = str(getattr(study, "reference_note", "") or "reference: not stated")
@@ -425,23 +222,30 @@ def study_report_html(study, *, name: str | None = None, max_points: int = MAX_P
     models = list(dict.fromkeys([*study.index["model"].astype(str),
                                  *study.metrics["model"].astype(str)]))
     colours = {m: PALETTE[i % len(PALETTE)] for i, m in enumerate(models)}
-    figs = FigureSink()
+    figs = FigureSink(exact=full_resolution)
     body = [_header(study, name, note),
             "<nav><a href='#runs'>runs</a> &middot; <a href='#conditions'>per condition</a> &middot; "
             "<a href='#summary'>summary</a> &middot; <a href='#thesis'>thesis</a> &middot; "
             "<a href='#cost'>cost</a></nav>",
-            _run_matrix(study.index), _conditions(study, note, figs, colours, max_points),
-            _summary(study), _thesis(study), _cost(study, note, figs, colours)]
+            run_matrix(study.index),
+            _conditions(study, note, figs, colours, None if full_resolution else max_points),
+            summary_section(study), thesis_section(study), _cost(study, note, figs, colours)]
     return ("<!DOCTYPE html>\n<html lang='en'><head><meta charset='utf-8'>\n" + ERRORS_SCRIPT
-            + f"\n<title>Study report: {_e(name)}</title>\n"
+            + f"\n<title>Study report: {esc(name)}</title>\n"
             f"<meta name='tyrelab-figures' content='{figs.count}'>\n"
             "<meta name='viewport' content='width=device-width, initial-scale=1'>\n"
             f"<style>{_STYLE}</style></head>\n<body>\n<pre id='tyrelab-errors' hidden></pre>\n"
-            + "\n".join(body) + "\n" + RENDERED_SCRIPT + "\n</body></html>\n")
+            + "\n".join(body) + "\n" + figs.page_scripts() + "\n" + RENDERED_SCRIPT
+            + "\n</body></html>\n")
 
 
-def write_study_report(study, path, *, max_points: int = MAX_POINTS) -> Path:
+def write_study_report(study, path, *, max_points: int = MAX_POINTS,
+                       full_resolution: bool = False) -> Path:
     """Write the study report to ``path`` (HTML) and return the path.
+
+    ``max_points``: most points per overlay trace (the min/max envelope of
+    ``(max_points - 2) // 2`` pixel columns); ``full_resolution=True``: every
+    sample of every overlay trace and every number exact (a much larger page).
 
     The page is built completely first, then written to a temporary sibling
     and renamed over ``path``, so an interrupted write never leaves a page
@@ -450,7 +254,8 @@ def write_study_report(study, path, *, max_points: int = MAX_POINTS) -> Path:
     folder ``path`` is in.
     """
     path = Path(path)
-    text = study_report_html(study, name=path.resolve().parent.name, max_points=max_points)
+    text = study_report_html(study, name=path.resolve().parent.name, max_points=max_points,
+                             full_resolution=full_resolution)
     with atomic_output(path) as tmp:
         with open(tmp, "w", encoding="utf-8") as fh:
             fh.write(text)
