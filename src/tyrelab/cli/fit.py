@@ -19,6 +19,8 @@ BASE named after the output, ``NAME.tir``).
 
 from __future__ import annotations
 
+import sys
+
 from ..limits import MAX_FIT_EVALUATIONS
 from ._common import count, positive_float
 
@@ -150,7 +152,7 @@ def run_ring(args) -> int:
         args.output = args.output or "tyre.tir"
         _paths(args, [args.campaign, args.into])
         campaign = read_campaign(args.campaign)
-        return _fit(args, campaign, ("ring",), [campaign.source, args.into])
+        return _fit(args, campaign, _ring_steps(args, campaign), [campaign.source, args.into])
     from ..errors import InputError
     from ..fit.ring import fit_ring, markdown_table, write_ring_file
     from ..io_atomic import check_output_path
@@ -205,6 +207,25 @@ def _paths(args, inputs):
         report = args.report or str(Path(args.output).with_name(Path(args.output).stem + "_fit.html"))
         report = check_output_path(report, (".html",), "--report", [*inputs, args.output])
     return out, report
+
+
+def _ring_steps(args, campaign) -> tuple[str, ...]:
+    """The ring's fit starts from the tyre's vertical law and its drop-test damping: from the
+    base file when it has them, else fitted first from the campaign's own load-deflection and
+    drop tests (so ``fit ring CAMPAIGN`` works on its own, without ``fit all`` or ``--into``)."""
+    from ..fit import lab_files as lf
+    base = _base(args, campaign)
+    has = {"vertical": base is not None and (base.has("VERTICAL", "VERTICAL_STIFFNESS")
+                                             or base.table("DEFLECTION_LOAD_CURVE") is not None),
+           "damping": base is not None and base.has("VERTICAL", "VERTICAL_DAMPING")}
+    tests = {"vertical": lf.LoadDeflection, "damping": lf.DropTrace}
+    first = tuple(step for step in ("vertical", "damping") if not has[step]
+                  and [t for t in campaign.of(tests[step]) if t.use == "fit"])
+    if first:
+        them = "them" if len(first) > 1 else "it"
+        print(f"tyrelab: the start has no {' or '.join(first)} fit: fitting {them} first from the "
+              "campaign's own tests", file=sys.stderr)
+    return first + ("ring",)  # what is still missing, the ring fit names
 
 
 def _base(args, campaign):
