@@ -336,3 +336,34 @@ def test_binary_bytes_as_a_column_map_or_a_mapped_csv(tmp_path, capsys):
     assert main(["validate", str(measured), str(measured), "--column-map", str(junk)]) == 2
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and str(junk) in err[0] and "internal error" not in err[0], err
+
+
+@pytest.mark.parametrize("kind", ["tir", "rdf", "tdx", "spec", "campaign", "soil", "column_map"])
+def test_random_bytes_to_every_text_input_are_one_clear_error(tmp_path, kind):
+    """Random bytes (some valid UTF-8 by chance, most not) given to each reader of a text
+    input -- .tir, .rdf, TYDEX, a study spec, a campaign manifest, a soil file, a column map:
+    always an InputError naming the file, never a decoding or parsing traceback (issue "Lean
+    and fast", point 6)."""
+    from tyrelab.fit.campaign import read_campaign
+    from tyrelab.measure.columns import read_column_map
+    from tyrelab.measure.tydex import read_tydex
+    from tyrelab.road.rdf import read_rdf
+    from tyrelab.road.soil import read_soil
+    from tyrelab.study.spec import load_spec
+    from tyrelab.tyre.tir import read_tir
+
+    readers = {"tir": (read_tir, "x.tir"), "rdf": (read_rdf, "x.rdf"), "tdx": (read_tydex, "x.tdx"),
+               "spec": (load_spec, "x.toml"), "campaign": (read_campaign, "campaign.toml"),
+               "soil": (read_soil, "x.toml"), "column_map": (read_column_map, "x.csv")}
+    reader, name = readers[kind]
+    rng = random.Random(1606 + sorted(readers).index(kind))
+    path = tmp_path / name
+    for case in range(15):
+        size = rng.choice([1, 7, 64, 500, 4000])
+        data = bytes(rng.randrange(256) for _ in range(size))
+        if case % 3 == 0:  # printable noise: valid UTF-8 that is no format at all
+            data = bytes(rng.choice(b"[]=#\"'\n\t abcXYZ0123.,{}-$") for _ in range(size))
+        path.write_bytes(data)
+        with pytest.raises(InputError) as err:
+            reader(tmp_path if kind == "campaign" else path)
+        assert name in str(err.value), (kind, case, str(err.value))
