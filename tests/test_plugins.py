@@ -136,6 +136,7 @@ def test_the_plugin_runs_in_a_two_worker_study(plugin_env, tmp_path):
 [study]
 name = "plugin"
 output = "out"
+store = "lossless"
 
 [[tyre]]
 name = "XZL"

@@ -85,7 +85,7 @@ def run(spec: StudySpec | str | Path | None = None, workers: int | None = None,
         spec = builtin_spec()
     elif not isinstance(spec, StudySpec):
         spec = load_spec(spec)
-    store = Store(output if output is not None else spec.output)
+    store = Store(output if output is not None else spec.output, storage=spec.store)
     _keep_spec(spec, store)
     run_tasks(tasks(spec), store, workers=workers, scheduler=scheduler, progress=progress)
     evaluate_study(spec, store, progress=progress)  # metrics.parquet, rewritten every time

@@ -150,6 +150,8 @@ class StudySpec:
     #: the spec's text and the folder its relative paths start from (kept with the results)
     text: str = field(default="", repr=False, compare=False)
     base: Path | None = None
+    #: how the store keeps each run's table (``[study] store``; tyrelab.study.store.STORAGE)
+    store: str = "compact"
 
     def runs(self) -> tuple[RunSpec, ...]:
         """Every tyre x test x speed x load x model, in that nesting (outermost first).

@@ -14,6 +14,8 @@ Schema (km/h, kPa, mm at this edge, as the command line; SI in the parsed object
     output = "results"                  # folder, relative to the spec file's folder
     dt = 0.001                          # [s] rig time step (optional, 0.001)
     output_rate = 1000                  # [Hz] output sample rate (optional, 1000)
+    store = "compact"                   # how runs are kept: "compact" | "lossless" | "full"
+                                        # (optional, "compact"; tyrelab.study.store)
 
     [[tyre]]                            # one or more
     name = "xzl"                        # label
@@ -80,11 +82,12 @@ from .keys import run_key, tyre_digest  # noqa: F401 - part of this module's API
 from .records import (ModelSpec, ReferenceFile, RunSpec, StudySpec, TestSpec,  # noqa: F401
                       TyreSpec)
 from .spec_tests import DEFAULT_DT, DEFAULT_OUTPUT_RATE, GROUPS, MAX_SPEED_KMH, MIN_SPEED_KMH, _tests  # noqa: F401
+from .store import DEFAULT_STORAGE, STORAGE
 
 #: the built-in thesis campaign (package data)
 BUILTIN_SPEC = "thesis_campaign.toml"
 
-_STUDY_KEYS = ("name", "output", "dt", "output_rate", "left_wheel")
+_STUDY_KEYS = ("name", "output", "dt", "output_rate", "left_wheel", "store")
 _TYRE_KEYS = ("name", "file", "pressure_kpa")
 _MODEL_KEYS = ("name", "contact", "stiffness", "handling", "options")
 _TOP_KEYS = ("study", "tyre", "model", "test", "metrics")
@@ -121,7 +124,8 @@ def _study(ck: Checker, doc):
         from ..tyre.registry import contact_models
         left = ck.choice(t["left_wheel"], ("study", "left_wheel"), tuple(contact_models()),
                          "the trailer's left-wheel contact model")
-    return name, output, dt, rate, left
+    store = ck.choice(t.get("store", DEFAULT_STORAGE), ("study", "store"), STORAGE, "store form")
+    return name, output, dt, rate, left, store
 
 
 def _tyres(ck: Checker, doc) -> tuple[TyreSpec, ...]:
@@ -264,13 +268,13 @@ def parse_spec(text: str, source: str | Path = "<string>", base: str | Path | No
         where = f" (column {m.group(2)})" if m else ""
         raise InputError(f"invalid TOML: {reason}{where}", source=src, line=line) from None
     ck.table(doc, (), _TOP_KEYS, what="a study spec")
-    name, output, dt, rate, left = _study(ck, doc)
+    name, output, dt, rate, left, store = _study(ck, doc)
     tyres = _tyres(ck, doc)
     models = _models(ck, doc, tyres)
     tests = _tests(ck, doc, models, dt, rate)
     limits = _limits(ck, doc)
     return StudySpec(name, output, dt, rate, tuple(t for t, _ in tyres), models, tests, limits,
-                     Path(src) if src != "<string>" else src, left, text, ck.base)
+                     Path(src) if src != "<string>" else src, left, text, ck.base, store)
 
 
 def load_spec(path: str | Path) -> StudySpec:

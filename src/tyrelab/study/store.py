@@ -18,11 +18,33 @@ signal table is written to a temporary name and renamed when whole
 table exists, so a study killed at any instant loses only the runs in
 flight, and a record of a failed run (status ``"failed"``, the error's one
 line) is kept for the report and retried on the next run of the study.
+
+How a run's table is stored (``[study] store`` of the spec, :data:`STORAGE`;
+measured on the 200 runs of the built-in campaign by
+``benchmarks/store_format.py``, README "Benchmarks"):
+
+* ``"compact"`` (the default): only the channels the study's evaluation and
+  report read (:data:`COMPACT_CHANNELS`: time, the load cell's and the
+  tyre's vertical force, the contact point's and the wheel centre's x and z);
+  time and the compared force (``FZ_HUB``, or ``FZ`` in a run without it) as
+  float64, the others rounded to float32; zstd with byte-stream split. The
+  campaign takes 0.13 GB instead of 2.46 GB and every metric of
+  :func:`tyrelab.study.evaluate.evaluate_study` is bit-identical. The other
+  channels are gone: a study that needs them says ``"lossless"`` or ``"full"``.
+* ``"lossless"``: every channel, float64, zstd with byte-stream split (1.35 GB).
+* ``"full"``: every channel, float64, snappy -- the form of every store written
+  before (2.46 GB).
+
+Every form reads back as float64 columns (:func:`tyrelab.signal.read_signal`),
+so stores of any form, and those written before, read alike. The form is not
+part of a run's key: a run stored in one form is found finished when the
+spec asks for another (delete its table to have it written again).
 """
 
 from __future__ import annotations
 
 import json
+import tomllib
 from pathlib import Path
 
 import pandas as pd
@@ -34,6 +56,49 @@ from ..signal import read_signal, write_signal
 #: status of a run's record
 DONE, FAILED = "done", "failed"
 
+#: how a run's table is stored (module notes); ``[study] store`` of the spec
+COMPACT, LOSSLESS, FULL = "compact", "lossless", "full"
+STORAGE = (COMPACT, LOSSLESS, FULL)
+DEFAULT_STORAGE = COMPACT
+#: the channels a compact run keeps: what :mod:`tyrelab.study.evaluate` reads (time, the
+#: compared force ``FZ_HUB`` or, without it, ``FZ``, and the contact point's and wheel
+#: centre's x and z that place the disturbance) and the report plots (time, that force)
+COMPACT_CHANNELS = ("RUNTIME", "FZ_HUB", "FZ", "X_CP", "Z_CP", "X_WC", "Z_WC")
+
+
+def compact_float64(columns) -> tuple[str, ...]:
+    """The channels of a compact run kept as float64: time and the compared force
+    (``FZ_HUB``, or ``FZ`` when the run has no ``FZ_HUB``), so that the metrics computed
+    from a compact run are those of the full one."""
+    return ("RUNTIME", "FZ_HUB" if "FZ_HUB" in columns else "FZ")
+
+
+def check_storage(value, source=None) -> str:
+    """``value`` if it is one of :data:`STORAGE`, else an :class:`InputError` listing them."""
+    if value not in STORAGE:
+        raise InputError(f"unknown store form {value!r}; allowed: "
+                         + ", ".join(f'"{s}"' for s in STORAGE), source=source, field="store")
+    return value
+
+
+def write_run(signal: pd.DataFrame, path, storage: str = DEFAULT_STORAGE) -> None:
+    """Write a run's signal table to ``path`` in the form ``storage`` (module notes)."""
+    check_storage(storage)
+    if storage == FULL:
+        write_signal(signal, path)  # today's form, byte for byte
+        return
+    if storage == LOSSLESS:
+        write_signal(signal, path, compression="zstd", storage={"form": LOSSLESS})
+        return
+    kept = [c for c in signal.columns if c in COMPACT_CHANNELS]
+    dropped = [c for c in signal.columns if c not in COMPACT_CHANNELS]
+    table = signal[kept]
+    table.attrs = {**signal.attrs, "units": {c: u for c, u in
+                                             signal.attrs.get("units", {}).items() if c in kept}}
+    double = compact_float64(kept)
+    write_signal(table, path, compression="zstd", float32=[c for c in kept if c not in double],
+                 storage={"form": COMPACT, "dropped": dropped})
+
 
 def _write_json(path: Path, record: dict) -> None:
     """Write ``record`` as JSON to ``path`` atomically (temporary name, then rename)."""
@@ -44,8 +109,11 @@ def _write_json(path: Path, record: dict) -> None:
 class Store:
     """A study's results folder (created if missing)."""
 
-    def __init__(self, folder):
+    def __init__(self, folder, storage: str | None = None):
+        """``storage``: how runs are written (:data:`STORAGE`); None: the ``[study] store``
+        of the folder's ``spec.toml`` when the first run is saved, else :data:`DEFAULT_STORAGE`."""
         self.folder = Path(folder)
+        self._storage = None if storage is None else check_storage(storage)
         self.runs = self.folder / "runs"
         try:
             self.runs.mkdir(parents=True, exist_ok=True)
@@ -72,9 +140,27 @@ class Store:
         rec = self.record(key)
         return rec is not None and rec.get("status") == DONE and self.signal_path(key).is_file()
 
+    @property
+    def storage(self) -> str:
+        """How this store writes runs (:data:`STORAGE`): as given, or the ``[study] store``
+        of the folder's ``spec.toml`` (the study's spec, kept there by ``tyrelab study``),
+        or :data:`DEFAULT_STORAGE`."""
+        if self._storage is None:
+            path = self.folder / "spec.toml"
+            value = DEFAULT_STORAGE
+            if path.is_file():
+                try:
+                    study = tomllib.loads(path.read_text(encoding="utf-8")).get("study", {})
+                except (OSError, ValueError):
+                    study = {}
+                if isinstance(study, dict):
+                    value = study.get("store", DEFAULT_STORAGE)
+            self._storage = check_storage(value, source=str(path))
+        return self._storage
+
     def save(self, key: str, spec: dict, signal: pd.DataFrame, wall_time: float) -> None:
-        """Store a finished run: its table first, then its record."""
-        write_signal(signal, self.signal_path(key))
+        """Store a finished run: its table first (in the form :attr:`storage`), then its record."""
+        write_run(signal, self.signal_path(key), self.storage)
         _write_json(self.record_path(key), {**spec, "key": key, "status": DONE,
                                             "wall_time_s": float(wall_time),
                                             "simulated_s": float(signal["RUNTIME"].iloc[-1]
