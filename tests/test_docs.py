@@ -10,16 +10,38 @@
   substituted), the blocks of one page in their order (a page may use a
   file an earlier command of it wrote), and exits 0. Commands that take many
   minutes are skipped only through :data:`SKIP`, each with its reason.
+
+How the commands run (issue 29: this test took 144-205 s on 2 cores). A fresh
+process costs 1.2-1.3 s of start-up and imports (tyrelab, numpy, pandas, scipy,
+numba) before a command does its fraction of a second of work, 90-odd times.
+So each of the two page workers has a fork server (``tests/forkserver.py``): a
+process that has imported ``tyrelab`` once (and nothing more, so that a module
+a step uses without importing it fails here as it would for a user) and built
+numba's typing and target contexts (as every process does at its first kernel
+call), and runs nothing itself: no kernel, no command. Each step is a fresh
+``os.fork()`` of that pristine server, set up as the fresh process would be:
+the page's folder as working directory, :func:`_env` as environment, its own
+``sys.argv`` and ``sys.path[0]``, stdin from /dev/null, stdout and stderr to
+files, the program run in a new ``__main__`` (``tyrelab ARGS``: the installed
+``tyrelab`` console script itself; a ``python`` block or ``python FILE``: that
+file, ``python`` being this interpreter) and its exit code that of Python's
+own exit. A command that is not plain words (pipes, redirections, ``&&``,
+quotes, ``$``, globs: see :func:`plain_argv`) runs through ``bash -c`` in a new
+process, as does every step where ``os.fork`` does not exist. The pages with
+the most steps start first (README.md alone is a third of the time).
 """
 
 from __future__ import annotations
 
 import importlib.util
 import os
+import queue
 import re
 import shutil
 import subprocess
 import sys
+import sysconfig
+import time
 from pathlib import Path
 
 import pytest
@@ -52,6 +74,21 @@ SHORTEN = {
         " --skip ring", "the ring step identifies the flexible ring (minutes of ring simulations); "
         "tests/test_fit_ring_campaign.py covers it, tests/test_fit_campaign.py runs fit all"),
 }
+
+#: what a fork server runs before forking the steps off it: the import every step starts with
+#: (nothing more: a module that a step uses without importing it must be missing, as for a
+#: user), and numba's typing and target contexts, which a process builds at its first kernel
+#: call whether the kernel comes from the cache or not (0.15 s a step). No kernel runs.
+SERVER_SETUP = """\
+import tyrelab
+from numba.core.registry import cpu_target
+cpu_target.typing_context.refresh()
+cpu_target.target_context.refresh()
+"""
+#: the ``tyrelab`` command a step runs (the console script pip installed with this Python)
+CONSOLE_SCRIPT = Path(sysconfig.get_path("scripts")) / "tyrelab"
+#: a word bash passes on as it is: no quote, expansion, glob, redirection, operator or comment
+PLAIN_WORD = re.compile(r"[\w\-./:@=,+%]+", re.ASCII)
 
 FENCE = re.compile(r"^(?P<indent>[ \t]*)(?P<fence>```+|~~~+)[ \t]*(?P<lang>[\w+-]*)[^\n]*$")
 
@@ -102,6 +139,30 @@ def _env() -> dict:
     env["MPLBACKEND"] = "Agg"
     env["NO_MKDOCS_2_WARNING"] = "1"
     return env
+
+
+def plain_argv(cmd: str) -> list[str] | None:
+    """The argv bash makes of ``cmd`` when that is just its words split at blanks (a trailing
+    ``# comment`` dropped); None for anything else: a pipe, redirection, ``&&``, quote, ``$``..."""
+    words = re.split(r"[ \t]+", cmd.strip())
+    for i, word in enumerate(words):
+        if word.startswith("#"):
+            words = words[:i]
+            break
+    return words if words and all(PLAIN_WORD.fullmatch(w) for w in words) else None
+
+
+def fork_program(cmd: str, folder: Path) -> tuple[Path, list[str]] | None:
+    """(file run as ``__main__``, ``sys.argv``) of a shell command a fork server can run in
+    ``folder``: ``tyrelab ARGS`` and ``python FILE.py ARGS`` as plain words; else None."""
+    words = plain_argv(cmd)
+    if not words:
+        return None
+    if words[0] == "tyrelab" and CONSOLE_SCRIPT.is_file():
+        return CONSOLE_SCRIPT, [str(CONSOLE_SCRIPT), *words[1:]]
+    if words[0] == "python" and len(words) > 1 and words[1].endswith(".py") and not words[1].startswith("-"):
+        return folder / words[1], words[1:]
+    return None
 
 
 def _page_id(page: Path) -> str:
@@ -155,10 +216,13 @@ def test_commands_are_found_and_every_skip_is_used():
         assert any(re.search(pattern, c) for c in commands), f"SKIP entry matches nothing: {pattern}"
 
 
-def run_page(page: Path, folder: Path) -> tuple[str | None, list[str]]:
-    """Run the page's steps in ``folder`` (a copy of examples/ is put there first); return
-    the first failure (or None) and the commands skipped through :data:`SKIP`."""
+def run_page(page: Path, folder: Path, server=None) -> tuple[str | None, list[str]]:
+    """Run the page's steps in ``folder`` (a copy of examples/ is put there first), forked off
+    ``server`` (a :class:`forkserver.ForkServer`) where they can be, else each in a new process;
+    return the first failure (or None) and the commands skipped through :data:`SKIP`."""
     shutil.copytree(ROOT / "examples", folder / "examples", ignore=shutil.ignore_patterns("__pycache__"))
+    output = folder.with_name(folder.name + "-output")  # the forked steps' stdout and stderr
+    output.mkdir()
     skipped = []
     for n, (kind, text) in enumerate(steps(page)):
         if kind == "shell":
@@ -170,30 +234,78 @@ def run_page(page: Path, folder: Path) -> tuple[str | None, list[str]]:
                 if re.search(pattern, text):
                     text = text.split("#")[0].rstrip() + extra
                     skipped.append(f"{_page_id(page)}: run as '{text}': {why}")
+            program = fork_program(text, folder)
             argv = ["bash", "-c", text]
         else:
             script = folder / f"_block{n}.py"
             script.write_text(text, encoding="utf-8")
+            program = script, [script.name]
             argv = [sys.executable, script.name]
-        try:
-            proc = subprocess.run(argv, cwd=folder, env=_env(), capture_output=True, text=True,
-                                  timeout=TIMEOUT, stdin=subprocess.DEVNULL)
-        except subprocess.TimeoutExpired:
-            return f"{_page_id(page)}: no end after {TIMEOUT} s:\n{text}", skipped
-        if proc.returncode != 0:
-            return (f"{_page_id(page)}: exit {proc.returncode} from\n{text}\n"
-                    f"stdout:\n{proc.stdout[-2000:]}\nstderr:\n{proc.stderr[-3000:]}"), skipped
+        if server is not None and program is not None:
+            file, args = program
+            out, err = output / f"{n}.stdout", output / f"{n}.stderr"
+            try:
+                code = server.run(file, args, path0=file.parent, cwd=folder, env=_env(),
+                                  stdout=out, stderr=err, timeout=TIMEOUT)
+            except RuntimeError as exc:  # the server itself failed (forkserver.ForkServerError)
+                return f"{_page_id(page)}: {exc}\nwhile running\n{text}", skipped
+            if code is None:
+                return f"{_page_id(page)}: no end after {TIMEOUT} s:\n{text}", skipped
+            stdout, stderr = (f.read_text(errors="replace") for f in (out, err))
+        else:
+            try:
+                proc = subprocess.run(argv, cwd=folder, env=_env(), capture_output=True, text=True,
+                                      timeout=TIMEOUT, stdin=subprocess.DEVNULL)
+            except subprocess.TimeoutExpired:
+                return f"{_page_id(page)}: no end after {TIMEOUT} s:\n{text}", skipped
+            code, stdout, stderr = proc.returncode, proc.stdout, proc.stderr
+        if code != 0:
+            return (f"{_page_id(page)}: exit {code} from\n{text}\n"
+                    f"stdout:\n{stdout[-2000:]}\nstderr:\n{stderr[-3000:]}"), skipped
     return None, skipped
 
 
-def test_commands_run_as_written(tmp_path):
-    """Every page in its own fresh folder, two pages at a time (each page's steps in order):
-    the commands are mostly process start-up (1.3 s of imports each), about 90 of them."""
+def run_pages(pages: list[Path], folder: Path, workers: int = 2) -> list[tuple[str | None, list[str]]]:
+    """:func:`run_page` for every page, each in its own fresh folder under ``folder``, ``workers``
+    pages at a time, each worker with a fork server (none where ``os.fork`` does not exist)."""
     from concurrent.futures import ThreadPoolExecutor
 
-    pages = [p for p in PAGES if steps(p)]
-    with ThreadPoolExecutor(max_workers=2) as pool:
-        results = list(pool.map(lambda ip: run_page(ip[1], tmp_path / f"page{ip[0]}"), enumerate(pages)))
+    from forkserver import ForkServer
+
+    started = []
+
+    def new_server():
+        log = folder / f"forkserver{len(started)}.log"
+        started.append(ForkServer(SERVER_SETUP, cwd=folder, env=_env(), log=log))
+        return started[-1]
+
+    servers = queue.Queue()
+    for _ in range(workers):
+        servers.put(new_server() if hasattr(os, "fork") else None)
+
+    def one(n: int, page: Path):
+        server, t = servers.get(), time.perf_counter()
+        try:
+            return run_page(page, folder / f"page{n}", server)
+        finally:
+            print(f"{_page_id(page)}: {time.perf_counter() - t:.1f} s")
+            servers.put(new_server() if server is not None and not server.alive else server)
+
+    # the longest page first (README.md: a third of all the time), so that it does not start last
+    order = sorted(range(len(pages)), key=lambda n: -len(steps(pages[n])))
+    try:
+        with ThreadPoolExecutor(max_workers=workers) as pool:
+            results = dict(zip(order, pool.map(one, order, [pages[n] for n in order])))
+        return [results[n] for n in range(len(pages))]
+    finally:
+        for server in started:
+            server.close()
+
+
+def test_commands_run_as_written(tmp_path):
+    """Every page in its own fresh folder, two pages at a time (each page's steps in order),
+    the steps forked off a server that has imported tyrelab (see the module's docstring)."""
+    results = run_pages([p for p in PAGES if steps(p)], tmp_path)
     for _, skipped in results:  # listed with their reasons in the test's output (-rA or -s)
         for line in skipped:
             print(f"skipped (SKIP): {line}")
