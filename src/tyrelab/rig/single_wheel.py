@@ -20,6 +20,7 @@ import numpy as np
 
 from ..core.named_index import named_index
 from ..errors import InputError
+from ..limits import MAX_MEMORY
 from ..tyre.wheel import Wheel, WheelPose, wheel_step
 from .frames import WHEEL_CHANNELS, WC, wheel_row
 from .simulation import run_chunks, to_signal
@@ -35,6 +36,8 @@ X_START = 0.0
 #: the soil bed's node spacing [m]: halving it moves the pull of the XZL's rigid wheel on LETE
 #: sand at s = 0.2 by 0.15 % and its sinkage by 1.8 %, and costs four times the time
 BED_SPACING = 0.02
+#: memory of a soil node: undisturbed height, plastic sinkage, shear displacement, stress
+BYTES_PER_NODE = 4 * 8
 #: the static equilibrium is found to this height [m]
 SETTLE_TOLERANCE = 1e-7
 
@@ -142,6 +145,12 @@ def single_wheel(model, soil, load: float, speed: float, slip: float = 0.0, leng
     soil_params, soil_name = load_soil(soil)
     road = road or Flat()
     x_end = X_START + length - 1.0
+    nodes = (length + 2.0) / spacing * (width / spacing)
+    if nodes * BYTES_PER_NODE > MAX_MEMORY:
+        raise InputError(f"a soil bed {length + 2.0:.6g} m long and {width:g} m wide at {spacing:g} m "
+                         f"needs {nodes * BYTES_PER_NODE / 1024 ** 3:.3g} GiB, above the "
+                         f"{MAX_MEMORY / 1024 ** 3:g} GiB allowed; a shorter run or a coarser bed",
+                         field="duration")
     ground = soil_bed(soil_params, _bed_grid(road, X_START - 1.0, x_end + 1.0, width, spacing))
     params = model.contact_model.build(model.tyre, ground, **model.options)
     wheel = Wheel(model.tyre.vertical_law, params, model.handling_params(), ground,
