@@ -214,10 +214,11 @@ def _ring_steps(args, campaign) -> tuple[str, ...]:
     base file when it has them, else fitted first from the campaign's own load-deflection and
     drop tests (so ``fit ring CAMPAIGN`` works on its own, without ``fit all`` or ``--into``)."""
     from ..fit import lab_files as lf
-    base = _base(args, campaign)
-    has = {"vertical": base is not None and (base.has("VERTICAL", "VERTICAL_STIFFNESS")
-                                             or base.table("DEFLECTION_LOAD_CURVE") is not None),
-           "damping": base is not None and base.has("VERTICAL", "VERTICAL_DAMPING")}
+    from ..fit.workflow import start_tir
+    start = start_tir(campaign, _base(args, campaign))   # as the fit starts: --into, -o or the manifest's
+    has = {"vertical": start.has("VERTICAL", "VERTICAL_STIFFNESS")
+           or start.table("DEFLECTION_LOAD_CURVE") is not None,
+           "damping": start.number("VERTICAL", "VERTICAL_DAMPING", 0.0) > 0}
     tests = {"vertical": lf.LoadDeflection, "damping": lf.DropTrace}
     first = tuple(step for step in ("vertical", "damping") if not has[step]
                   and [t for t in campaign.of(tests[step]) if t.use == "fit"])
