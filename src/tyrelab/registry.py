@@ -2,7 +2,7 @@
 
 Each kind keeps its records and its ``register_*`` function in its own layer
 (:mod:`tyrelab.tyre.registry`, :mod:`tyrelab.rig.registry`,
-:mod:`tyrelab.road.terrain`, :mod:`tyrelab.road.formats`); this module is the one
+:mod:`tyrelab.road.terrain_registry`, :mod:`tyrelab.road.formats`); this module is the one
 door to all of them. The command line's choices, the study spec's checks, the
 cost estimates, the study keys and the documentation's lists are derived from
 these functions; no other list of names exists.
@@ -50,15 +50,15 @@ def rigs() -> tuple[str, ...]:
 
 def terrains() -> tuple[str, ...]:
     """Names of the kinds of ground the compiled contact models run on."""
-    from .road.terrain import terrain_names
+    from .road.terrain_registry import terrain_names
     return tuple(terrain_names())
 
 
 def __getattr__(name: str):
     # the terrain records load numba: imported when first asked for, not to list rigs or formats
     if name in ("TerrainKind", "register_terrain", "terrain_kind"):
-        from .road import terrain
-        return getattr(terrain, name)
+        from .road import terrain_registry
+        return getattr(terrain_registry, name)
     raise AttributeError(f"module 'tyrelab.registry' has no attribute {name!r}")
 
 

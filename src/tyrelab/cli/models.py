@@ -23,7 +23,7 @@ def run(args) -> int:
     from .. import plugins
     from ..rig.registry import rigs
     from ..road.formats import road_formats
-    from ..road.terrain import terrain_kind, terrain_names
+    from ..road.terrain_registry import terrain_kind, terrain_names
     from ..tyre.registry import contact_models, handling_models
 
     def contact_line(m) -> str:

@@ -2,12 +2,19 @@
 
 Every road produces a :class:`RoadGrid`; its :meth:`RoadGrid.surface` is the
 record the compiled contact models take (:class:`RoadSurface`: the grid, its
-height bounds and block maxima), and they query it only through the compiled
-functions here, never through Python road objects inside a time step. Grid
-node ``(i, j)`` sits at ``x0 + i*dx, y0 + j*dy``; between nodes the height is
-bilinear. Outside the grid the road continues with the height
-of the nearest edge node (a flat run-in and run-out), so a tyre never falls
-off the end of a road.
+height bounds and block maxima). Grid node ``(i, j)`` sits at ``x0 + i*dx,
+y0 + j*dy``; between nodes the height is bilinear. Outside the grid the road
+continues with the height of the nearest edge node (a flat run-in and
+run-out), so a tyre never falls off the end of a road.
+
+The grid is the rigid kind of ground of the terrain interface
+(:mod:`tyrelab.road.terrain`, registered as ``"rigid"`` at the bottom): the
+contact models reach the functions here only through that interface, never
+by name, so another kind of ground takes every model. In its terms the
+grid's break lines are its x node lines (the bilinear surface is linear in x
+between them on any line of constant y), a row handle ``(j, wy)`` is the
+line between node rows j and j+1 at weight wy, and its blocks are the
+:data:`BLOCK_LENGTH` blocks of ``RoadSurface.block_max``.
 """
 
 from __future__ import annotations
@@ -20,6 +27,7 @@ import numba as nb
 import numpy as np
 
 from ..errors import InputError
+from .terrain_registry import TerrainKind, block_maxima, profile_breaks, register_terrain
 
 #: length along x of the road blocks whose maximum height bounds a contact search [m]
 BLOCK_LENGTH = 0.04
@@ -89,6 +97,32 @@ class RoadGrid:
             cached = _surface(self)
             object.__setattr__(self, "_surface", cached)
         return cached
+
+    # --- the Python side of the terrain interface (terrain.Ground): what a model's
+    # build may precompute from the ground
+
+    def sampling_step(self) -> float:
+        """The finest node spacing [m] (along y only when the grid varies across)."""
+        return min(self.dx, self.dy if self.z.shape[1] > 2 else self.dx)
+
+    def uniform_across(self) -> bool:
+        """True when every node row is alike (a 2D profile)."""
+        return bool(np.all(self.z == self.z[:, :1]))
+
+    def profile_breaks(self) -> np.ndarray | None:
+        """Per x node, the next node where a profile's slope changes; None when the grid
+        varies across (:func:`~tyrelab.road.terrain.profile_breaks`)."""
+        return profile_breaks(self.z)
+
+    def row_maxima(self, length: float):
+        """``(per, maxima)``: the road's maxima over blocks of ``per`` x cells (about
+        ``length`` [m]) for each pair of node rows, shape ``(blocks, ny - 1)``
+        (:func:`~tyrelab.road.terrain.block_maxima`); no blocks for a grid of two x nodes."""
+        z = self.z
+        per = max(1, int(round(length / self.dx)))
+        if z.shape[0] > 2:
+            return per, block_maxima(z, per)
+        return per, np.zeros((0, z.shape[1] - 1))
 
     @property
     def nbytes(self) -> int:
@@ -213,3 +247,61 @@ def local_zmax(road, x0, x1):
         if blocks[i] > m:
             m = blocks[i]
     return m
+
+
+# --- the grid's side of the terrain interface (tyrelab.road.terrain) -----------------------
+
+@nb.njit(cache=True, inline="always")
+def grid_range(road):
+    """Lowest and highest node of the grid."""
+    return road.zmin, road.zmax
+
+
+@nb.njit(cache=True, inline="always")
+def grid_lines(road):
+    """The x node lines: first, spacing, its inverse, count."""
+    return road.x0, road.dx, road.inv_dx, road.z.shape[0]
+
+
+@nb.njit(cache=True, inline="always")
+def grid_row(road, y):
+    """``(j, wy)``: the road at y lies between node rows j and j+1, weight wy (clamped)."""
+    jf = (y - road.y0) * road.inv_dy
+    ny = road.z.shape[1]
+    if jf >= ny - 1:
+        return ny - 2, 1.0
+    if jf > 0.0:
+        j = min(int(jf), ny - 2)
+        return j, jf - j
+    return 0, 0.0
+
+
+@nb.njit(cache=True, inline="always")
+def grid_line_height(road, row, weight, k):
+    """Height at x node k on the line between node rows ``row``, ``row + 1``."""
+    z = road.z
+    return z[k, row] * (1.0 - weight) + z[k, row + 1] * weight
+
+
+@nb.njit(cache=True, inline="always")
+def grid_blocks(road):
+    """The blocks of ``road.block_max``: first x, length, count."""
+    return road.block_x0, road.block_dx, road.block_max.shape[0]
+
+
+@nb.njit(cache=True, inline="always")
+def grid_block_max(road, i):
+    """``road.block_max`` of block i, the end blocks beyond the ends."""
+    n = road.block_max.shape[0]
+    k = i if i >= 0 else 0
+    if k > n - 1:
+        k = n - 1
+    return road.block_max[k]
+
+
+register_terrain(TerrainKind(
+    "rigid", RoadSurface, height=road_height, height_gradient=road_height_gradient,
+    penetration=road_penetration, zmax=local_zmax, range=grid_range, lines=grid_lines,
+    row=grid_row, line_height=grid_line_height,
+    blocks=grid_blocks, block_max=grid_block_max,
+    description="rigid road: heights on a regular grid, bilinear between nodes"))

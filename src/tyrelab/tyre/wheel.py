@@ -7,8 +7,9 @@ record (NamedTuple):
 
 * :class:`Wheel` -- what a rig holds per wheel: the vertical law, the
   contact model's parameter record, the handling model's parameter record,
-  the road (:class:`~tyrelab.road.grid.RoadSurface`) and the model's
-  internal state;
+  the ground (a terrain record, :mod:`tyrelab.road.terrain`: the rigid road's
+  :class:`~tyrelab.road.grid.RoadSurface`, ...) and the model's internal
+  state;
 * :class:`WheelPose` -- where the rim is and how it moves;
 * :class:`ContactGeometry` -- what an analytic contact model finds;
 * :class:`WheelLoads` -- what the road does to the tyre.
@@ -19,8 +20,9 @@ the tyre*, moments about the wheel centre; FXW, FYW, FZW in the W-axis
 system (z along the road normal, x in the wheel plane).
 
 Dispatch happens at compile time, on the type of the parameter records
-(:mod:`tyrelab.tyre.registry`): numba compiles, and caches on disk, one
-specialisation of each rig loop per combination of models.
+(:mod:`tyrelab.tyre.registry`) and of the terrain record
+(:mod:`tyrelab.road.terrain`): numba compiles, and caches on disk, one
+specialisation of each rig loop per combination of models and ground.
 """
 
 from __future__ import annotations
@@ -32,8 +34,9 @@ import numba as nb
 import numpy as np
 from numba.extending import overload
 
+from ..core.named_index import named_index
 from ..core.vec3 import cross, dot, unit
-from ..road.grid import RoadSurface
+from ..road.terrain import terrain_contact, terrain_friction, terrain_is_rigid
 from .registry import contact_by_record, handling_by_record
 from .vertical import VerticalLaw, normal_force
 
@@ -116,21 +119,28 @@ class WheelLoads(NamedTuple):
 
 #: number of fields of a :class:`WheelLoads` (the columns of :func:`loads_table`)
 N_LOADS = len(WheelLoads._fields)
+#: the columns of a row of poses (:func:`loads_table`): a :class:`WheelPose`'s fields, in
+#: order, and their positions (``p[WP.cz]``)
+POSE_FIELDS = WheelPose._fields
+WP = named_index("WheelPoseIndex", POSE_FIELDS)
 
 
 class Wheel(NamedTuple):
     """One wheel as a rig holds it: laws, parameters, road and state.
 
     ``contact`` and ``handling`` are the parameter records of the chosen
-    models (:mod:`tyrelab.tyre.registry`); ``state`` is the contact model's
-    internal state (its own record or array; mutated in place by
-    :func:`wheel_step`). Build one with :meth:`tyrelab.tyre.model.TyreModel.wheel`.
+    models (:mod:`tyrelab.tyre.registry`); ``road`` is the terrain record of
+    the ground (:mod:`tyrelab.road.terrain`; the rigid road's
+    :class:`~tyrelab.road.grid.RoadSurface`), which the models query only
+    through the terrain interface; ``state`` is the contact model's internal
+    state (its own record or array; mutated in place by :func:`wheel_step`).
+    Build one with :meth:`tyrelab.tyre.model.TyreModel.wheel`.
     """
 
     law: VerticalLaw
     contact: tuple
     handling: tuple
-    road: RoadSurface
+    road: tuple
     state: object
 
 
@@ -211,20 +221,25 @@ def _wheel_step(wheel, pose, dt):
     geometry = model.geometry
 
     def impl(wheel, pose, dt):
-        return analytic_wheel_step(wheel, pose, geometry(wheel.contact, wheel.road, pose))
+        return analytic_wheel_step(wheel, pose, geometry(wheel.contact, wheel.road, pose), dt)
     return impl
 
 
 @nb.njit(cache=True, inline="always")
-def analytic_wheel_step(wheel, pose, geo):
-    """Loads of an analytic contact model at contact geometry ``geo``: eq. 2.2 along the
-    contact normal, plus handling.
+def analytic_wheel_step(wheel, pose, geo, dt):
+    """Loads of an analytic contact model at contact geometry ``geo`` over a step ``dt`` [s]:
+    eq. 2.2 along the contact normal, plus handling.
 
     The normal force is thesis eq. 2.2 with the deflection rate ``-v . n``
     (the road does not move; the contact point slides along the road
     without changing the distance to first order); the handling model adds
     FXW, FYW and an aligning moment from the slip of the contact point
-    (rigid-ring kinematics: the lever is the loaded radius).
+    (rigid-ring kinematics: the lever is the loaded radius), scaled by the
+    ground's friction scale there (:func:`~tyrelab.road.terrain.terrain_friction`;
+    the whole curve scales, its slip stiffness too: the handling models take no
+    friction input). A ground that is not rigid then answers the contact's forces
+    (:func:`~tyrelab.road.terrain.terrain_contact`, a point contact: area 0);
+    on the rigid road that branch is compiled out.
     """
     rho = geo.deflection
     nx, ny, nz = geo.nx, geo.ny, geo.nz
@@ -246,6 +261,7 @@ def analytic_wheel_step(wheel, pose, geo):
     alpha = 0.0
     dspin = 0.0
     wxx = wxy = wxz = wyx = wyy = wyz = 0.0
+    v_slip_x = v_slip_y = 0.0
     if has_handling(wheel.handling):
         # W-axis: z along the normal, x in the wheel plane
         tx, ty, tz = cross(ax, ay, az, nx, ny, nz)
@@ -259,6 +275,12 @@ def analytic_wheel_step(wheel, pose, geo):
         gamma = math.asin(max(-1.0, min(1.0, dot(ax, ay, az, nx, ny, nz))))
         fxw, fyw, mzw, kappa, alpha, dfx = handling_forces(wheel.handling, fz, v_long, v_slip_x,
                                                            v_slip_y, gamma)
+        # the ground's friction scale (1 on the rigid road, where the products are exact)
+        mu = terrain_friction(wheel.road, px, py)
+        fxw *= mu
+        fyw *= mu
+        mzw *= mu
+        dfx *= mu
         if dfx != 0.0:
             # spin moment of FXW at the contact point: ((r x w_x) . a) FXW, and
             # d kappa / d omega = -((a x r) . w_x) / max(|V_x|, VXLOW)
@@ -266,6 +288,9 @@ def analytic_wheel_step(wheel, pose, geo):
             lever = dot(lx, ly, lz, ax, ay, az)
             vref = abs(v_long) if abs(v_long) > VXLOW else VXLOW
             dspin = lever * dfx * (-dot(sx, sy, sz, wxx, wxy, wxz) / vref)
+    if not terrain_is_rigid(wheel.road):  # a deformable ground answers (compiled out on rigid)
+        fz, fxw, fyw = terrain_contact(wheel.road, px, py, rho, 0.0, v_slip_x, v_slip_y, fz, fxw,
+                                       fyw, dt)
     fx = fz * nx + fxw * wxx + fyw * wyx
     fy = fz * ny + fxw * wxy + fyw * wyy
     fzz = fz * nz + fxw * wxz + fyw * wyz
@@ -284,11 +309,13 @@ def pose(cx=0.0, cy=0.0, cz=0.0, axis=(0.0, 1.0, 0.0), velocity=(0.0, 0.0, 0.0),
 
 @nb.njit(cache=True)
 def step_many(wheel, poses, dt, out):
-    """:func:`wheel_step` at each row of ``poses`` (n, 10), loads into ``out`` (n, N_LOADS)."""
+    """:func:`wheel_step` at each row of ``poses`` (n, 10: columns :data:`POSE_FIELDS`), loads
+    into ``out`` (n, N_LOADS)."""
     for k in range(poses.shape[0]):
         p = poses[k]
-        loads = wheel_step(wheel, WheelPose(p[0], p[1], p[2], p[3], p[4], p[5], p[6], p[7],
-                                            p[8], p[9]), dt)
+        loads = wheel_step(wheel, WheelPose(p[WP.cx], p[WP.cy], p[WP.cz], p[WP.ax], p[WP.ay],
+                                            p[WP.az], p[WP.vx], p[WP.vy], p[WP.vz], p[WP.omega]),
+                           dt)
         for j in range(N_LOADS):
             out[k, j] = loads[j]
 

@@ -18,9 +18,9 @@ measured deflection-to-half-width table, as the thesis asks for in 4.4).
 Python reads the ``[CONTACT_PATCH]`` keys (:func:`patch_key`, :func:`length_law`,
 :func:`width_law`) and builds the cam tables and the road's block maxima once, into the
 model's record (:class:`tyrelab.tyre.contact.enveloping.EnvelopingParams`);
-the compiled functions here take that record (``params``) and the road
-(:class:`tyrelab.road.grid.RoadSurface`) and evaluate a row of cams along grid
-x (the rigs) or one cam in any direction.
+the compiled functions here take that record (``params``) and the terrain
+record (:mod:`tyrelab.road.terrain`, queried through that interface only) and
+evaluate a row of cams along x (the rigs) or one cam in any direction.
 """
 
 from __future__ import annotations
@@ -31,8 +31,9 @@ import numba as nb
 import numpy as np
 
 from ...errors import InputError
-from ...road.grid import road_height
-from .shape import _x_height, grid_row, section_walk
+from ...road.terrain import (terrain_height, terrain_line_height, terrain_lines, terrain_row,
+                             terrain_row_height)
+from .shape import section_walk
 
 #: points in each cam table
 TABLE_POINTS = 1025
@@ -139,7 +140,8 @@ def _cam_side(params, road, x0, y0, fx, fy, top, best, reach):
     drop, window, touch = params.cam_drop, params.cam_window, params.cam_touch
     ae, be, cap = params.cam_half_length, params.cam_half_height, params.cam_reach
     sb = cap
-    _, _, _, a, b, k, k_end, _, h0, h_b = section_walk(road, x0, y0, fx, fy, 0.0, sb, params.step)
+    walk = section_walk(road, x0, y0, fx, fy, 0.0, sb, params.step)
+    a, b, k, k_end, h0, h_b = walk.a, walk.b, walk.k, walk.k_end, walk.h_a, walk.h_b
     if h0 > best:  # the centre itself (first side only)
         best = h0
         reach = min(table_window(window, ae, be, top - best), cap)
@@ -152,7 +154,7 @@ def _cam_side(params, road, x0, y0, fx, fy, top, best, reach):
             h1 = h_b
         else:
             s1 = a + k * b
-            h1 = road_height(road, x0 + s1 * fx, y0 + s1 * fy)
+            h1 = terrain_height(road, x0 + s1 * fx, y0 + s1 * fy)
         if s1 > s0:
             e1 = table_drop(drop, ae, s1)
             if h1 - e1 > best:
@@ -175,15 +177,18 @@ def _cam_side(params, road, x0, y0, fx, fy, top, best, reach):
 
 @nb.njit(cache=True, fastmath={"nsz", "arcp", "contract", "afn", "reassoc"})
 def cam_row(params, road, j, wy, x_first, pitch, count, top, out):
-    """Heights of ``count`` cams on one grid row (along grid x), into ``out[:count]``.
+    """Heights of ``count`` cams on one line along x, into ``out[:count]``.
 
-    The cams stand at ``x_first + i pitch`` (``pitch >= 0``) on the line
-    between grid rows j and j+1 (weight wy) of ``road``. Cam i rests at
+    The cams stand at ``x_first + i pitch`` (``pitch >= 0``) on the line of
+    row handle ``(j, wy)`` of the ground ``road``
+    (:func:`~tyrelab.road.terrain.terrain_row`; the grid: between node rows
+    j and j+1 at weight wy). Cam i rests at
 
         w_i = max over |x - x_i| <= cap of [h(x) - e(x - x_i)]
 
-    on the bilinear road (straight between x nodes, level beyond the grid),
-    with ``cap = params.cam_reach``. Three facts keep the work small, none
+    on the ground (straight between its break lines, level beyond the first
+    and last: :func:`~tyrelab.road.terrain.terrain_lines`), with ``cap =
+    params.cam_reach``. Three facts keep the work small, none
     changes the result:
 
     * a cam rests no further back than the cam behind it: for a convex
@@ -193,9 +198,9 @@ def cam_row(params, road, j, wy, x_first, pitch, count, top, out):
       point's height for cam i as its first lower bound;
     * only road within the distance where the contour has risen
       ``top - best`` can lift the cam (``top`` bounds the road of the row);
-    * when ``params.row_block_max`` is not empty it holds the road's maxima
-      over blocks of ``params.block_per`` x cells for each pair of grid rows
-      (:func:`~tyrelab.tyre.contact.shape.block_maxima`): a block whose
+    * when ``params.row_block_max`` is not empty it holds the ground's bounds
+      over blocks of ``params.block_per`` break lines for each row handle
+      (:meth:`~tyrelab.road.terrain.Ground.row_maxima`): a block whose
       maximum minus the contour's rise at its nearest point cannot beat the
       current height is stepped over unread.
 
@@ -203,18 +208,16 @@ def cam_row(params, road, j, wy, x_first, pitch, count, top, out):
     ``h(x) - e(x - x_i)`` on it peaks where the contour's slope equals the
     piece's (:func:`touch_point`), clipped to the piece.
     """
-    z = road.z
-    nx = z.shape[0]
+    g0, gd, ginv, nx = terrain_lines(road)
     drop, window, touch = params.cam_drop, params.cam_window, params.cam_touch
     ae, be, cap = params.cam_half_length, params.cam_half_height, params.cam_reach
     blocks = params.row_block_max
     has_blocks = blocks.shape[0] > 0
     per = params.block_per
-    g0, gd, ginv = road.x0, road.dx, road.inv_dx
     h_prev = t_prev = 0.0
     for i in range(count):
         xc = x_first + i * pitch
-        best = _x_height(road, xc, j, wy)  # the road under the centre
+        best = terrain_row_height(road, j, wy, xc)  # the road under the centre
         xt = xc
         ht = best  # height of the road point the cam rests on
         if i > 0:
@@ -229,7 +232,7 @@ def cam_row(params, road, j, wy, x_first, pitch, count, top, out):
         k = int(math.floor((left - g0) * ginv))
         k = min(max(k, 0), nx - 2)
         xa = g0 + k * gd
-        ha = z[k, j] * (1.0 - wy) + z[k, j + 1] * wy
+        ha = terrain_line_height(road, j, wy, k)
         ea = -1.0  # e at xa, computed when needed
         if ha > best:
             ea = table_drop(drop, ae, xa - xc)
@@ -252,11 +255,11 @@ def cam_row(params, road, j, wy, x_first, pitch, count, top, out):
                     # nothing on pieces k .. k_test - 1 can lift the cam
                     k = k_test
                     xa = xe
-                    ha = z[k, j] * (1.0 - wy) + z[k, j + 1] * wy
+                    ha = terrain_line_height(road, j, wy, k)
                     ea = -1.0  # not computed
                     continue
             xb = g0 + (k + 1) * gd
-            hb = z[k + 1, j] * (1.0 - wy) + z[k + 1, j + 1] * wy
+            hb = terrain_line_height(road, j, wy, k + 1)
             eb = -1.0
             if max(ha, hb) > best:  # else nothing on this piece can lift the cam (e >= 0)
                 eb = table_drop(drop, ae, xb - xc)
@@ -299,14 +302,14 @@ def cam_height(params, road, x0, y0, fx, fy, zmax):
     (fx, fy). Only road within the distance where the contour has risen
     ``zmax - w`` can lift it (``zmax`` bounds the road around), so the walks
     outwards, ahead and behind, shrink as w grows; ``params.cam_reach``
-    limits them further (MF-Swift ELLIPS_MAX_STEP). Along grid x (the rigs)
-    the cam is searched exactly on the grid row (:func:`cam_row`, with the
-    road's block maxima when the record has them); otherwise the road is
+    limits them further (MF-Swift ELLIPS_MAX_STEP). Along x (the rigs) the
+    cam is searched exactly on the ground's row (:func:`cam_row`, with the
+    ground's block bounds when the record has them); otherwise the road is
     sampled every ``params.step`` and each straight piece between samples
     searched exactly.
     """
-    if abs(fy) < 0.01:  # along grid x: one grid row (the small drift of y is ignored)
-        j, wy = grid_row(road, y0)
+    if abs(fy) < 0.01:  # along x: one row (the small drift of y is ignored)
+        j, wy = terrain_row(road, y0)
         out = np.empty(1)
         # one cam; np.int64, not the literal 1, so that cam_row compiles once for both callers
         cam_row(params, road, j, wy, x0, 0.0, np.int64(1), zmax, out)

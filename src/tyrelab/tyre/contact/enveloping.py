@@ -82,89 +82,15 @@ import numpy as np
 
 from ...core.vec3 import unit, wheel_axes
 from ...errors import InputError
-from ...road.grid import local_zmax, road_height
-from ..model import TyreModel, contact_geometry_table, positions_table, wheel_positions
+from ...road.terrain import terrain_range, terrain_zmax
+from ..model import PO, TyreModel, contact_geometry_table, positions_table, wheel_positions
 from ..registry import ContactModel, register_contact
 from ..wheel import ContactGeometry, WheelPose
-from .cams import (cam_height, cam_row, cam_tables, half_length, half_width, length_law, patch_key,
-                   slope_support, width_law)
-from .shape import block_maxima, grid_row, row_block_max
+from .cams import cam_tables, half_length, half_width, length_law, patch_key, width_law
+from .enveloping_params import (_DATA, _OTHER_OPTIONS, _USER_OPTIONS, BLOCK, CAM_LAYOUTS,
+                                MIN_PATCH_DEFLECTION, EnvelopingParams)
+from .enveloping_plane import cam_plane
 from .volume import DEFAULT_STEP, no_contact, plane_contact
-
-#: length of the road blocks whose maxima let cams skip road they cannot touch [m]
-BLOCK = 0.05
-#: default floor of the deflection that sizes the patch, a fraction of R0 (module docstring)
-MIN_PATCH_DEFLECTION = 0.015
-_OTHER_OPTIONS = ("discs",)
-#: the options a user sets, by type (tyrelab.tyre.registry.check_options)
-_USER_OPTIONS = {"n_length": int, "n_width": int, "width_table": bool, "step": float,
-                 "min_patch_deflection": float}
-#: what the model must be given, measured (thesis chapter 4)
-_DATA = ("load-deflection curve + contact-patch length and width vs load (footprints) + cam "
-         "(ellipse) parameters from cleat tests")
-#: which cams make the effective plane: the whole grid, or only those on the patch's outline
-CAM_LAYOUTS = ("grid", "outline")
-
-
-class EnvelopingParams(NamedTuple):
-    """Parameters of the enveloping (tandem cams) contact model.
-
-    Built by :func:`enveloping_params`; lengths in metres.
-
-    * ``unloaded_radius`` R0, ``width`` the tyre width W;
-    * ``length_law``: 0 eq. 2.3 (``length_c1, length_c2`` = PA1, PA2), 1
-      MF-Swift (= Q_RA1, Q_RA2);
-    * ``width_law``: 0 eq. 2.4 (``width_c1..3`` = PB1-PB3), 1 MF-Swift
-      (= Q_RB1, Q_RB2, 0), 2 the table ``width_table``; the half width is
-      clipped to ``max_half_width`` (W / 2);
-    * ``cam_half_length`` a_e = PAE R0, ``cam_half_height`` b_e = PBE R0,
-      ``cam_exponent`` PCE (eq. 2.5); ``base_length_factor`` PLS (eq. 2.6);
-    * ``n_width`` x ``n_length`` cams; ``min_patch_deflection``: the patch
-      is sized at no less than this deflection;
-    * ``cam_reach``: how far from its centre a cam looks (a_e, less with
-      ELLIPS_MAX_STEP); ``step``: sampling step along cam lines not aligned
-      with the grid;
-    * ``profile_road``: the road does not vary across (every grid column
-      alike), so every row of cams sees the same road;
-    * ``cam_drop``, ``cam_window``, ``cam_touch``: the cam's tables
-      (:func:`tyrelab.tyre.contact.cams.cam_tables`);
-    * ``width_table``: (deflection, half width) rows, shape (rows, 2), empty
-      unless ``width_law`` is 2;
-    * ``block_per``: x cells per road block, ``row_block_max``: the road's
-      maxima per block and pair of grid rows, shape (blocks, ny - 1)
-      (:func:`tyrelab.tyre.contact.shape.block_maxima`), empty for a road of
-      two x nodes;
-    * ``outline_only``: only the cams on the patch's outline enter the plane
-      (:mod:`.enveloping_edge`); False: every cam.
-    """
-
-    unloaded_radius: float
-    width: float
-    min_patch_deflection: float
-    length_law: int
-    length_c1: float
-    length_c2: float
-    width_law: int
-    width_c1: float
-    width_c2: float
-    width_c3: float
-    max_half_width: float
-    cam_half_length: float
-    cam_half_height: float
-    cam_exponent: float
-    base_length_factor: float
-    n_width: int
-    n_length: int
-    cam_reach: float
-    step: float
-    profile_road: bool
-    cam_drop: np.ndarray
-    cam_window: np.ndarray
-    cam_touch: np.ndarray
-    width_table: np.ndarray
-    block_per: int
-    row_block_max: np.ndarray
-    outline_only: bool = False
 
 
 class EffectiveRoad(NamedTuple):
@@ -199,13 +125,15 @@ def enveloping_params(tyre, grid, width_table=None, n_width=None, n_length=None,
     tyre : Tyre
         ``[CONTACT_PATCH]`` keys as in the module docstring.
     grid : RoadGrid
+        The ground (:class:`~tyrelab.road.terrain.Ground`): its block bounds per row
+        and whether it varies across are kept in the record.
     width_table : bool, optional
         True: use the ``[CONTACT_WIDTH_CURVE]`` table (error if absent);
         False: use the formula; None (default): the table when present.
     n_width, n_length : int, optional
         Override the number of cams.
     step : float
-        Sampling step [m] along cam rows not aligned with the grid.
+        Sampling step [m] along cam rows that do not run along x.
     min_patch_deflection : float, optional
         The patch is sized at no less than this deflection [m] (default
         :data:`MIN_PATCH_DEFLECTION` R0; 0 lets it shrink to a point, see the
@@ -249,12 +177,7 @@ def enveloping_params(tyre, grid, width_table=None, n_width=None, n_length=None,
     if wtable is None:
         wtable = np.zeros((0, 2))
     wtable = np.ascontiguousarray(wtable, np.float64)
-    z = grid.z
-    per = max(1, int(round(BLOCK / grid.dx)))
-    if z.shape[0] > 2:  # block maxima per pair of grid rows
-        maxima = block_maxima(z, per)
-    else:
-        maxima = np.zeros((0, z.shape[1] - 1))
+    per, maxima = grid.row_maxima(BLOCK)  # the ground's bounds per block and row
     return EnvelopingParams(
         unloaded_radius=r0, width=w0, min_patch_deflection=rho_min, length_law=int(lmode),
         length_c1=float(a1), length_c2=float(a2), width_law=int(wmode), width_c1=float(b1),
@@ -262,7 +185,7 @@ def enveloping_params(tyre, grid, width_table=None, n_width=None, n_length=None,
         cam_half_height=float(be), cam_exponent=float(ce), base_length_factor=float(pls),
         n_width=nw, n_length=nl, cam_reach=float(cap), step=float(step),
         # a 2D road: every row of cams sees the same road
-        profile_road=bool(np.all(z == z[:, :1])),
+        profile_road=grid.uniform_across(),
         cam_drop=drop, cam_window=window, cam_touch=touch, width_table=wtable,
         block_per=per, row_block_max=maxima, outline_only=cam_layout == "outline")
 
@@ -273,103 +196,11 @@ def contact_patch(params: EnvelopingParams, deflection: float):
     return half_length(params, float(deflection)), half_width(params, float(deflection))
 
 
-@nb.njit(cache=True, forceinline=True)
-def cam_plane(params, road, cx, cy, cz, fx, fy, dx, dy, cosg, zmax):
-    """The cams' least-squares effective plane under a wheel centre (cx, cy, cz).
-
-    ``(fx, fy)`` the horizontal heading, ``(dx, dy)`` the horizontal part of
-    the in-plane down vector, ``cosg`` minus its vertical part (the cosine of the
-    wheel plane's tilt), ``zmax`` a bound of the road within reach. Returns
-    ``(px, py, height, slope, camber, curvature, a, b)``: the patch centre,
-    the plane's height there, its slopes along the heading and across (to
-    the left), the curvature of the quadratic fit along the heading [1/m]
-    (0 when the cams cannot fit one) and the half length and half width the
-    cams were spread over.
-    """
-    r0 = params.unloaded_radius
-    cap = params.cam_reach
-    has_blocks = params.row_block_max.shape[0] > 0
-    lever = (cz - road_height(road, cx, cy)) / cosg
-    px = cx + dx * lever  # contact patch centre: the wheel plane's trace on the road
-    py = cy + dy * lever
-    lx, ly = -fy, fx  # horizontal, to the left of the heading
-    # along grid x (the rigs), a row of cams lies on one grid row (the drift of y along
-    # the heading, u fy, is ignored) and is searched row-wise: see cams.cam_row
-    aligned = abs(fy) < 0.01
-    nl, nw = params.n_length, params.n_width
-    same_rows = params.profile_road and aligned  # a 2D profile: every row sees the same road
-    rows = 1 if same_rows else nw
-    mult = float(nw) if same_rows else 1.0
-    # one cam under the centre: its height sizes the patch, never below the floor (a
-    # patch of no length has no slope: the plane would jump; module docstring)
-    w = cam_height(params, road, px, py, fx, fy, zmax)
-    rho0 = max(r0 - (cz - w) / cosg, params.min_patch_deflection)
-    a = half_length(params, rho0)
-    b = half_width(params, rho0)
-    ls = 2.0 * params.base_length_factor * a  # eq. 2.6
-    du = ls / (nl - 1) if nl > 1 else 0.0
-    dv = 2.0 * b / (nw - 1) if nw > 1 else 0.0
-    u_first = -0.5 * ls if nl > 1 else 0.0
-    v_first = -b if nw > 1 else 0.0
-    sw = suw = svw = suu = svv = su2w = su4 = 0.0
-    w_row = np.empty(nl)  # heights of one row's cams, in grid-x order
-    outline = params.outline_only
-    count = float(nl * nw)
-    if outline:  # two whole outer rows, the first and last cam of each row between
-        count = float(min(nw, 2) * nl + max(nw - 2, 0) * min(nl, 2))
-    for jr in range(rows):
-        v = 0.0 if same_rows else v_first + jr * dv
-        outer_row = jr == 0 or jr == nw - 1
-        if aligned:
-            j, wy = grid_row(road, py + v * ly)
-            x_a = px + u_first * fx + v * lx  # first and last cam of the row
-            x_b = x_a + (nl - 1) * du * fx
-            x_lo, x_hi = min(x_a, x_b), max(x_a, x_b)
-            top = row_block_max(params, road, j, x_lo - cap, x_hi + cap) if has_blocks else zmax
-            cam_row(params, road, j, wy, x_lo, du * abs(fx), nl, top, w_row)
-        for i in range(nl):
-            u = u_first + i * du
-            weight = mult
-            if outline:  # the rows this cam stands for whose cam i lies on the outline
-                end = i == 0 or i == nl - 1
-                if same_rows:
-                    weight = float(nw) if end else float(min(nw, 2))
-                elif not (end or outer_row):
-                    continue  # inside the patch: not evaluated (thesis 5.4)
-            if aligned:
-                w = w_row[i] if fx > 0.0 else w_row[nl - 1 - i]
-            else:
-                w = cam_height(params, road, px + u * fx + v * lx, py + u * fy + v * ly, fx, fy,
-                               zmax)
-            sw += weight * w
-            suw += weight * u * w
-            svw += weight * v * w
-            suu += weight * u * u
-            svv += weight * v * v
-            su2w += weight * u * u * w
-            su4 += weight * u * u * u * u
-    if same_rows:  # the rows' spread, for completeness of the sums (no tilt across)
-        svv = 0.0
-        for jr in range(nw):
-            v = v_first + jr * dv
-            in_row = nl if not outline or jr == 0 or jr == nw - 1 else min(nl, 2)
-            svv += in_row * v * v
-    su = suw / suu if suu > 0.0 else 0.0  # forward slope
-    sv = svw / svv if svv > 0.0 and not same_rows else 0.0  # road camber
-    mean_u2 = suu / count
-    den = su4 - count * mean_u2 * mean_u2
-    curvature = 0.0
-    if den > 1e-30:
-        curvature = 2.0 * (su2w - mean_u2 * sw) / den  # curvature of the quadratic fit along u
-    w0 = sw / count - slope_support(params, su)
-    return px, py, w0, su, sv, curvature, a, b
-
-
 @nb.njit(cache=True, inline="always")
 def enveloping_contact(params, road, pose):
     """Deflection, contact point and effective-plane normal from the cams.
 
-    ``params`` an :class:`EnvelopingParams`, ``road`` a RoadSurface, ``pose`` a
+    ``params`` an :class:`EnvelopingParams`, ``road`` a terrain record, ``pose`` a
     WheelPose (only its centre and spin axis are used). Returns a
     :class:`ContactGeometry` as :func:`tyrelab.tyre.contact.point.point_contact`,
     on the cams' effective plane, with the effective road curvature [1/m].
@@ -382,11 +213,12 @@ def enveloping_contact(params, road, pose):
     if cosg < 1e-3:
         return no_contact(r0, cx, cy, cz, 1.0)
     reach = (r0 + params.cam_half_length) * abs(fx) + params.max_half_width * abs(fy) + 1e-9
-    zmax = local_zmax(road, cx - reach, cx + reach)
+    zmax = terrain_zmax(road, cx - reach, cx + reach)
     if (cz - zmax) * cosg >= r0:
         return no_contact(r0, cx, cy, cz, (cz - zmax) * cosg - r0)
-    if road.zmax == road.zmin:  # one level plane everywhere
-        return plane_contact(r0, cx, cy, cz, ax, ay, az, cx, cy, road.zmin, 0.0, 0.0, 1.0, 0.0)
+    zlo, zhi = terrain_range(road)
+    if zhi == zlo:  # one level plane everywhere
+        return plane_contact(r0, cx, cy, cz, ax, ay, az, cx, cy, zlo, 0.0, 0.0, 1.0, 0.0)
     px, py, w0, su, sv, curvature, _, _ = cam_plane(params, road, cx, cy, cz, fx, fy, dx, dy,
                                                     cosg, zmax)
     lx, ly = -fy, fx
@@ -411,12 +243,13 @@ def effective_road_at(params, road, pose):
     cosg = -dz
     if cosg < 1e-3:
         return EffectiveRoad(math.nan, math.nan, math.nan, math.nan, deflection, 0.0, 0.0)
-    if road.zmax == road.zmin:
-        rho0 = max(r0 - (cz - road.zmin) / cosg, params.min_patch_deflection)
-        return EffectiveRoad(road.zmin, 0.0, 0.0, 0.0, deflection, half_length(params, rho0),
+    zlo, zhi = terrain_range(road)
+    if zhi == zlo:
+        rho0 = max(r0 - (cz - zlo) / cosg, params.min_patch_deflection)
+        return EffectiveRoad(zlo, 0.0, 0.0, 0.0, deflection, half_length(params, rho0),
                              half_width(params, rho0))
     reach = (r0 + params.cam_half_length) * abs(fx) + params.max_half_width * abs(fy) + 1e-9
-    zmax = local_zmax(road, cx - reach, cx + reach)
+    zmax = terrain_zmax(road, cx - reach, cx + reach)
     _, _, w0, su, sv, curvature, a, b = cam_plane(params, road, cx, cy, cz, fx, fy, dx, dy,
                                                   cosg, zmax)
     return EffectiveRoad(w0, su, sv, curvature, deflection, a, b)
@@ -428,10 +261,10 @@ N_EFFECTIVE = len(EffectiveRoad._fields)
 
 @nb.njit(cache=True)
 def _effective_many(params, road, poses, out):
-    for k in range(poses.shape[0]):
+    for k in range(poses.shape[0]):  # rows of wheel_positions: centre and spin axis (PO)
         p = poses[k]
-        e = effective_road_at(params, road, WheelPose(p[0], p[1], p[2], p[3], p[4], p[5],
-                                                      0.0, 0.0, 0.0, 0.0))
+        e = effective_road_at(params, road, WheelPose(p[PO.CX], p[PO.CY], p[PO.CZ], p[PO.AX],
+                                                      p[PO.AY], p[PO.AZ], 0.0, 0.0, 0.0, 0.0))
         for j in range(N_EFFECTIVE):
             out[k, j] = e[j]
 

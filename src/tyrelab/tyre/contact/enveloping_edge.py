@@ -25,7 +25,8 @@ from __future__ import annotations
 
 from ...errors import InputError
 from ..registry import ContactModel, register_contact
-from .enveloping import _DATA, _USER_OPTIONS, EnvelopingParams, enveloping_contact, enveloping_params
+from .enveloping import enveloping_contact, enveloping_params
+from .enveloping_params import _DATA, _USER_OPTIONS, EnvelopingParams
 
 
 def edge_params(tyre, grid, **options) -> EnvelopingParams:

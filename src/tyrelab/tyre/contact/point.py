@@ -28,7 +28,8 @@ from typing import NamedTuple
 import numba as nb
 
 from ...core.vec3 import unit, wheel_axes
-from ...road.grid import local_zmax, road_height
+from ...road.terrain import (terrain_block_max, terrain_blocks, terrain_height, terrain_lines,
+                             terrain_zmax)
 from ..model import TyreModel, contact_geometry_table
 from ..registry import ContactModel, register_contact
 from ..wheel import ContactGeometry
@@ -38,7 +39,7 @@ class PointParams(NamedTuple):
     """Parameters of the one-point contact model.
 
     ``unloaded_radius`` R0 [m]; ``step`` [m] the sampling step along road
-    sections not aligned with the grid (the grid spacing).
+    sections that do not run along x (the ground's finest spacing).
     """
 
     unloaded_radius: float
@@ -51,8 +52,7 @@ def point_params(tyre, grid, **options) -> PointParams:
     if options:
         raise InputError(f"unknown point-model option(s) {', '.join(sorted(options))}; "
                          "the point model takes none", field="options")
-    step = min(grid.dx, grid.dy if grid.z.shape[1] > 2 else grid.dx)
-    return PointParams(float(tyre.unloaded_radius), max(step, 1e-4))
+    return PointParams(float(tyre.unloaded_radius), max(grid.sampling_step(), 1e-4))
 
 
 @nb.njit(cache=True, inline="always")
@@ -82,7 +82,7 @@ def _nearer(s0, q0, s1, q1, bs, bq, best):
 @nb.njit(cache=True, inline="always")
 def _depth(road, cx, cy, cz, fx, fy, dz, hx, hy, base_q, s):
     """Depth below the centre, along the in-plane down vector, of the section at s."""
-    return base_q + (road_height(road, cx + s * fx + hx, cy + s * fy + hy) - cz) * dz
+    return base_q + (terrain_height(road, cx + s * fx + hx, cy + s * fy + hy) - cz) * dz
 
 
 @nb.njit(cache=True)
@@ -90,24 +90,26 @@ def _scan(road, cx, cy, cz, fx, fy, dz, hx, hy, base_q, sa, sb, step, bs, bq, be
     """Nearest point to the centre on the section between s = sa and sb.
 
     When the wheel heads along x (the rigs drive along x) the section is
-    sampled exactly where it crosses the grid's x nodes: between them the
-    bilinear road is linear along the section, so the piecewise-linear
+    sampled exactly where it crosses the ground's break lines
+    (:func:`~tyrelab.road.terrain.terrain_lines`, the grid's x nodes): between
+    them the ground is linear along the section, so the piecewise-linear
     section is exact and a sharp edge stays a sharp corner. Otherwise the
     section is sampled every ``step``.
     """
     s0 = sa
     q0 = _depth(road, cx, cy, cz, fx, fy, dz, hx, hy, base_q, s0)
     if abs(fx) > 0.9:
-        # node coordinates of the two ends, walked in the direction of s
-        u0 = (cx + sa * fx - road.x0) * road.inv_dx
-        u1 = (cx + sb * fx - road.x0) * road.inv_dx
+        # line coordinates of the two ends, walked in the direction of s
+        line0, spacing, inv_spacing, _ = terrain_lines(road)
+        u0 = (cx + sa * fx - line0) * inv_spacing
+        u1 = (cx + sb * fx - line0) * inv_spacing
         k_first = int(math.floor(u0)) + 1 if u1 > u0 else int(math.ceil(u0)) - 1
         k_last = int(math.ceil(u1)) - 1 if u1 > u0 else int(math.floor(u1)) + 1
         direction = 1 if u1 > u0 else -1
         count = (k_last - k_first) * direction + 1
         for j in range(count + 1):
             if j < count:
-                xk = road.x0 + (k_first + j * direction) * road.dx
+                xk = line0 + (k_first + j * direction) * spacing
                 s1 = (xk - cx) / fx
             else:
                 s1 = sb
@@ -133,12 +135,12 @@ def _scan(road, cx, cy, cz, fx, fy, dz, hx, hy, base_q, sa, sb, step, bs, bq, be
 
 @nb.njit(cache=True)
 def point_contact(params, road, pose):
-    """Contact geometry of a rigid disc on a gridded road.
+    """Contact geometry of a rigid disc on the ground.
 
     Parameters
     ----------
     params : PointParams
-    road : RoadSurface
+    road : a terrain record (:mod:`tyrelab.road.terrain`; the grid's RoadSurface)
     pose : WheelPose
         Only the centre and the spin axis are used.
 
@@ -154,33 +156,30 @@ def point_contact(params, road, pose):
     fx, fy, fz, dx, dy, dz = wheel_axes(pose.ax, pose.ay, pose.az)
     cosg = -dz  # cosine of the wheel plane's tilt from vertical
     reach = r0 * abs(fx) + 1e-9
-    zmax = local_zmax(road, cx - reach, cx + reach)
+    zmax = terrain_zmax(road, cx - reach, cx + reach)
     q_top = (cz - zmax) * cosg
     if q_top >= r0:  # even the highest road point is out of reach
         return ContactGeometry(r0 - q_top, cx, cy, cz - r0, 0.0, 0.0, 1.0, 0.0)
     half = math.sqrt(r0 * r0 - q_top * q_top)
     # lateral shift of the section's ground trace for a cambered wheel
-    lever = (cz - road_height(road, cx, cy)) / cosg
+    lever = (cz - terrain_height(road, cx, cy)) / cosg
     hx = dx * lever
     hy = dy * lever
     base_q = lever * (dx * dx + dy * dy)
-    # Scan the section block by block (blocks of the road's block maxima),
-    # nearest blocks first; a block is skipped when even its highest point,
-    # placed at its nearest s, is farther from the centre than the best
-    # point found so far. The section is sampled at grid resolution and
-    # treated as piecewise linear, which it is for a bilinear road driven
-    # along a grid axis.
+    # Scan the section block by block (the ground's bound blocks,
+    # terrain_blocks), nearest blocks first; a block is skipped when even its
+    # highest point, placed at its nearest s, is farther from the centre than
+    # the best point found so far. The section is sampled at the ground's
+    # break lines and treated as piecewise linear, which it is for a ground
+    # driven along x.
     best = 1e300
     bs = 0.0
     bq = 0.0
-    blocks = road.block_max
-    nblk = blocks.shape[0]
+    bx0, bdx, nblk = terrain_blocks(road)
     if nblk == 0 or abs(fx) < 0.9:
         bs, bq, best = _scan(road, cx, cy, cz, fx, fy, dz, hx, hy, base_q, -half, half, step,
                              bs, bq, best)
     else:
-        bx0 = road.block_x0
-        bdx = road.block_dx
         sgn = 1.0 if fx > 0.0 else -1.0
         # the block holding the centre, then alternately outwards
         ic = int(math.floor((cx - bx0) / bdx))
@@ -201,10 +200,7 @@ def point_contact(params, road, pose):
                 sa = -half
             if sb > half:
                 sb = half
-            jb = ib if ib >= 0 else 0
-            if jb > nblk - 1:
-                jb = nblk - 1
-            q_lo = (cz - blocks[jb]) * cosg
+            q_lo = (cz - terrain_block_max(road, ib)) * cosg
             s_lo = 0.0 if sa <= 0.0 <= sb else min(abs(sa), abs(sb))
             lb = s_lo * s_lo + (q_lo * q_lo if q_lo > 0.0 else 0.0)
             if lb >= best:

@@ -7,25 +7,27 @@ resampled to the same number of equally spaced ones; the intervals between
 them are the discs of the equivalent volume model, whose widths add up to
 the tyre width. Without a table the section is square (all radii R0).
 
-The compiled part intersects one disc with the road (a
-:class:`~tyrelab.road.grid.RoadSurface`): the road's section in the disc
-plane is walked as straight pieces (exact for a bilinear grid driven along
-x), each piece is clipped to the disc's circle in closed form, and the area
-and first moments of the region inside the disc and below the road are
-integrated exactly (:func:`disc_intersection`). The grid-row queries of
-the enveloping model's cams live here too (:func:`grid_row`, the road's
-maxima per block of a row: :func:`block_maxima`, :func:`row_block_max`).
+The compiled part intersects one disc with the ground, through the terrain
+interface only (:mod:`tyrelab.road.terrain`): the ground's section in the
+disc plane is walked as straight pieces (exact between the ground's break
+lines when driven along x: :func:`section_walk`, shared with the enveloping
+model's cams), each piece is clipped to the disc's circle in closed form, and
+the area and first moments of the region inside the disc and below the ground
+are integrated exactly (:func:`disc_intersection`).
 """
 
 from __future__ import annotations
 
 import math
+from typing import NamedTuple
 
 import numba as nb
 import numpy as np
 
 from ...errors import InputError
-from ...road.grid import road_height
+from ...road.terrain import profile_breaks  # noqa: F401  (its callers import it from here)
+from ...road.terrain import (terrain_height, terrain_line_height, terrain_lines, terrain_row,
+                             terrain_row_height)
 
 
 #: discs per half width for a square section (no [SHAPE] table)
@@ -97,31 +99,6 @@ def carcass_discs(tyre, discs_per_half: int | None = None):
     radii = np.r_[ratio[::-1], ratio] * r0
     widths = np.full(2 * n, half / n)
     return offsets, radii, widths
-
-
-def profile_breaks(z: np.ndarray) -> np.ndarray | None:
-    """For a road that does not vary across (all grid columns equal): for every
-    x node ``i``, the next node ``k > i`` where the profile's slope changes
-    (or the last node). Between ``i`` and ``k`` the road is one straight line.
-    None when the road varies across.
-
-    Returns
-    -------
-    ndarray of int64, shape (nx,) or None
-        The next kink's node index for every x node.
-    """
-    if not np.all(z == z[:, :1]):
-        return None
-    h = z[:, 0]
-    nx = h.size
-    slope = np.diff(h)
-    kink = np.zeros(nx, bool)
-    kink[-1] = True
-    if nx > 2:
-        kink[1:-1] = np.abs(np.diff(slope)) > 1e-12
-    kinks = np.flatnonzero(kink)
-    nxt = kinks[np.searchsorted(kinks, np.arange(nx), side="right").clip(max=kinks.size - 1)]
-    return nxt.astype(np.int64)
 
 
 # --- one disc against one straight piece of road ------------------------------
@@ -219,120 +196,62 @@ def segment_depth(area, r):
 
 # --- the road's section along a line, as maximal straight pieces ------------------
 
-@nb.njit(cache=True, inline="always")
-def _row_height(z, i, j, wy):
-    """Height at x node i on the line between y nodes j and j+1 (weight wy)."""
-    return z[i, j] * (1.0 - wy) + z[i, j + 1] * wy
+class SectionWalk(NamedTuple):
+    """A walk along a section of the ground (:func:`section_walk`).
 
-
-@nb.njit(cache=True, inline="always")
-def _x_height(road, x, j, wy):
-    """Height at any x on a grid row line (edge continuation outside the grid)."""
-    z = road.z
-    u = (x - road.x0) * road.inv_dx
-    nx = z.shape[0]
-    if u <= 0.0:
-        return _row_height(z, 0, j, wy)
-    if u >= nx - 1:
-        return _row_height(z, nx - 1, j, wy)
-    i = min(int(u), nx - 2)
-    t = u - i
-    return _row_height(z, i, j, wy) * (1.0 - t) + _row_height(z, i + 1, j, wy) * t
-
-
-def block_maxima(z: np.ndarray, per: int) -> np.ndarray:
-    """Maxima of the road over blocks of ``per`` x cells, for each pair of grid rows.
-
-    Block b spans x nodes ``b per .. (b+1) per`` (both ends: a cell between two
-    nodes lies in one block) and rows j, j+1, so it bounds the bilinear road
-    on any line between those rows. Shape ``(n_blocks, ny - 1)``.
+    ``aligned``: the line runs along x and the samples are the ground's break
+    lines on the row handle ``(row, weight)``; sample k lies at ``s = a + k b``,
+    k from ``k`` to ``k_end`` in steps of ``kdir``; ``h_a``, ``h_b`` the
+    heights at the walk's ends.
     """
-    nx = z.shape[0]
-    pair = np.maximum(z[:, :-1], z[:, 1:])
-    n_blocks = -(-(nx - 1) // per)
-    ends = np.minimum(np.arange(1, n_blocks + 1) * per, nx - 1)
-    out = np.maximum.reduceat(pair, np.arange(n_blocks) * per, axis=0)
-    return np.ascontiguousarray(np.maximum(out, pair[ends]), np.float64)
 
-
-@nb.njit(cache=True, inline="always")
-def grid_row(road, y):
-    """``(j, wy)``: the road at y lies between grid rows j and j+1, weight wy (clamped)."""
-    jf = (y - road.y0) * road.inv_dy
-    ny = road.z.shape[1]
-    if jf >= ny - 1:
-        return ny - 2, 1.0
-    if jf > 0.0:
-        j = min(int(jf), ny - 2)
-        return j, jf - j
-    return 0, 0.0
-
-
-@nb.njit(cache=True, inline="always")
-def row_block_max(params, road, j, xa, xb):
-    """An upper bound of the road on grid row j between x = xa and xb: the largest
-    block maximum (:func:`block_maxima`) over the blocks that cover it.
-
-    Only for a record whose ``row_block_max`` is not empty.
-    """
-    nx = road.z.shape[0]
-    blocks = params.row_block_max
-    per = params.block_per
-    k_lo = min(max(int(math.floor((min(xa, xb) - road.x0) * road.inv_dx)), 0), nx - 1)
-    k_hi = min(max(int(math.ceil((max(xa, xb) - road.x0) * road.inv_dx)), 0), nx - 1)
-    n_blocks = blocks.shape[0]
-    top = -1e300
-    for b in range(max((k_lo - 1) // per, 0), min(k_hi // per, n_blocks - 1) + 1):
-        h = blocks[b, j]
-        if h > top:
-            top = h
-    return top
+    aligned: bool
+    row: int
+    weight: float
+    a: float
+    b: float
+    k: int
+    k_end: int
+    kdir: int
+    h_a: float
+    h_b: float
 
 
 @nb.njit(cache=True, inline="always")
 def section_walk(road, x0, y0, fx, fy, sa, sb, step):
     """Set up a walk along the line (x0, y0) + s (fx, fy), s from sa to sb.
 
-    ``road`` is a :class:`~tyrelab.road.grid.RoadSurface`. Returns ``walk =
-    (aligned, j, wy, a, b, k, k_end, kdir, h_a, h_b)``. When the line runs
-    along x (|fy| < 0.01; the rigs drive along x) the samples are the grid's
-    x nodes strictly inside (sa, sb), at ``s = a + k b``, on the row y0
-    (exact: the bilinear road is linear between nodes; the small drift of y
-    along the line is ignored); otherwise samples every ``step``. ``h_a``,
-    ``h_b``: heights at the ends.
+    ``road`` is a terrain record (:mod:`tyrelab.road.terrain`). Returns a
+    :class:`SectionWalk`. When the line runs along x (|fy| < 0.01; the rigs
+    drive along x) the samples are the ground's break lines
+    (:func:`~tyrelab.road.terrain.terrain_lines`) strictly inside (sa, sb) on
+    the row of y0 (exact: the ground is linear between them; the small drift
+    of y along the line is ignored); otherwise samples every ``step``.
     """
-    z = road.z
     if abs(fy) < 0.01:
-        jf = (y0 - road.y0) * road.inv_dy
-        ny = z.shape[1]
-        if jf <= 0.0:
-            j, wy = 0, 0.0
-        elif jf >= ny - 1:
-            j, wy = ny - 2, 1.0
-        else:
-            j = min(int(jf), ny - 2)
-            wy = jf - j
-        nx = z.shape[0]
-        u0 = (x0 + sa * fx - road.x0) * road.inv_dx
-        u1 = (x0 + sb * fx - road.x0) * road.inv_dx
+        j, wy = terrain_row(road, y0)
+        line0, spacing, inv_spacing, nx = terrain_lines(road)
+        u0 = (x0 + sa * fx - line0) * inv_spacing
+        u1 = (x0 + sb * fx - line0) * inv_spacing
         if fx > 0.0:
             k, k_end, kdir = max(int(math.floor(u0)) + 1, 0), min(int(math.ceil(u1)) - 1, nx - 1), 1
         else:
             k, k_end, kdir = min(int(math.ceil(u0)) - 1, nx - 1), max(int(math.floor(u1)) + 1, 0), -1
-        return (True, j, wy, (road.x0 - x0) / fx, road.dx / fx, k, k_end, kdir,
-                _x_height(road, x0 + sa * fx, j, wy), _x_height(road, x0 + sb * fx, j, wy))
+        return SectionWalk(True, j, wy, (line0 - x0) / fx, spacing / fx, k, k_end, kdir,
+                           terrain_row_height(road, j, wy, x0 + sa * fx),
+                           terrain_row_height(road, j, wy, x0 + sb * fx))
     n = max(int(math.ceil((sb - sa) / step)), 1)
-    return (False, 0, 0.0, sa, (sb - sa) / n, 1, n - 1, 1,
-            road_height(road, x0 + sa * fx, y0 + sa * fy),
-            road_height(road, x0 + sb * fx, y0 + sb * fy))
+    return SectionWalk(False, 0, 0.0, sa, (sb - sa) / n, 1, n - 1, 1,
+                       terrain_height(road, x0 + sa * fx, y0 + sa * fy),
+                       terrain_height(road, x0 + sb * fx, y0 + sb * fy))
 
 
 @nb.njit(cache=True, inline="always")
-def _height(road, aligned, j, wy, x0, y0, fx, fy, k, s):
-    if aligned:
-        z = road.z
-        return z[k, j] * (1.0 - wy) + z[k, j + 1] * wy
-    return road_height(road, x0 + s * fx, y0 + s * fy)
+def _height(road, walk, x0, y0, fx, fy, k, s):
+    """Height of the walk's sample k at s."""
+    if walk.aligned:
+        return terrain_line_height(road, walk.row, walk.weight, k)
+    return terrain_height(road, x0 + s * fx, y0 + s * fy)
 
 
 @nb.njit(cache=True, inline="always")
@@ -340,17 +259,17 @@ def road_piece(road, breaks, x0, y0, fx, fy, sb, walk, k, s0, h0):
     """The maximal straight piece of the section that starts at (s0, h0).
 
     Consecutive samples on one line are merged (a flat block top is one
-    piece); on 2D-profile roads (``breaks``, from :func:`profile_breaks`,
-    not empty) the walk jumps from kink to kink. Returns ``(s1, h1, k,
-    done)``: the piece's end, the index of the next unused sample and
-    whether the end ``sb`` was reached.
+    piece); on grounds uniform across (``breaks``, the ground's
+    :meth:`~tyrelab.road.terrain.Ground.profile_breaks`, not empty) the walk
+    jumps from kink to kink. Returns ``(s1, h1, k, done)``: the piece's end,
+    the index of the next unused sample and whether the end ``sb`` was reached.
     """
-    aligned, j, wy, a, b, _, k_end, kdir, _, h_b = walk
-    jump = aligned and breaks.shape[0] > 0 and kdir > 0
+    a, b, k_end, kdir, h_b = walk.a, walk.b, walk.k_end, walk.kdir, walk.h_b
+    jump = walk.aligned and breaks.shape[0] > 0 and kdir > 0
     if (k - k_end) * kdir > 0:
         return sb, h_b, k, True
     s1 = a + k * b
-    h1 = _height(road, aligned, j, wy, x0, y0, fx, fy, k, s1)
+    h1 = _height(road, walk, x0, y0, fx, fy, k, s1)
     m = (h1 - h0) / (s1 - s0)
     while True:
         if jump:
@@ -363,7 +282,7 @@ def road_piece(road, breaks, x0, y0, fx, fy, sb, walk, k, s0, h0):
                 return sb, h_b, k, True
             return s1, h1, k, False
         s2 = a + k * b
-        h2 = _height(road, aligned, j, wy, x0, y0, fx, fy, k, s2)
+        h2 = _height(road, walk, x0, y0, fx, fy, k, s2)
         if abs(h2 - (h1 + m * (s2 - s1))) > 1e-10:
             return s1, h1, k, False
         s1 = s2
@@ -374,10 +293,10 @@ def road_piece(road, breaks, x0, y0, fx, fy, sb, walk, k, s0, h0):
 def disc_intersection(road, breaks, step, r, xc, yc, zc, fx, fy, cosg, sa, sb):
     """Area and first moments of a disc's intersection with the road.
 
-    ``road`` is a :class:`~tyrelab.road.grid.RoadSurface`, ``breaks`` its
-    profile breakpoints (:func:`profile_breaks`; empty when the road varies
-    across), ``step`` the sampling step [m] along sections not aligned with
-    the grid. The disc (radius r, centre (xc, yc, zc)) lies in a plane with
+    ``road`` is a terrain record (:mod:`tyrelab.road.terrain`), ``breaks``
+    its profile breakpoints (:func:`~tyrelab.road.terrain.profile_breaks`;
+    empty when the ground varies across), ``step`` the sampling step [m]
+    along sections that do not run along x. The disc (radius r, centre (xc, yc, zc)) lies in a plane with
     horizontal forward direction (fx, fy); s runs along it, q is the depth
     below the centre measured in the plane, ``(zc - h) / cos(camber)``.
     Returns ``(A, Ms, Mq)``: the area of the region inside the disc and
@@ -393,11 +312,11 @@ def disc_intersection(road, breaks, step, r, xc, yc, zc, fx, fy, cosg, sa, sb):
     run_start = 0.0
     run_end = 0.0
     walk = section_walk(road, xc, yc, fx, fy, sa, sb, step)
-    k = walk[5]
+    k = walk.k
     inv_cosg = 1.0 / cosg
     sixth = 1.0 / 6.0
     s0 = sa
-    h0 = walk[8]
+    h0 = walk.h_a
     q0 = (zc - h0) * inv_cosg
     done = False
     while not done:

@@ -30,13 +30,15 @@ plane, so the effective plane is the road plane and the deflection is the
 one of a rigid disc (the point model's). The vertical law (eq. 2.2) then
 acts along the effective normal (:func:`tyrelab.tyre.wheel.analytic_wheel_step`).
 
-The road is bilinear on its grid; driven along a grid axis, each section is
-piecewise linear between grid nodes, and each piece is intersected with the
-disc's circle exactly (line-circle intersection, closed-form integrals), so
-no sampling error arises and a sharp edge stays sharp. Consecutive collinear
-pieces are merged, and for roads that do not vary across (2D profiles) the
-breakpoints of the profile are precomputed, so a flat road costs a few
-operations per disc.
+The model reads the ground through the terrain interface only
+(:mod:`tyrelab.road.terrain`). Driven along x, each section is piecewise
+linear between the ground's break lines (the grid's x nodes), and each piece
+is intersected with the disc's circle exactly (line-circle intersection,
+closed-form integrals), so no sampling error arises and a sharp edge stays
+sharp. Consecutive collinear pieces are merged, and for grounds that do not
+vary across (2D profiles) the breakpoints of the profile are precomputed
+(:meth:`~tyrelab.road.terrain.Ground.profile_breaks`), so a flat road costs
+a few operations per disc.
 """
 
 from __future__ import annotations
@@ -49,12 +51,11 @@ import numpy as np
 
 from ...core.vec3 import unit, wheel_axes
 from ...errors import InputError
-from ...road.grid import local_zmax, road_height
+from ...road.terrain import terrain_height, terrain_range, terrain_zmax
 from ..model import TyreModel, contact_geometry_table
 from ..registry import ContactModel, register_contact
 from ..wheel import ContactGeometry
-from .shape import (carcass_discs, disc_intersection, profile_breaks,
-                    segment_area, segment_depth)
+from .shape import carcass_discs, disc_intersection, segment_area, segment_depth
 
 #: default sampling step [m] along sections not aligned with the grid
 DEFAULT_STEP = 0.005
@@ -70,11 +71,10 @@ class VolumeParams(NamedTuple):
     ``disc_widths`` [m] the discs across the tyre
     (:func:`~tyrelab.tyre.contact.shape.carcass_discs`: centres along the
     spin axis from the wheel plane, symmetric and increasing, their radii and
-    widths); ``profile_breaks`` (int) for a road that does not vary across,
-    the next kink's x node for every x node
-    (:func:`~tyrelab.tyre.contact.shape.profile_breaks`), empty when the road
-    varies across; ``road_x_nodes`` the number of x nodes of the road grid
-    the record was built for.
+    widths); ``profile_breaks`` (int) for a ground that does not vary across,
+    the next kink's break line for every break line
+    (:meth:`~tyrelab.road.terrain.Ground.profile_breaks`), empty when the
+    ground varies across.
     """
 
     unloaded_radius: float
@@ -83,7 +83,6 @@ class VolumeParams(NamedTuple):
     disc_radii: np.ndarray
     disc_widths: np.ndarray
     profile_breaks: np.ndarray
-    road_x_nodes: int
 
 
 def volume_params(tyre, grid, discs=None, step=DEFAULT_STEP, **options) -> VolumeParams:
@@ -94,7 +93,7 @@ def volume_params(tyre, grid, discs=None, step=DEFAULT_STEP, **options) -> Volum
     tyre : Tyre
         Radius, width and carcass shape (``[SHAPE]``, Table 4-1).
     grid : RoadGrid
-        The road the tyre will run on.
+        The ground the tyre will run on (:class:`~tyrelab.road.terrain.Ground`).
     discs : int, optional
         Discs per half width (default: from the shape table, see
         :func:`~tyrelab.tyre.contact.shape.carcass_discs`).
@@ -116,7 +115,7 @@ def volume_params(tyre, grid, discs=None, step=DEFAULT_STEP, **options) -> Volum
     if not (step > 0):
         raise InputError(f"sampling step must be positive, got {step}", field="step")
     offsets, radii, widths = carcass_discs(tyre, discs)
-    breaks = profile_breaks(grid.z)
+    breaks = grid.profile_breaks()
     if breaks is None:
         breaks = np.zeros(0, np.int64)
 
@@ -124,8 +123,7 @@ def volume_params(tyre, grid, discs=None, step=DEFAULT_STEP, **options) -> Volum
         return np.ascontiguousarray(a, dtype=np.float64)
 
     return VolumeParams(float(tyre.unloaded_radius), float(step), floats(offsets), floats(radii),
-                        floats(widths), np.ascontiguousarray(breaks, dtype=np.int64),
-                        int(grid.z.shape[0]))
+                        floats(widths), np.ascontiguousarray(breaks, dtype=np.int64))
 
 
 # --- the effective plane ---------------------------------------------------------
@@ -167,7 +165,7 @@ def volume_contact(params, road, pose):
     Parameters
     ----------
     params : VolumeParams
-    road : RoadSurface
+    road : a terrain record (:mod:`tyrelab.road.terrain`)
     pose : WheelPose
         Only the centre and the spin axis are used.
 
@@ -192,13 +190,14 @@ def volume_contact(params, road, pose):
         return no_contact(r0, cx, cy, cz, 1.0)
     half_width = abs(offsets[nd - 1])
     reach = r0 * abs(fx) + half_width * abs(ax) + 1e-9
-    zmax = local_zmax(road, cx - reach, cx + reach)
+    zmax = terrain_zmax(road, cx - reach, cx + reach)
     if (cz - half_width * abs(az) - zmax) * cosg >= r0:
         return no_contact(r0, cx, cy, cz, (cz - zmax) * cosg - r0)
     breaks = params.profile_breaks
     step = params.step
-    flat = road.zmax == road.zmin  # one level plane everywhere (e.g. the trailer's other wheel)
-    lever = (cz - road_height(road, cx, cy)) / cosg
+    zlo, zhi = terrain_range(road)
+    flat = zhi == zlo  # one level plane everywhere (e.g. the trailer's other wheel)
+    lever = (cz - terrain_height(road, cx, cy)) / cosg
     hx = dx * lever
     hy = dy * lever
     sw = 0.0  # sums over discs, weighted by intersected volume

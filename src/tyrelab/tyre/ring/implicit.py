@@ -37,7 +37,7 @@ from __future__ import annotations
 import numba as nb
 import numpy as np
 
-from .records import empty_state
+from .records import LK, empty_state
 
 #: weight of the new velocities in the implicit terms: 1/2 is the least that is
 #: stable for every step; it damps a mode by about THETA h omega_K^2 / (2 omega)
@@ -151,8 +151,8 @@ def lateral_factorize(params, state, h):
     for r in range(w):
         for j in range(n2):
             border[r, j] = low[n2 - w + r, j]
-    state.lateral_key[0] = h
-    state.lateral_key[1] = params.lateral_checksum
+    state.lateral_key[LK.STEP] = h
+    state.lateral_key[LK.CHECKSUM] = params.lateral_checksum
 
 
 @nb.njit(cache=True)
@@ -160,7 +160,8 @@ def lateral_implicit(params, state, h):
     """Solve ``(M + theta h^2 K) v_new = M v*`` for the out-of-plane velocities
     (``state.vy``, ``vbeta`` hold ``v*`` and receive ``v_new``); the factor is
     made again when the step or the matrix changed."""
-    if state.lateral_key[0] != h or state.lateral_key[1] != params.lateral_checksum:
+    if (state.lateral_key[LK.STEP] != h
+            or state.lateral_key[LK.CHECKSUM] != params.lateral_checksum):
         lateral_factorize(params, state, h)
     band = state.lateral_band
     border = state.lateral_border

@@ -36,7 +36,7 @@ import math
 
 import numba as nb
 
-from ...road.grid import road_height
+from ...road.terrain import terrain_height
 from ..wheel import WheelLoads, WheelPose
 from .belt import bending_forces, foundation_forces, membrane_forces, out_of_plane_forces
 from .implicit import chord_implicit, lateral_implicit
@@ -289,11 +289,12 @@ def ring_step(wheel, pose, dt):
 
     ``wheel.contact`` is the :class:`~.records.RingParams`, ``wheel.state``
     the :class:`~.records.RingState` (advanced in place), ``wheel.road``
-    the road. Forces and moments are the means over the internal steps;
-    the contact point and normal are the normal-force-weighted means over
-    the patch, the deflection the largest of a contact point (or the gap
-    below the centre when nothing touches); FXW, FYW, FZW the patch's
-    resultant in the W-axis. Non-finite values are returned as 0.
+    the terrain record (:mod:`tyrelab.road.terrain`). Forces and moments are
+    the means over the internal steps; the contact point and normal are the
+    normal-force-weighted means over the patch, the deflection the largest of
+    a contact point (or the gap below the centre when nothing touches); FXW,
+    FYW, FZW the patch's resultant in the W-axis. Non-finite values are
+    returned as 0.
     """
     params = wheel.contact
     state = wheel.state
@@ -316,7 +317,7 @@ def ring_step(wheel, pose, dt):
         if rho <= 0.0:
             rho = 1e-9
     else:
-        g = road_height(road, cx, cy)
+        g = terrain_height(road, cx, cy)
         px = cx
         py = cy
         pz = g

@@ -171,9 +171,11 @@ def table_modes(params, freq, zeta, vec) -> pd.DataFrame:
             if mode == 3 and np.sum(np.abs(vec[2 * n:3 * n, k])) == 0:
                 continue
             found[mode] = (freq[k], zeta[k])
-    rows = [{"mode": m, "description": MODE_NAMES[m],
-             "freq_Hz": found.get(m, (np.nan, np.nan))[0],
-             "damping_pct": 100 * found.get(m, (np.nan, np.nan))[1]} for m in sorted(MODE_NAMES)]
+    rows = []
+    for m in sorted(MODE_NAMES):
+        freq_m, zeta_m = found.get(m, (np.nan, np.nan))
+        rows.append({"mode": m, "description": MODE_NAMES[m], "freq_Hz": freq_m,
+                     "damping_pct": 100 * zeta_m})
     return pd.DataFrame(rows)
 
 

@@ -22,8 +22,8 @@ from .parameters import ring_parameters, stable_step, tread_half_width
 from .pattern import default_pattern, even_blocks, pattern_blocks, read_pattern
 from .implicit import lateral_checksum, lateral_stiffness_matrix
 from .records import KIN_TIME, RingParams, RingState, copy_state, empty_state, params_key
+from ..static import PC
 from .static import footprint_from_blocks, settle
-
 #: default discretisation (thesis 2.3.4: 100-200 belt elements, 10-100 blocks each)
 N_SEGMENTS = 100
 N_BLOCKS = 10
@@ -98,7 +98,7 @@ def ring_params(tyre, grid=None, tread_pattern=False, n_segments=N_SEGMENTS, n_b
         raise InputError("the ring model needs the inflation pressure (INFLPRES)",
                          source=tyre.tir.source, field="INFLPRES")
     if lateral_samples is None:
-        varies_across = grid is not None and np.ptp(grid.z, axis=1).max() > 0
+        varies_across = grid is not None and not grid.uniform_across()
         lateral_samples = STATIC_LATERAL_SAMPLES if relax > 0 and varies_across else 1
     r0 = tyre.unloaded_radius
     rb = r0 - rp.tread_depth
@@ -230,10 +230,10 @@ def ring_static_equilibrium(tyre, load, tread_pattern=False, **options):
         state = nominal_state(rp)
         road = grid.surface()
         h0 = tyre.unloaded_radius - tyre.static_deflection(load)
-        f0 = float(settle(rp, state, road, [h0])[0, 2])
+        f0 = float(settle(rp, state, road, [h0])[0, PC.FZ])
         h1 = h0 - (load - f0) / max(tyre.vertical_stiffness, 1.0)
         for k in range(EQUILIBRIUM_ITERATIONS):
-            f1 = float(settle(rp, state, road, [h1], start=h1)[0, 2])
+            f1 = float(settle(rp, state, road, [h1], start=h1)[0, PC.FZ])
             if abs(f1 - load) < EQUILIBRIUM_TOLERANCE * load or f1 == f0 \
                     or k == EQUILIBRIUM_ITERATIONS - 1:  # the state stays the one at h1
                 break

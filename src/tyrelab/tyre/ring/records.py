@@ -15,6 +15,7 @@ from typing import NamedTuple
 
 import numpy as np
 
+from ...core.named_index import named_index
 from .tread import ACC_SIZE
 
 # --- the out-of-plane factor (tyre/ring/implicit.py) kept in RingState ------------
@@ -35,6 +36,11 @@ KIN_OMEGA = 4
 #: time the state has been advanced [s]
 KIN_TIME = 5
 KIN_SIZE = 6
+
+# --- RingState.lateral_key: what the out-of-plane factor was made for -----------------
+#: the key's entries: the internal step [s] and the matrix checksum; their positions (``LK``)
+LATERAL_KEY = ("STEP", "CHECKSUM")
+LK = named_index("LateralKeyIndex", LATERAL_KEY)
 
 
 class RingParams(NamedTuple):
@@ -192,7 +198,7 @@ def empty_state(n: int, nb: int) -> RingState:
     return RingState(*seg, np.zeros(1), np.zeros(n * nb), np.zeros(n * nb), np.zeros(n * nb),
                      np.zeros(KIN_SIZE), np.zeros(1, np.bool_), np.ones(n, np.bool_),
                      np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(ACC_SIZE),
-                     *[np.zeros(n) for _ in range(6)], np.zeros(2),
+                     *[np.zeros(n) for _ in range(6)], np.zeros(len(LATERAL_KEY)),
                      np.zeros((2 * n, LATERAL_BAND + 1)), np.zeros((LATERAL_BORDER, 2 * n)),
                      np.zeros(2 * n))
 

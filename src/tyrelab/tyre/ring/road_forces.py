@@ -15,7 +15,7 @@ import math
 
 import numba as nb
 
-from ...road.grid import local_zmax
+from ...road.terrain import terrain_zmax
 from .tread import (SegmentFrame, SegmentMotion, clear_segment, segment_can_touch,
                     segment_contact)
 
@@ -45,7 +45,7 @@ def tread_contact(params, state, road, pose, e1x, e1y, e1z, e2x, e2y, e2z, fwx, 
     # are passed over without a road query of their own
     span = (params.unloaded_radius + params.tread_half_width * (abs(az) + 1.0)
             + params.max_block_height + 0.06)
-    road_top = local_zmax(road, cx - span, cx + span) + params.max_block_height + 0.01
+    road_top = terrain_zmax(road, cx - span, cx + span) + params.max_block_height + 0.01
     for i in range(n):
         p1 = p1s[i]
         p2 = p2s[i]

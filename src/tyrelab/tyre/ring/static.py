@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ...road.terrain import ground_range
 from ..handling.none import NoHandling
 from ..static import DT, HOLD, PRESS_COLUMNS, PRESS_RATE, WINDOW, press_path
 from ..vertical import VerticalLaw
@@ -25,7 +26,7 @@ _UNUSED_LAW = VerticalLaw.linear(0.0, 0.0)
 
 def settle(params, state, road, heights, start=None, rate=PRESS_RATE, hold=HOLD):
     """Press the ring (``state``, relaxed ``params``) through centre ``heights``
-    [m] on ``road`` (a :class:`~tyrelab.road.grid.RoadSurface`); returns the
+    [m] on ``road`` (a terrain record, :mod:`tyrelab.road.terrain`); returns the
     ``(k, 7)`` result table of :func:`~tyrelab.tyre.static.press_path`;
     ``state`` is left in the last pressed state (``state.block_force`` its
     blocks' normal forces).
@@ -35,7 +36,7 @@ def settle(params, state, road, heights, start=None, rate=PRESS_RATE, hold=HOLD)
     """
     heights = np.asarray(heights, float)
     r0 = params.unloaded_radius
-    z0 = road.zmax + r0 + 0.002 if start is None else float(start)
+    z0 = ground_range(road)[1] + r0 + 0.002 if start is None else float(start)
     res = np.zeros((heights.size, len(PRESS_COLUMNS)))
     press_path(Wheel(_UNUSED_LAW, params, NoHandling(), road, state), z0, heights, rate, hold,
                WINDOW, DT, res)

@@ -21,8 +21,9 @@ the block slides: ``s`` is cut back so that ``|Ft| = mu Fn`` (a brush model
 with Coulomb friction, as in FTire's tread blocks). Out of contact ``s = 0``.
 
 A block stands for a strip of tread one segment pitch long. Where the road
-near the strip has relief that can reach the tip (its block maximum,
-:func:`local_zmax`, is above the road's lowest point and the tip), the
+near the strip has relief that can reach the tip (its bound,
+:func:`~tyrelab.road.terrain.terrain_zmax`, is above the road's lowest point
+and the tip), the
 strip is sampled every 10 mm and the
 block presses with the mean penetration of the samples (its area shared
 among them) at their penetration-weighted mean point, so obstacles
@@ -33,6 +34,11 @@ With the option ``lateral_samples`` > 1 the strip is also sampled across
 the block's width (for obstacles narrower than the block column pitch
 running along the wheel, as a longitudinal cleat; a static build sets it
 when the road varies across, see :func:`~.model.ring_params`).
+
+The ground is read through the terrain interface only (:mod:`tyrelab.road.terrain`):
+its friction scale multiplies ``mu``, and a ground that is not rigid answers
+each block's forces (:func:`~tyrelab.road.terrain.terrain_contact`: it may
+sink and carry less); on the rigid road that branch is compiled out.
 """
 
 from __future__ import annotations
@@ -42,7 +48,8 @@ from typing import NamedTuple
 
 import numba as nb
 
-from ...road.grid import local_zmax, road_height_gradient, road_penetration
+from ...road.terrain import (terrain_contact, terrain_friction, terrain_height_gradient,
+                             terrain_is_rigid, terrain_penetration, terrain_range, terrain_zmax)
 
 #: contact-patch sums of a step (``RingState.patch``, world frame): force of the
 #: road on the blocks, normal-force-weighted contact point and normal, total
@@ -92,10 +99,10 @@ def segment_can_touch(params, road, px, py, pz, az, beta):
     """False when no block of a segment at world point P can reach the road.
 
     The lowest any block tip can be is ``pz - h_max - W/2 (|a_z| + |beta|)``;
-    the road's block maxima (:func:`local_zmax`) bound the road under it.
+    the ground's bound (:func:`~tyrelab.road.terrain.terrain_zmax`) bounds the road under it.
     """
     reach = params.tread_half_width * (abs(az) + abs(beta)) + params.max_block_height + 0.002
-    zmax = local_zmax(road, px - reach - 0.05, px + reach + 0.05)
+    zmax = terrain_zmax(road, px - reach - 0.05, px + reach + 0.05)
     return pz - reach <= zmax
 
 
@@ -141,7 +148,7 @@ def segment_contact(params, road, state, i, seg, motion, pose, fwx, fwy, fwz, h)
     n_strip = int(math.ceil(2.0 * half_l / STRIP_STEP))
     n_lat = params.lateral_samples if params.lateral_samples >= 1 else 1
     cell_w = 2.0 * params.tread_half_width / nbk
-    zmin = road.zmin
+    zmin, _ = terrain_range(road)
     fx_sum = 0.0
     fy_sum = 0.0
     fz_sum = 0.0
@@ -165,10 +172,10 @@ def segment_contact(params, road, state, i, seg, motion, pose, fwx, fwy, fwz, h)
         # narrower than the block pitch), the strip is sampled every <= 10 mm
         # and the deepest point is the block's contact point; else the tip
         # alone is queried
-        lz = local_zmax(road, tipx - half_l, tipx + half_l)
+        lz = terrain_zmax(road, tipx - half_l, tipx + half_l)
         strip = lz > zmin + 1e-4 and lz > tipz
         if not strip:
-            g, gx, gy = road_height_gradient(road, tipx, tipy)
+            g, gx, gy = terrain_height_gradient(road, tipx, tipy)
             pen = g - tipz
         else:
             # distributed strip: the block's area is shared by the samples;
@@ -192,7 +199,7 @@ def segment_contact(params, road, state, i, seg, motion, pose, fwx, fwy, fwz, h)
                     qy = by0 + u * ty + w * ay
                     qz = bz0 + u * tz + w * az
                     # the gradient only where the sample is below the road
-                    pq, gq, gxq, gyq = road_penetration(road, qx, qy, qz)
+                    pq, gq, gxq, gyq = terrain_penetration(road, qx, qy, qz)
                     if pq > 0.0:
                         sw += pq
                         sx += pq * qx
@@ -247,7 +254,7 @@ def segment_contact(params, road, state, i, seg, motion, pose, fwx, fwy, fwz, h)
         f1 = -area * (k_s * s1 + c_s * v1)
         f2 = -area * (k_s * s2 + c_s * v2)
         fmag = math.sqrt(f1 * f1 + f2 * f2)
-        lim = mu * fn
+        lim = mu * terrain_friction(road, tipx, tipy) * fn
         if fmag > lim:
             # sliding: the force is capped at mu Fn; the elastic deflection
             # is what the capped force would hold
@@ -258,6 +265,8 @@ def segment_contact(params, road, state, i, seg, motion, pose, fwx, fwy, fwz, h)
             s2 = -f2 / (area * k_s)
         sblk1[k] = s1
         sblk2[k] = s2
+        if not terrain_is_rigid(road):  # a deformable ground answers (compiled out on rigid)
+            fn, f1, f2 = terrain_contact(road, tipx, tipy, pen, area, v1, v2, fn, f1, f2, h)
         fbx = fn * nnx + f1 * t1x + f2 * t2x
         fby = fn * nny + f1 * t1y + f2 * t2y
         fbz = fn * nnz + f1 * t1z + f2 * t2z

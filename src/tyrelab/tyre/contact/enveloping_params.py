@@ -1,0 +1,92 @@
+"""The enveloping model's parameter record and its constants (:mod:`.enveloping`).
+
+What the cams need, read once from the property file and the ground by
+:func:`~.enveloping.enveloping_params`: the ``[CONTACT_PATCH]`` keys (the
+module docstring of :mod:`.enveloping` lists them), the cam's tables
+(:func:`~.cams.cam_tables`) and the ground's block bounds per row
+(:meth:`~tyrelab.road.terrain.Ground.row_maxima`, which let a row of cams
+skip road it cannot touch). Split from :mod:`.enveloping` to keep each file
+short.
+"""
+
+from __future__ import annotations
+
+from typing import NamedTuple
+
+import numpy as np
+
+#: length of the ground's blocks whose bounds let cams skip road they cannot touch [m]
+BLOCK = 0.05
+#: default floor of the deflection that sizes the patch, a fraction of R0 (:mod:`.enveloping`)
+MIN_PATCH_DEFLECTION = 0.015
+_OTHER_OPTIONS = ("discs",)
+#: the options a user sets, by type (tyrelab.tyre.registry.check_options)
+_USER_OPTIONS = {"n_length": int, "n_width": int, "width_table": bool, "step": float,
+                 "min_patch_deflection": float}
+#: what the model must be given, measured (thesis chapter 4)
+_DATA = ("load-deflection curve + contact-patch length and width vs load (footprints) + cam "
+         "(ellipse) parameters from cleat tests")
+#: which cams make the effective plane: the whole grid, or only those on the patch's outline
+CAM_LAYOUTS = ("grid", "outline")
+
+
+class EnvelopingParams(NamedTuple):
+    """Parameters of the enveloping (tandem cams) contact model.
+
+    Built by :func:`enveloping_params`; lengths in metres.
+
+    * ``unloaded_radius`` R0, ``width`` the tyre width W;
+    * ``length_law``: 0 eq. 2.3 (``length_c1, length_c2`` = PA1, PA2), 1
+      MF-Swift (= Q_RA1, Q_RA2);
+    * ``width_law``: 0 eq. 2.4 (``width_c1..3`` = PB1-PB3), 1 MF-Swift
+      (= Q_RB1, Q_RB2, 0), 2 the table ``width_table``; the half width is
+      clipped to ``max_half_width`` (W / 2);
+    * ``cam_half_length`` a_e = PAE R0, ``cam_half_height`` b_e = PBE R0,
+      ``cam_exponent`` PCE (eq. 2.5); ``base_length_factor`` PLS (eq. 2.6);
+    * ``n_width`` x ``n_length`` cams; ``min_patch_deflection``: the patch
+      is sized at no less than this deflection;
+    * ``cam_reach``: how far from its centre a cam looks (a_e, less with
+      ELLIPS_MAX_STEP); ``step``: sampling step along cam lines that do not
+      run along x;
+    * ``profile_road``: the ground does not vary across
+      (:meth:`~tyrelab.road.terrain.Ground.uniform_across`), so every row of
+      cams sees the same road;
+    * ``cam_drop``, ``cam_window``, ``cam_touch``: the cam's tables
+      (:func:`tyrelab.tyre.contact.cams.cam_tables`);
+    * ``width_table``: (deflection, half width) rows, shape (rows, 2), empty
+      unless ``width_law`` is 2;
+    * ``block_per``: break lines per block, ``row_block_max``: the ground's
+      bounds per block and row handle, shape (blocks, rows)
+      (:meth:`~tyrelab.road.terrain.Ground.row_maxima`), empty when there is
+      nothing to bound (a grid of two x nodes);
+    * ``outline_only``: only the cams on the patch's outline enter the plane
+      (:mod:`.enveloping_edge`); False: every cam.
+    """
+
+    unloaded_radius: float
+    width: float
+    min_patch_deflection: float
+    length_law: int
+    length_c1: float
+    length_c2: float
+    width_law: int
+    width_c1: float
+    width_c2: float
+    width_c3: float
+    max_half_width: float
+    cam_half_length: float
+    cam_half_height: float
+    cam_exponent: float
+    base_length_factor: float
+    n_width: int
+    n_length: int
+    cam_reach: float
+    step: float
+    profile_road: bool
+    cam_drop: np.ndarray
+    cam_window: np.ndarray
+    cam_touch: np.ndarray
+    width_table: np.ndarray
+    block_per: int
+    row_block_max: np.ndarray
+    outline_only: bool = False
