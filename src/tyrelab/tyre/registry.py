@@ -58,8 +58,10 @@ class ContactModel:
         Its parameter record (a NamedTuple class); the compiled code is
         chosen by this type.
     build : callable
-        ``build(tyre, road, **options) -> record``; ``road`` is the
-        :class:`~tyrelab.road.grid.RoadGrid` it will run on.
+        ``build(tyre, road, **options) -> record``; ``road`` is the ground it
+        will run on (a :class:`~tyrelab.road.grid.RoadGrid`, asked only through
+        the ``Ground`` protocol of :mod:`tyrelab.road.terrain_registry`; the soil
+        bed for a soil model).
     geometry : numba dispatcher, optional
         Analytic models: ``geometry(params, road, pose) -> ContactGeometry``;
         the shared vertical law and handling models make the loads.
