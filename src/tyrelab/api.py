@@ -182,7 +182,9 @@ def simulate(tyre: str | Tyre = DEFAULT_TYRE, model: str = "point", road=None,
         duration = limits.check_duration(duration, dt, output_rate)
     tm = make_tyre_model(tyre, model, pressure, stiffness, handling, options)
     if left_wheel is not None and the_rig.wheels < 2:
-        raise InputError(f"left_wheel applies to rigs with two wheels, not to '{rig}'", field="left_wheel")
+        two = ", ".join(name for name, r in rigs().items() if r.wheels > 1)
+        raise InputError(f"left_wheel applies to the rigs with two wheels ({two}), not to '{rig}'",
+                         field="left_wheel")
     if isinstance(load, str):
         from .rig.trailer import load_case_wheel_load
         wheel_load = limits.check_wheel_load(load_case_wheel_load(load), tm.tyre)
