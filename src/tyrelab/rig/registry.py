@@ -122,22 +122,9 @@ def rigs() -> dict[str, Rig]:
 
 def check_rig_options(rig: Rig, options: dict | None) -> dict:
     """``options`` for ``rig`` (a new dict), or InputError naming the unknown keys and the ones
-    the rig takes; numbers are floats."""
-    options = dict(options or {})
-    unknown = sorted(set(options) - set(rig.options))
-    if unknown:
-        allowed = ", ".join(rig.options) if rig.options else "none"
-        raise InputError(f"unknown option(s) {', '.join(unknown)} of the '{rig.name}' rig; it takes: "
-                         f"{allowed}", field="rig_options")
-    for key, value in options.items():
-        kind = rig.options[key]
-        if kind is float and isinstance(value, int) and not isinstance(value, bool):
-            value = float(value)
-        if not isinstance(value, kind) or isinstance(value, bool) and kind is not bool:
-            raise InputError(f"option {key} of the '{rig.name}' rig: expected {kind.__name__}, got "
-                             f"{value!r}", field="rig_options")
-        options[key] = value
-    return options
+    the rig takes (checked as a contact model's are: :func:`tyrelab.tyre.registry.checked_options`)."""
+    from ..tyre.registry import checked_options
+    return checked_options(options, rig.options, f"the '{rig.name}' rig", "rig_options")
 
 
 def rig_named(name: str) -> Rig:

@@ -210,22 +210,28 @@ def contact_model(name: str) -> ContactModel:
 def check_options(name: str, options: dict | None, field: str = "options") -> dict:
     """``options`` for the contact model ``name`` (a new dict), or InputError naming the
     unknown keys and the ones the model takes (:attr:`ContactModel.options`)."""
-    model = contact_model(name)
+    return checked_options(options, contact_model(name).options, f"the '{name}' model", field)
+
+
+def checked_options(options: dict | None, declared: dict, owner: str, field: str) -> dict:
+    """``options`` checked against ``declared`` (name -> type) of ``owner`` ("the 'ring' model",
+    "the 'single-wheel' rig"): a new dict, integers turned into floats where a number is
+    declared; an unknown name or a value of another type is an InputError listing the names."""
     options = dict(options or {})
-    unknown = sorted(set(options) - set(model.options))
+    unknown = sorted(set(options) - set(declared))
     if unknown:
-        allowed = ", ".join(model.options) if model.options else "none"
-        raise InputError(f"unknown option(s) {', '.join(unknown)} of the '{name}' model; it takes: "
-                         f"{allowed}", field=field)
+        allowed = ", ".join(declared) if declared else "none"
+        raise InputError(f"unknown option(s) {', '.join(unknown)} of {owner}; it takes: {allowed}",
+                         field=field)
     for key, value in options.items():
-        options[key] = _typed(name, key, value, model.options[key], field)
+        options[key] = _typed(owner, key, value, declared[key], field)
     return options
 
 
 _TYPE_WORDS = {int: "an integer", float: "a number", bool: "true or false", str: "a text"}
 
 
-def _typed(model: str, key: str, value, kind, field: str):
+def _typed(owner: str, key: str, value, kind, field: str):
     """``value`` as an option of type ``kind`` (an integer is a number too), or InputError."""
     if kind is object:
         return value
@@ -233,7 +239,7 @@ def _typed(model: str, key: str, value, kind, field: str):
         return float(value)
     if isinstance(value, kind) and not (kind is int and isinstance(value, bool)):
         return value
-    raise InputError(f"option {key} of the '{model}' model: expected {_TYPE_WORDS.get(kind, kind)}, "
+    raise InputError(f"option {key} of {owner}: expected {_TYPE_WORDS.get(kind, kind)}, "
                      f"got {value!r}", field=field)
 
 

@@ -43,6 +43,7 @@ from typing import NamedTuple
 import numba as nb
 import numpy as np
 
+from ...core.vec3 import cross, unit
 from .params import Soil
 
 #: the wheel surface's slope beyond which a node's cell is not scaled further: cos >= this
@@ -170,14 +171,11 @@ def cylinder_loads(bed, cx, cy, cz, ax, ay, az, vx, vy, vz, omega, radius, width
             s = bed.h0[i, k] - w
             sigma, sp_new = node_stress(soil, s, bed.sp[i, k], width)
             # the surface point and its outward normal (from the axis)
-            rx, ry, rz = q0x + zr * mx_, q0y + zr * my_, q0z + zr * mzz
-            rn = math.sqrt(rx * rx + ry * ry + rz * rz)
-            nxw, nyw, nzw = rx / rn, ry / rn, rz / rn
+            nxw, nyw, nzw = unit(q0x + zr * mx_, q0y + zr * my_, q0z + zr * mzz)
             px, py, pz = d0x, d0y, zr                        # from the centre
             # the surface's velocity: v + omega a x p
-            ux = vx + omega * (ay * pz - az * py)
-            uy = vy + omega * (az * px - ax * pz)
-            uz = vz + omega * (ax * py - ay * px)
+            wx, wy, wz = cross(ax, ay, az, px, py, pz)
+            ux, uy, uz = vx + omega * wx, vy + omega * wy, vz + omega * wz
             un = ux * nxw + uy * nyw + uz * nzw
             tx, ty, tz = ux - un * nxw, uy - un * nyw, uz - un * nzw
             speed = math.sqrt(tx * tx + ty * ty + tz * tz)
@@ -194,9 +192,10 @@ def cylinder_loads(bed, cx, cy, cz, ax, ay, az, vx, vy, vz, omega, radius, width
             fx += gx
             fy += gy
             fz += gz
-            mx += py * gz - pz * gy
-            my += pz * gx - px * gz
-            mz += px * gy - py * gx
+            qx, qy, qz = cross(px, py, pz, gx, gy, gz)       # the moment about the centre
+            mx += qx
+            my += qy
+            mz += qz
             if sigma > 0.0:
                 area += cell
                 deepest = max(deepest, s)
