@@ -206,20 +206,22 @@ def test_the_spec_option_and_its_error(tmp_path):
     assert all(form in text for form in STORAGE)
 
 
-def test_the_store_writes_the_form_its_spec_names(run, tmp_path):
-    folder = tmp_path / "s"
-    assert Store(folder).storage == COMPACT  # no spec.toml: the default
-    (folder / "spec.toml").write_text(SPEC.format(store='store = "full"'))
-    store = Store(folder)
-    store.save("k1", {}, run, wall_time=1.0)
-    assert store.storage == FULL
-    assert {v[:2] for v in column_chunks(store.signal_path("k1")).values()} == {("DOUBLE", "SNAPPY")}
-    assert Store(folder, storage=LOSSLESS).storage == LOSSLESS  # given: it wins
-    (folder / "spec.toml").write_text(SPEC.format(store='store = "tiny"'))
+def test_a_study_writes_the_form_its_spec_names(tmp_path):
+    """``tyrelab.study.run`` hands the spec's ``[study] store`` to its store: a spec saying
+    "full" gets snappy float64 tables of every channel; a store given no form writes compact;
+    an unknown form is refused listing the allowed ones."""
+    from tyrelab.study import run as run_study
+    assert Store(tmp_path / "plain").storage == COMPACT
+    spec = parse_spec(SPEC.format(store='store = "full"'), base=tmp_path)
+    study = run_study(spec, workers=1, output=tmp_path / "s", progress=False)
+    tables = sorted((tmp_path / "s" / "runs").glob("*.parquet"))
+    assert len(tables) == 2 and len(study.index) == 2
+    for path in tables:
+        chunks = column_chunks(path)
+        assert len(chunks) > len(COMPACT_CHANNELS)
+        assert {v[:2] for v in chunks.values()} == {("DOUBLE", "SNAPPY")}
     with pytest.raises(InputError, match='"compact", "lossless", "full"'):
-        Store(folder).storage
-    with pytest.raises(InputError, match="unknown store form"):
-        Store(folder, storage="float32")
+        Store(tmp_path / "bad", storage="float32")
 
 
 def test_metrics_from_a_compact_store_are_bit_identical(tmp_path):

@@ -44,7 +44,6 @@ spec asks for another (delete its table to have it written again).
 from __future__ import annotations
 
 import json
-import tomllib
 from pathlib import Path
 
 import pandas as pd
@@ -110,8 +109,7 @@ class Store:
     """A study's results folder (created if missing)."""
 
     def __init__(self, folder, storage: str | None = None):
-        """``storage``: how runs are written (:data:`STORAGE`); None: the ``[study] store``
-        of the folder's ``spec.toml`` when the first run is saved, else :data:`DEFAULT_STORAGE`."""
+        """``storage``: how runs are written (:data:`STORAGE`); None: :data:`DEFAULT_STORAGE`."""
         self.folder = Path(folder)
         self._storage = None if storage is None else check_storage(storage)
         self.runs = self.folder / "runs"
@@ -142,21 +140,9 @@ class Store:
 
     @property
     def storage(self) -> str:
-        """How this store writes runs (:data:`STORAGE`): as given, or the ``[study] store``
-        of the folder's ``spec.toml`` (the study's spec, kept there by ``tyrelab study``),
-        or :data:`DEFAULT_STORAGE`."""
-        if self._storage is None:
-            path = self.folder / "spec.toml"
-            value = DEFAULT_STORAGE
-            if path.is_file():
-                try:
-                    study = tomllib.loads(path.read_text(encoding="utf-8")).get("study", {})
-                except (OSError, ValueError):
-                    study = {}
-                if isinstance(study, dict):
-                    value = study.get("store", DEFAULT_STORAGE)
-            self._storage = check_storage(value, source=str(path))
-        return self._storage
+        """How this store writes runs (:data:`STORAGE`): as given (``tyrelab.study.run`` gives
+        the spec's ``[study] store``), else :data:`DEFAULT_STORAGE`."""
+        return self._storage or DEFAULT_STORAGE
 
     def save(self, key: str, spec: dict, signal: pd.DataFrame, wall_time: float) -> None:
         """Store a finished run: its table first (in the form :attr:`storage`), then its record."""
