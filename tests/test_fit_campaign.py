@@ -239,9 +239,9 @@ def test_static_cleats_are_predicted_by_every_analytic_model(tmp_path, xzl):
     body = '[tyre]\nbase = "base.tir"\n' + LD + \
         '[[test]]\nkind = "static_cleat"\nfile = "cleat.csv"\ncleat = "51x51"\n'
     pred, rms = _cleat_predictions(fit_campaign(read_campaign(_campaign(tmp_path, body))))
-    assert set(rms) == {"point", "volume", "enveloping"}
+    assert set(rms) == {"point", "volume", "enveloping", "enveloping-edge"}
     assert rms["point"] < 1.0
-    for model in ("volume", "enveloping"):
+    for model in ("volume", "enveloping", "enveloping-edge"):
         assert np.all(pred[model] < plate), model
 
 
@@ -312,6 +312,6 @@ def test_static_cleats_are_predicted_by_the_ring_once_identified(tmp_path, xzl):
         '[[test]]\nkind = "static_cleat"\nfile = "cleat.csv"\ncleat = "51x51"\n'
     result = fit_campaign(read_campaign(_campaign(tmp_path, body)), skip_missing=True)
     pred, rms = _cleat_predictions(result)
-    assert set(rms) == {"point", "volume", "enveloping", "ring"}
+    assert set(rms) == {"point", "volume", "enveloping", "enveloping-edge", "ring"}
     assert rms["point"] < 1.0
     assert np.all(pred["ring"] < plate)

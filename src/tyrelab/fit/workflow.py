@@ -46,8 +46,16 @@ from .step_result import file_names as _names
 from .step_result import tyre_dimension as _dimension
 
 STEPS = ("vertical", "damping", "patch", "shape", "ring")
-#: analytic models whose cleat loads are predicted
-MODELS = ("point", "volume", "enveloping")
+
+
+def predicted_models(tir: TirFile) -> tuple[str, ...]:
+    """The models whose held-out cleat loads the fit predicts: every registered model the fit
+    parameterizes (:attr:`~tyrelab.tyre.registry.ContactModel.fit_steps`), those that need the
+    ring's own step only once the property file has the ring (thesis 4.5 fitted FTire to the
+    cleats; tyrelab predicts them)."""
+    from ..tyre.registry import contact_models
+    return tuple(name for name, m in contact_models().items()
+                 if m.fit_steps and ("ring" not in m.fit_steps or tir.has("FLEXIBLE_RING")))
 
 
 @dataclass
@@ -322,8 +330,7 @@ def predict_cleats(campaign: Campaign, tir: TirFile) -> StepResult:
     if not tests:
         return res
     tyre = _tyre(tir, "cleat prediction")
-    # the ring too once identified (held out: thesis 4.5 fitted FTire to them, tyrelab predicts)
-    models = MODELS + (("ring",) if tir.has("FLEXIBLE_RING") else ())
+    models = predicted_models(tir)
     for t in tests:
         width, height = t.cleat
         spec = f"cleat:{width * 1e3:g}x{height * 1e3:g}"

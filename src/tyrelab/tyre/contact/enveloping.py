@@ -87,7 +87,7 @@ from ..model import PO, TyreModel, contact_geometry_table, positions_table, whee
 from ..registry import ContactModel, register_contact
 from ..wheel import ContactGeometry, WheelPose
 from .cams import cam_tables, half_length, half_width, length_law, patch_key, width_law
-from .enveloping_params import (_DATA, _OTHER_OPTIONS, _USER_OPTIONS, BLOCK, CAM_LAYOUTS,
+from .enveloping_params import (_DATA, _OTHER_OPTIONS, _USER_OPTIONS, BLOCK, CAM_LAYOUTS, FIT_STEPS,
                                 MIN_PATCH_DEFLECTION, EnvelopingParams)
 from .enveloping_plane import cam_plane
 from .volume import DEFAULT_STEP, no_contact, plane_contact
@@ -318,5 +318,5 @@ register_contact(ContactModel("enveloping", EnvelopingParams, enveloping_params,
                               summary="3D enveloping contact (tandem elliptical cams), "
                                       "thesis 2.3.3",
                               options={**_USER_OPTIONS, "cam_layout": str}, cost=0.015,
-                              parameterization=_DATA))
+                              parameterization=_DATA, fit_steps=FIT_STEPS))
 

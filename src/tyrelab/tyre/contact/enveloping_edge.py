@@ -26,7 +26,7 @@ from __future__ import annotations
 from ...errors import InputError
 from ..registry import ContactModel, register_contact
 from .enveloping import enveloping_contact, enveloping_params
-from .enveloping_params import _DATA, _USER_OPTIONS, EnvelopingParams
+from .enveloping_params import _DATA, _USER_OPTIONS, FIT_STEPS, EnvelopingParams
 
 
 def edge_params(tyre, grid, **options) -> EnvelopingParams:
@@ -44,4 +44,5 @@ register_contact(ContactModel("enveloping-edge", EnvelopingParams, edge_params,
                                       "patch's edges only, as the thesis describes its ADAMS "
                                       "model (5.4)",
                               options=_USER_OPTIONS, cost=0.015,
-                              parameterization=_DATA + " (the cams on the patch's edges only)"))
+                              parameterization=_DATA + " (the cams on the patch's edges only)",
+                              fit_steps=FIT_STEPS))

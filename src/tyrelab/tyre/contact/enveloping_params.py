@@ -26,6 +26,8 @@ _USER_OPTIONS = {"n_length": int, "n_width": int, "width_table": bool, "step": f
 #: what the model must be given, measured (thesis chapter 4)
 _DATA = ("load-deflection curve + contact-patch length and width vs load (footprints) + cam "
          "(ellipse) parameters from cleat tests")
+#: the steps of ``tyrelab fit`` that identify it: the patch sizes the cams, the shape their sections
+FIT_STEPS = ("vertical", "damping", "patch", "shape")
 #: which cams make the effective plane: the whole grid, or only those on the patch's outline
 CAM_LAYOUTS = ("grid", "outline")
 

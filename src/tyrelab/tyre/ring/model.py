@@ -39,6 +39,8 @@ STATIC_LATERAL_SAMPLES = 4
 _OPTIONS = ("n_segments", "n_blocks", "friction", "dt_max", "pattern", "parameters", "relax",
             "lateral_samples")
 #: what the model must be given, measured (thesis chapter 4)
+#: the steps of ``tyrelab fit`` that identify the ring (its own step last: it starts from the others)
+_FIT_STEPS = ("vertical", "damping", "patch", "shape", "ring")
 _DATA = ("load-deflection curve + modal tests (belt eigenfrequencies) + static cleat tests + "
          "footprints")
 #: the options by type (tyrelab.tyre.registry.check_options); ``pattern`` (a dict of blocks
@@ -366,11 +368,12 @@ register_contact(ContactModel("ring", RingParams, _ring_build, step=ring_step,
                               initial_state=_ring_state, equilibrium=_ring_equilibrium,
                               static_options={"relax": RELAX_RATE},
                               footprint=ring_footprint_of, options=_OPTION_TYPES, cost=0.2,
-                              parameterization=_DATA,
+                              parameterization=_DATA, fit_steps=_FIT_STEPS,
                               summary="flexible ring (FTire class), evenly spaced tread blocks"))
 register_contact(ContactModel("ring-tp", RingParams, _ring_tp_build, step=ring_step,
                               initial_state=_ring_tp_state, equilibrium=_ring_tp_equilibrium,
                               static_options={"relax": RELAX_RATE}, footprint=ring_footprint_of,
                               options=_OPTION_TYPES, cost=0.22,
                               parameterization=_DATA + " + tread pattern",
+                              # no fit_steps: its pattern is a file the user gives, not fitted
                               summary="flexible ring with blocks on the tread pattern"))
