@@ -24,7 +24,9 @@ def register(sub):
     cur.add_argument("--tyre", default="xzl-16.00R20", help="built-in tyre, .tir or Chrono .json file")
     cur.add_argument("--pressure", type=pressure_kpa(), default=None, metavar="KPA",
                      help="inflation pressure in kPa (built-in tyres; default 300)")
-    cur.add_argument("--model", default="rigid", help="contact model that runs on soil (default rigid)")
+    cur.add_argument("--model", default="rigid",
+                     help="contact model(s) that run on soil, comma-separated: one curve each on the "
+                          "plot, e.g. rigid,point (default rigid)")
     cur.add_argument("--load", type=bounded_float("load", MIN_LOAD, None, "N"), default=23.3e3, metavar="N",
                      help="dead weight on the wheel in N (default 23300)")
     cur.add_argument("--speed", type=bounded_float("speed", MIN_SPEED * 3.6, MAX_SPEED * 3.6, "km/h",
@@ -70,23 +72,29 @@ def run_curve(args) -> int:
     from ..io_atomic import IMAGE_SUFFIXES, atomic_write, save_figure
     from ..rig.single_wheel import single_wheel, slip_curve
     from ..road.soil import load_soil
+    import pandas as pd
 
     inputs = input_files(args.tyre, args.terrain)
     out = output_path(args.output, (".csv",) + IMAGE_SUFFIXES, inputs=inputs)
     rut = output_path(args.rut, IMAGE_SUFFIXES, field="--rut", inputs=inputs) if args.rut else None
     _, soil_name = load_soil(args.terrain)
-    model = make_tyre_model(args.tyre, args.model, args.pressure, handling="none")
+    names = [m.strip() for m in args.model.split(",") if m.strip()]
+    models = [make_tyre_model(args.tyre, name, args.pressure, handling="none") for name in names]
     bar = None
     if sys.stderr.isatty():
         from tqdm import tqdm
-        bar = tqdm(total=len(args.slips), unit="run", desc="slip curve", file=sys.stderr)
+        bar = tqdm(total=len(args.slips) * len(models), unit="run", desc="slip curve", file=sys.stderr)
     try:
-        curve = slip_curve(model, args.terrain, args.load, args.speed, args.slips, args.duration,
-                           progress=(lambda done: bar.update(1)) if bar else None)
+        curve = pd.concat([slip_curve(model, args.terrain, args.load, args.speed, args.slips,
+                                      args.duration,
+                                      progress=(lambda done: bar.update(1)) if bar else None)
+                           .assign(model=name) for name, model in zip(names, models)],
+                          ignore_index=True)
     finally:
         if bar is not None:
             bar.close()
-    title = (f"{model.tyre.name}, {args.model}, {soil_name}, {args.load / 1e3:.3g} kN, "
+    model = models[-1]
+    title = (f"{model.tyre.name}, {soil_name}, {args.load / 1e3:.3g} kN, "
              f"{args.speed * 3.6:.3g} km/h")
     if out.suffix.lower() == ".csv":
         atomic_write(out, lambda tmp: curve.to_csv(tmp, index=False, float_format="%.6g"))
@@ -94,13 +102,13 @@ def run_curve(args) -> int:
         from ..report.soil_plots import plot_slip_curve
         save_figure(plot_slip_curve(curve, title), out)
     for row in curve.itertuples():
-        print(f"s = {row.slip:.2f}: pull {row.FX / 1e3:7.2f} kN  torque {row.TORQUE / 1e3:7.2f} kN m  "
-              f"sinkage {row.SINKAGE * 1e3:6.1f} mm")
+        print(f"{row.model:<11}s = {row.slip:.2f}: pull {row.FX / 1e3:7.2f} kN  "
+              f"torque {row.TORQUE / 1e3:7.2f} kN m  sinkage {row.SINKAGE * 1e3:6.1f} mm")
     print(f"{out}: slip curve")
     if rut:
         from ..report.soil_plots import plot_rut
         _, bed = single_wheel(model, args.terrain, args.load, args.speed, slip=args.slips[-1],
                               duration=args.duration, return_bed=True)
-        save_figure(plot_rut(bed, f"rut after s = {args.slips[-1]:g}"), rut)
+        save_figure(plot_rut(bed, f"rut of {names[-1]} after s = {args.slips[-1]:g}"), rut)
         print(f"{rut}: rut")
     return 0

@@ -6,16 +6,21 @@ import numpy as np
 
 
 def plot_slip_curve(curve, title: str = ""):
-    """Drawbar pull, driving torque and sinkage against slip (:func:`tyrelab.rig.single_wheel.slip_curve`)."""
+    """Drawbar pull, driving torque and sinkage against slip (:func:`tyrelab.rig.single_wheel.slip_curve`);
+    one line per value of a ``model`` column, when the table has one."""
     import matplotlib.pyplot as plt
     fig, axes = plt.subplots(3, 1, figsize=(6.5, 7.5), sharex=True)
-    s = curve["slip"].to_numpy()
+    groups = list(curve.groupby("model", sort=False)) if "model" in curve else [("", curve)]
     for ax, (col, scale, label) in zip(axes, (("FX", 1e-3, "drawbar pull [kN]"),
                                                 ("TORQUE", 1e-3, "driving torque [kN m]"),
                                                 ("SINKAGE", 1e3, "sinkage [mm]"))):
-        ax.plot(s, curve[col].to_numpy() * scale, "o-", color="C0")
+        for k, (name, part) in enumerate(groups):
+            ax.plot(part["slip"].to_numpy(), part[col].to_numpy() * scale, "o-", color=f"C{k}",
+                    label=name or None)
         ax.set_ylabel(label)
         ax.grid(True, alpha=0.3)
+    if len(groups) > 1:
+        axes[0].legend(title="model")
     axes[0].axhline(0.0, color="0.5", lw=0.8)
     axes[-1].set_xlabel("slip s = 1 - V / (R0 omega)")
     if title:

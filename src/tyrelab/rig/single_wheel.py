@@ -21,6 +21,7 @@ import numpy as np
 from ..core.named_index import named_index
 from ..errors import InputError
 from ..limits import MAX_MEMORY
+from ..road.soil.scm import undisturbed_height
 from ..tyre.wheel import Wheel, WheelPose, wheel_step
 from .frames import WHEEL_CHANNELS, WC, wheel_row
 from .simulation import run_chunks, to_signal
@@ -59,7 +60,8 @@ def single_wheel_steps(wheel, mass, speed, omega, state, n_steps, dt, out_every,
         if (step % out_every) == 0 and row < out.shape[0]:
             o = out[row]
             wheel_row(o, t, x - X_START, pose, f, cax)
-            o[SC.SINKAGE] = f.deflection if f.deflection > 0.0 else 0.0
+            o[SC.SINKAGE] = max(0.0, undisturbed_height(wheel.road, f.px, f.py) - f.pz) \
+                if f.fzw > 0.0 else 0.0
             o[SC.TORQUE] = -o[WC.MY]
             row += 1
         vz += dt * (f.fz - mass * G) / mass
@@ -110,7 +112,8 @@ def single_wheel(model, soil, load: float, speed: float, slip: float = 0.0, leng
     Parameters
     ----------
     model : TyreModel
-        A contact model that runs on soil (``rigid``).
+        A contact model that runs on soil (``rigid``, and the analytic models as flexible
+        wheels: :mod:`tyrelab.tyre.contact.soil_wheel`).
     soil : str or Soil
         A built-in soil's name or a soil file (:func:`tyrelab.road.soil.load_soil`).
     load : float
@@ -135,6 +138,7 @@ def single_wheel(model, soil, load: float, speed: float, slip: float = 0.0, leng
     from ..road.soil.scm import soil_bed
     if not 0.0 <= slip < 1.0:
         raise InputError(f"slip must be in [0, 1), got {slip!r}", field="slip")
+    from ..tyre.contact.soil_wheel import wheel_params
     if "soil" not in model.contact_model.terrains:
         from ..tyre.registry import contact_models
         on_soil = [n for n, m in contact_models().items() if "soil" in m.terrains]
@@ -152,7 +156,7 @@ def single_wheel(model, soil, load: float, speed: float, slip: float = 0.0, leng
                          f"{MAX_MEMORY / 1024 ** 3:g} GiB allowed; a shorter run or a coarser bed",
                          field="duration")
     ground = soil_bed(soil_params, _bed_grid(road, X_START - 1.0, x_end + 1.0, width, spacing))
-    params = model.contact_model.build(model.tyre, ground, **model.options)
+    params = wheel_params(model.contact_model, model.tyre, ground, model.options)
     wheel = Wheel(model.tyre.vertical_law, params, model.handling_params(), ground,
                   model.initial_state(load, params))
     radius = model.tyre.unloaded_radius

@@ -31,7 +31,7 @@ BUILTIN_CONTACT = (
     "tyrelab.tyre.contact.enveloping",
     "tyrelab.tyre.contact.enveloping_edge",
     "tyrelab.tyre.ring.model",
-    "tyrelab.tyre.contact.rigid",
+    "tyrelab.tyre.contact.soil_wheel",
 )
 #: modules that register the built-in handling models
 BUILTIN_HANDLING = (

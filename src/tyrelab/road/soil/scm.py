@@ -43,7 +43,7 @@ from typing import NamedTuple
 import numba as nb
 import numpy as np
 
-from ...core.vec3 import cross, unit
+from ...core.vec3 import cross, unit, wheel_axes
 from .params import Soil
 
 #: the wheel surface's slope beyond which a node's cell is not scaled further: cos >= this
@@ -72,10 +72,15 @@ class SoilSurface(NamedTuple):
     zmax: float
 
 
-class CylinderLoads(NamedTuple):
-    """Loads of the soil on a rigid cylinder, about its centre (road frame) [N], [N m];
-    ``sinkage`` the depth of its lowest point below the undisturbed surface there [m];
-    ``area`` the horizontal area in contact [m^2]."""
+class SoilLoads(NamedTuple):
+    """Loads of the soil on a wheel, about its centre (road frame) [N], [N m].
+
+    ``sinkage`` the deepest node's sinkage below its undisturbed height [m]; ``area`` the
+    horizontal area in contact [m^2]; ``normal`` the force's component along the wheel's
+    in-plane upward direction ``-d`` [N] (what the tyre's vertical law must carry) and
+    ``dnormal`` its derivative with the tyre's deflection ``radius - flat`` [N/m] (<= 0:
+    the flat rising unloads the soil under it; the flat's nodes only).
+    """
 
     fx: float
     fy: float
@@ -85,6 +90,8 @@ class CylinderLoads(NamedTuple):
     mz: float
     sinkage: float
     area: float
+    normal: float
+    dnormal: float
 
 
 def soil_bed(soil: Soil, road_grid) -> SoilSurface:
@@ -96,30 +103,49 @@ def soil_bed(soil: Soil, road_grid) -> SoilSurface:
 
 
 @nb.njit(cache=True)
-def node_stress(soil, s, sp, width):
-    """Normal stress [Pa] of a node pressed to total sinkage ``s`` with plastic sinkage ``sp``,
-    and its plastic sinkage after (see the module docstring)."""
-    if s <= 0.0:
-        return 0.0, sp
-    elastic = soil.elastic_stiffness * (s - sp)
-    if elastic <= 0.0:
-        return 0.0, sp
-    bekker = (soil.kc / width + soil.kphi) * s ** soil.n
-    if elastic < bekker:
-        return elastic, sp
-    return bekker, s - bekker / soil.elastic_stiffness
+def undisturbed_height(bed, x, y):
+    """The bed's undisturbed surface [m] at (x, y): bilinear between its nodes (clamped to the bed)."""
+    nx, ny = bed.h0.shape
+    u = min(max((x - bed.x0) / bed.dx, 0.0), nx - 1.0)
+    v = min(max((y - bed.y0) / bed.dy, 0.0), ny - 1.0)
+    i = min(int(u), nx - 2)
+    k = min(int(v), ny - 2)
+    a, b = u - i, v - k
+    return ((bed.h0[i, k] * (1.0 - b) + bed.h0[i, k + 1] * b) * (1.0 - a)
+            + (bed.h0[i + 1, k] * (1.0 - b) + bed.h0[i + 1, k + 1] * b) * a)
 
 
 @nb.njit(cache=True)
-def cylinder_loads(bed, cx, cy, cz, ax, ay, az, vx, vy, vz, omega, radius, width, dt, update):
-    """Loads of the soil on a rigid cylinder (centre ``c``, unit axis ``a``, centre velocity
-    ``v``, spin ``omega`` about ``a``; ``radius``, ``width`` [m]) over one step ``dt`` [s].
+def node_stress(soil, s, sp, width):
+    """Normal stress [Pa] of a node pressed to total sinkage ``s`` with plastic sinkage ``sp``,
+    its plastic sinkage after, and the stress's slope with ``s`` [Pa/m] (see the module
+    docstring)."""
+    if s <= 0.0:
+        return 0.0, sp, 0.0
+    elastic = soil.elastic_stiffness * (s - sp)
+    if elastic <= 0.0:
+        return 0.0, sp, 0.0
+    k = soil.kc / width + soil.kphi
+    bekker = k * s ** soil.n
+    if elastic < bekker:
+        return elastic, sp, soil.elastic_stiffness
+    return bekker, s - bekker / soil.elastic_stiffness, soil.n * bekker / s
 
-    Every node under the cylinder's footprint is visited: the cylinder's lower surface above
-    it (the lower root of ``|q|^2 = R^2``, ``q`` the node's offset from the axis) gives its
-    total sinkage; the node's stresses act on the surface element above it. With ``update``
-    the nodes' plastic sinkage and shear displacement advance (a step of the run); without,
-    the bed is only read (an equilibrium search).
+
+@nb.njit(cache=True)
+def wheel_loads(bed, cx, cy, cz, ax, ay, az, vx, vy, vz, omega, radius, width, flat, dt, update):
+    """Loads of the soil on a wheel over one step ``dt`` [s]: a cylinder (centre ``c``, unit
+    axis ``a``, centre velocity ``v``, spin ``omega`` about ``a``; ``radius``, ``width`` [m])
+    cut flat at ``flat`` [m] from the axis along its in-plane downward direction ``d`` (a
+    flexible tyre's footprint, Wong 2008 sec. 2.4; ``flat >= radius``: the whole cylinder,
+    the rigid wheel).
+
+    Every node under the wheel's footprint is visited: the wheel's lower surface above it
+    (the flat, or the lower root of ``|q|^2 = R^2``, ``q`` the node's offset from the axis)
+    gives its total sinkage; the node's stresses act on the surface element above it. The
+    tread moves round the wheel at ``omega R`` (inextensible), on the flat too. With
+    ``update`` the nodes' plastic sinkage and shear displacement advance (a step of the run);
+    without, the bed is only read (an equilibrium search).
     """
     soil = bed.soil
     nx, ny = bed.h0.shape
@@ -128,7 +154,7 @@ def cylinder_loads(bed, cx, cy, cz, ax, ay, az, vx, vy, vz, omega, radius, width
     # its heading, and its width (plus the tilt of its axis) across
     depth = bed.zmax - (cz - radius)
     if depth <= 0.0:
-        return CylinderLoads(0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
+        return SoilLoads(0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
     chord = math.sqrt(max(0.0, radius * radius - (radius - min(depth, radius)) ** 2))
     across = 0.5 * width + radius * abs(az)
     reach_x = chord * math.sqrt(max(0.0, 1.0 - ax * ax)) + across * abs(ax) + bed.dx
@@ -141,7 +167,13 @@ def cylinder_loads(bed, cx, cy, cz, ax, ay, az, vx, vy, vz, omega, radius, width
     # m = e_z - a_z a: how the offset from the axis changes with the height below the centre
     mx_, my_, mzz = -az * ax, -az * ay, 1.0 - az * az
     mm = mx_ * mx_ + my_ * my_ + mzz * mzz
+    # the flat's plane: (p - c) . d = flat, tilted no further than MIN_COS from level
+    _, _, _, dx_, dy_, dz_ = wheel_axes(ax, ay, az)
+    has_flat = flat < radius and -dz_ >= MIN_COS
+    # the tread on the flat slides with v + omega R (a x d)
+    rx_, ry_, rz_ = cross(ax, ay, az, dx_, dy_, dz_)
     fx = fy = fz = mx = my = mz = 0.0
+    normal = dnormal = 0.0
     deepest = 0.0
     area = 0.0
     for i in range(i0, i1 + 1):
@@ -156,9 +188,15 @@ def cylinder_loads(bed, cx, cy, cz, ax, ay, az, vx, vy, vz, omega, radius, width
             qq = q0x * q0x + q0y * q0y + q0z * q0z
             disc = qm * qm - mm * (qq - radius * radius)
             inside = False
+            on_flat = False
             zr = 0.0
             if disc > 0.0 and mm > 0.0:
                 zr = (-qm - math.sqrt(disc)) / mm          # the lower surface, below the axis
+                if has_flat:
+                    zf = (flat - d0x * dx_ - d0y * dy_) / dz_
+                    if zf > zr and zf < (-qm + math.sqrt(disc)) / mm:
+                        zr = zf                            # the flat cuts the cylinder here
+                        on_flat = True
                 lateral = la + zr * az
                 inside = abs(lateral) <= 0.5 * width
             surface = bed.h0[i, k] - bed.sp[i, k]
@@ -169,13 +207,18 @@ def cylinder_loads(bed, cx, cy, cz, ax, ay, az, vx, vy, vz, omega, radius, width
                 continue
             w = cz + zr
             s = bed.h0[i, k] - w
-            sigma, sp_new = node_stress(soil, s, bed.sp[i, k], width)
-            # the surface point and its outward normal (from the axis)
-            nxw, nyw, nzw = unit(q0x + zr * mx_, q0y + zr * my_, q0z + zr * mzz)
-            px, py, pz = d0x, d0y, zr                        # from the centre
-            # the surface's velocity: v + omega a x p
-            wx, wy, wz = cross(ax, ay, az, px, py, pz)
-            ux, uy, uz = vx + omega * wx, vy + omega * wy, vz + omega * wz
+            sigma, sp_new, slope = node_stress(soil, s, bed.sp[i, k], width)
+            px, py, pz = d0x, d0y, zr                        # the surface point, from the centre
+            if on_flat:
+                nxw, nyw, nzw = dx_, dy_, dz_
+                ux = vx + omega * radius * rx_
+                uy = vy + omega * radius * ry_
+                uz = vz + omega * radius * rz_
+            else:
+                # the outward normal (from the axis); the velocity v + omega a x p
+                nxw, nyw, nzw = unit(q0x + zr * mx_, q0y + zr * my_, q0z + zr * mzz)
+                wx, wy, wz = cross(ax, ay, az, px, py, pz)
+                ux, uy, uz = vx + omega * wx, vy + omega * wy, vz + omega * wz
             un = ux * nxw + uy * nyw + uz * nzw
             tx, ty, tz = ux - un * nxw, uy - un * nyw, uz - un * nzw
             speed = math.sqrt(tx * tx + ty * ty + tz * tz)
@@ -192,6 +235,10 @@ def cylinder_loads(bed, cx, cy, cz, ax, ay, az, vx, vy, vz, omega, radius, width
             fx += gx
             fy += gy
             fz += gz
+            normal -= gx * dx_ + gy * dy_ + gz * dz_
+            if on_flat:
+                # the flat rising by d(delta) lifts the node's surface by d(delta) / -d_z
+                dnormal += slope * a_s / dz_
             qx, qy, qz = cross(px, py, pz, gx, gy, gz)       # the moment about the centre
             mx += qx
             my += qy
@@ -203,4 +250,4 @@ def cylinder_loads(bed, cx, cy, cz, ax, ay, az, vx, vy, vz, omega, radius, width
                 bed.sp[i, k] = sp_new
                 bed.j[i, k] = jn
                 bed.sigma[i, k] = sigma
-    return CylinderLoads(fx, fy, fz, mx, my, mz, deepest, area)
+    return SoilLoads(fx, fy, fz, mx, my, mz, deepest, area, normal, dnormal)

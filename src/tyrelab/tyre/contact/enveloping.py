@@ -318,5 +318,5 @@ register_contact(ContactModel("enveloping", EnvelopingParams, enveloping_params,
                               summary="3D enveloping contact (tandem elliptical cams), "
                                       "thesis 2.3.3",
                               options={**_USER_OPTIONS, "cam_layout": str}, cost=0.015,
-                              parameterization=_DATA, fit_steps=FIT_STEPS))
+                              parameterization=_DATA, fit_steps=FIT_STEPS, terrains=("rigid", "soil")))
 

@@ -45,4 +45,4 @@ register_contact(ContactModel("enveloping-edge", EnvelopingParams, edge_params,
                                       "model (5.4)",
                               options=_USER_OPTIONS, cost=0.015,
                               parameterization=_DATA + " (the cams on the patch's edges only)",
-                              fit_steps=FIT_STEPS))
+                              fit_steps=FIT_STEPS, terrains=("rigid", "soil")))

@@ -308,4 +308,4 @@ register_contact(ContactModel("volume", VolumeParams, volume_params, geometry=vo
                               summary="3D equivalent volume contact, thesis 2.3.2",
                               options={"discs": int, "step": float}, cost=0.015,
                               parameterization="load-deflection curve + carcass cross-section shape",
-                              fit_steps=("vertical", "damping", "shape")))
+                              terrains=("rigid", "soil"), fit_steps=("vertical", "damping", "shape")))
