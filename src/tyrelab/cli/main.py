@@ -35,6 +35,7 @@ from ..errors import InputError
 
 #: subcommand modules, in the order ``tyrelab --help`` lists them
 SUBCOMMANDS = ["simulate", "plot", "static", "road", "fit", "modal", "validate", "mf", "study", "soil",
+               "export",
                "models"]
 #: longest message printed for an unexpected error [characters]
 MAX_MESSAGE = 400
