@@ -33,7 +33,7 @@ def plot_rut(bed, title: str = ""):
     """The rut a run left: the soil's plastic sinkage [mm] over the bed, seen from above, and
     its deepest cut along the track."""
     import matplotlib.pyplot as plt
-    sp = bed.sp * 1e3
+    sp = bed.rut * 1e3
     nx, ny = sp.shape
     x = bed.x0 + bed.dx * np.arange(nx)
     y = bed.y0 + bed.dy * np.arange(ny)

@@ -81,8 +81,7 @@ def _vertical_force(wheel, z):
 
 def _fresh(wheel):
     """The wheel on a copy of its ground's node state (an equilibrium trial leaves no rut)."""
-    g = wheel.road
-    return wheel._replace(road=g._replace(sp=g.sp.copy(), j=g.j.copy(), sigma=g.sigma.copy()))
+    return wheel._replace(road=wheel.road.fresh_copy())
 
 
 def static_height(wheel, load: float, top: float, radius: float) -> float:

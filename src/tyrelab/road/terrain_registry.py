@@ -22,7 +22,7 @@ from .. import plugins
 from ..errors import InputError
 
 #: modules that register the built-in kinds of ground
-BUILTIN_TERRAIN = ("tyrelab.road.grid",)
+BUILTIN_TERRAIN = ("tyrelab.road.grid", "tyrelab.road.soil.terrain")
 
 
 @nb.njit(cache=True, inline="always")

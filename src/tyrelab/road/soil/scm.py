@@ -44,6 +44,7 @@ import numba as nb
 import numpy as np
 
 from ...core.vec3 import cross, unit, wheel_axes
+from ..grid import RoadSurface
 from .params import Soil
 
 #: the wheel surface's slope beyond which a node's cell is not scaled further: cos >= this
@@ -54,10 +55,15 @@ class SoilSurface(NamedTuple):
     """A soil bed: its parameters and the state of every node (arrays ``(nx, ny)``).
 
     Node ``(i, j)`` sits at ``(x0 + i dx, y0 + j dy)``. ``h0`` the undisturbed height
-    [m], ``sp`` the plastic sinkage [m] (the surface is ``h0 - sp`` where nothing
-    presses it), ``j`` the shear displacement [m] accumulated in the current
-    contact, ``sigma`` the last normal stress [Pa] (for plots of the patch); ``zmax`` the
-    highest undisturbed height [m] (bounds the nodes a wheel can reach).
+    [m]; ``ground`` the surface as it is now, a rigid-road record
+    (:class:`~tyrelab.road.grid.RoadSurface`) whose heights ``ground.z`` are ``h0`` less
+    each node's plastic sinkage (the rut) and whose bounds are those of ``h0`` (the soil
+    only sinks); ``j`` the shear displacement [m] accumulated in the current contact,
+    ``sigma`` the last normal stress [Pa] (for plots of the patch); ``zmax`` the highest
+    undisturbed height [m] (bounds the nodes a wheel can reach).
+
+    It is also the Python ground a model's ``build`` receives
+    (:class:`~tyrelab.road.terrain.Ground`): its record is itself.
     """
 
     soil: Soil
@@ -66,10 +72,41 @@ class SoilSurface(NamedTuple):
     dx: float
     dy: float
     h0: np.ndarray
-    sp: np.ndarray
     j: np.ndarray
     sigma: np.ndarray
     zmax: float
+    ground: RoadSurface
+
+    @property
+    def rut(self) -> np.ndarray:
+        """Each node's plastic sinkage [m]: how far the surface lies below ``h0``."""
+        return self.h0 - self.ground.z
+
+    def fresh_copy(self) -> "SoilSurface":
+        """The bed with its own copy of every node's state (a trial that leaves no rut)."""
+        return self._replace(j=self.j.copy(), sigma=self.sigma.copy(),
+                             ground=self.ground._replace(z=self.ground.z.copy()))
+
+    # the Python side of the terrain interface (tyrelab.road.terrain.Ground)
+    def surface(self) -> "SoilSurface":
+        return self
+
+    def sampling_step(self) -> float:
+        return min(self.dx, self.dy)
+
+    def uniform_across(self) -> bool:
+        return False        # a wheel's rut makes it vary across
+
+    def profile_breaks(self):
+        return None
+
+    def row_maxima(self, length: float):
+        """Bounds from the undisturbed heights, valid for the whole run (the soil only sinks)."""
+        from ..terrain_registry import block_maxima
+        per = max(1, int(round(length / self.dx)))
+        if self.h0.shape[0] > 2:
+            return per, block_maxima(self.h0, per)
+        return per, np.zeros((0, self.h0.shape[1] - 1))
 
 
 class SoilLoads(NamedTuple):
@@ -94,12 +131,20 @@ class SoilLoads(NamedTuple):
     dnormal: float
 
 
+#: how deep [m] the soil's surface may sink below its lowest undisturbed node, for the lower
+#: bound of its heights (terrain_range): far below any wheel's reach
+SINK_BOUND = 10.0
+
+
 def soil_bed(soil: Soil, road_grid) -> SoilSurface:
     """A fresh soil bed over a road's grid (its heights the undisturbed surface)."""
+    from ..grid import RoadGrid
     h0 = np.ascontiguousarray(road_grid.z, dtype=np.float64).copy()
+    ground = RoadGrid(road_grid.x0, road_grid.y0, road_grid.dx, road_grid.dy, h0.copy()).surface()
+    ground = ground._replace(zmin=float(h0.min()) - SINK_BOUND)
     zeros = np.zeros_like(h0)
     return SoilSurface(soil, float(road_grid.x0), float(road_grid.y0), float(road_grid.dx),
-                       float(road_grid.dy), h0, zeros, zeros.copy(), zeros.copy(), float(h0.max()))
+                       float(road_grid.dy), h0, zeros, zeros.copy(), float(h0.max()), ground)
 
 
 @nb.njit(cache=True)
@@ -199,7 +244,7 @@ def wheel_loads(bed, cx, cy, cz, ax, ay, az, vx, vy, vz, omega, radius, width, f
                         on_flat = True
                 lateral = la + zr * az
                 inside = abs(lateral) <= 0.5 * width
-            surface = bed.h0[i, k] - bed.sp[i, k]
+            surface = bed.ground.z[i, k]
             if not inside or cz + zr >= surface:
                 if update:
                     bed.j[i, k] = 0.0                        # a new contact starts afresh
@@ -207,7 +252,7 @@ def wheel_loads(bed, cx, cy, cz, ax, ay, az, vx, vy, vz, omega, radius, width, f
                 continue
             w = cz + zr
             s = bed.h0[i, k] - w
-            sigma, sp_new, slope = node_stress(soil, s, bed.sp[i, k], width)
+            sigma, sp_new, slope = node_stress(soil, s, bed.h0[i, k] - surface, width)
             px, py, pz = d0x, d0y, zr                        # the surface point, from the centre
             if on_flat:
                 nxw, nyw, nzw = dx_, dy_, dz_
@@ -247,7 +292,7 @@ def wheel_loads(bed, cx, cy, cz, ax, ay, az, vx, vy, vz, omega, radius, width, f
                 area += cell
                 deepest = max(deepest, s)
             if update:
-                bed.sp[i, k] = sp_new
+                bed.ground.z[i, k] = bed.h0[i, k] - sp_new
                 bed.j[i, k] = jn
                 bed.sigma[i, k] = sigma
     return SoilLoads(fx, fy, fz, mx, my, mz, deepest, area, normal, dnormal)

@@ -1,0 +1,158 @@
+"""The soil bed as a kind of ground of the terrain interface (registered as ``"soil"``).
+
+Its queries are the rigid grid's, asked of the bed's current surface
+(``SoilSurface.ground``: the undisturbed heights less the rut, bounded by the
+undisturbed ones because the soil only sinks), so every contact model reads the soil
+through :mod:`tyrelab.road.terrain` as it reads a road. What makes it soil is
+:func:`soil_contact`, the ground's answer to a tyre element pressing on it: the
+element (a tread block of the ring) and the soil under it in series.
+
+A block of contact ``area`` A, pressed ``penetration`` p into the current surface with
+normal force ``fn`` by its own law, is taken as a spring of its secant stiffness
+``k_b = fn / p``; the soil under it sinks by a further ``Delta`` where the block and the
+soil carry the same force::
+
+    k_b (p - Delta) = sigma(s0 + Delta) A
+
+``s0`` the node's plastic sinkage and ``sigma`` its normal stress (Bekker's law with
+elastic unloading and reloading, :func:`~tyrelab.road.soil.scm.node_stress`, with ``b`` the
+block's side sqrt(A)); solved by Newton's method in a bracket. Every node under the
+block's square footprint is then pressed to the block's sole. The tangential force is
+capped by the soil's Mohr-Coulomb strength ``A (c + sigma tan phi)`` (Wong 2008, 2.3); the
+block's own shear stiffness (its brush law) takes the place of Janosi & Hanamoto's
+shear-displacement law, which the rigid and flexible wheels apply per node.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numba as nb
+
+from ..grid import (grid_block_max, grid_blocks, grid_line_height, grid_lines, grid_range,
+                    grid_row, local_zmax, road_height, road_height_gradient, road_penetration)
+from ..terrain_registry import TerrainKind, register_terrain
+from .scm import SoilSurface, node_stress
+
+#: the series solve stops when the block and the soil agree to this fraction of the force
+SERIES_TOLERANCE = 1e-6
+#: at most this many Newton or bisection steps
+SERIES_ITERATIONS = 50
+
+
+@nb.njit(cache=True)
+def soil_height(bed, x, y):
+    return road_height(bed.ground, x, y)
+
+
+@nb.njit(cache=True, inline="always")
+def soil_height_gradient(bed, x, y):
+    return road_height_gradient(bed.ground, x, y)
+
+
+@nb.njit(cache=True, inline="always")
+def soil_penetration(bed, x, y, z):
+    return road_penetration(bed.ground, x, y, z)
+
+
+@nb.njit(cache=True, inline="always")
+def soil_zmax(bed, x0, x1):
+    return local_zmax(bed.ground, x0, x1)
+
+
+@nb.njit(cache=True, inline="always")
+def soil_range(bed):
+    return grid_range(bed.ground)
+
+
+@nb.njit(cache=True, inline="always")
+def soil_lines(bed):
+    return grid_lines(bed.ground)
+
+
+@nb.njit(cache=True, inline="always")
+def soil_row(bed, y):
+    return grid_row(bed.ground, y)
+
+
+@nb.njit(cache=True, inline="always")
+def soil_line_height(bed, row, weight, k):
+    return grid_line_height(bed.ground, row, weight, k)
+
+
+@nb.njit(cache=True, inline="always")
+def soil_blocks(bed):
+    return grid_blocks(bed.ground)
+
+
+@nb.njit(cache=True, inline="always")
+def soil_block_max(bed, i):
+    return grid_block_max(bed.ground, i)
+
+
+@nb.njit(cache=True)
+def _nearest(bed, x, y):
+    """The node nearest to (x, y), clamped to the bed."""
+    nx, ny = bed.h0.shape
+    i = min(max(int(round((x - bed.x0) / bed.dx)), 0), nx - 1)
+    k = min(max(int(round((y - bed.y0) / bed.dy)), 0), ny - 1)
+    return i, k
+
+
+@nb.njit(cache=True)
+def soil_contact(bed, x, y, penetration, area, v1, v2, fn, f1, f2, dt):
+    """The forces the soil carries from a tyre element (module docstring); the nodes under
+    it sink. ``area`` 0 (a point contact) takes one node's cell."""
+    if fn <= 0.0 or penetration <= 0.0:
+        return 0.0, 0.0, 0.0
+    soil = bed.soil
+    a = area if area > 0.0 else bed.dx * bed.dy
+    side = math.sqrt(a)
+    i, k = _nearest(bed, x, y)
+    s0 = bed.h0[i, k] - bed.ground.z[i, k]
+    kb = fn / penetration
+    lo, hi = 0.0, penetration
+    delta = 0.5 * penetration
+    for _ in range(SERIES_ITERATIONS):
+        sigma, _, slope = node_stress(soil, s0 + delta, s0, side)
+        g = kb * (penetration - delta) - sigma * a
+        if abs(g) <= SERIES_TOLERANCE * fn:
+            break
+        if g > 0.0:
+            lo = delta
+        else:
+            hi = delta
+        nxt = delta + g / (kb + slope * a)
+        delta = nxt if lo < nxt < hi else 0.5 * (lo + hi)
+    sigma, _, _ = node_stress(soil, s0 + delta, s0, side)
+    carried = sigma * a
+    # the block's sole, Delta below the surface where it presses; the nodes under it follow
+    sole = soil_height(bed, x, y) - delta
+    nx, ny = bed.h0.shape
+    ri = int(math.ceil(0.5 * side / bed.dx))
+    rk = int(math.ceil(0.5 * side / bed.dy))
+    for ii in range(max(0, i - ri), min(nx - 1, i + ri) + 1):
+        if abs(bed.x0 + ii * bed.dx - x) > 0.5 * side + 0.5 * bed.dx:
+            continue
+        for kk in range(max(0, k - rk), min(ny - 1, k + rk) + 1):
+            if abs(bed.y0 + kk * bed.dy - y) > 0.5 * side + 0.5 * bed.dy:
+                continue
+            if bed.ground.z[ii, kk] > sole:
+                s_i = bed.h0[ii, kk] - sole
+                sig_i, sp_i, _ = node_stress(soil, s_i, bed.h0[ii, kk] - bed.ground.z[ii, kk], side)
+                bed.ground.z[ii, kk] = bed.h0[ii, kk] - sp_i
+                bed.sigma[ii, kk] = sig_i
+    # Mohr-Coulomb: the soil shears off beyond its strength under the carried stress
+    strength = a * (soil.cohesion + sigma * math.tan(soil.friction_angle))
+    ft = math.sqrt(f1 * f1 + f2 * f2)
+    scale = strength / ft if ft > strength else 1.0
+    return carried, f1 * scale, f2 * scale
+
+
+register_terrain(TerrainKind(
+    "soil", SoilSurface, height=soil_height, height_gradient=soil_height_gradient,
+    penetration=soil_penetration, zmax=soil_zmax, range=soil_range, lines=soil_lines,
+    row=soil_row, line_height=soil_line_height, blocks=soil_blocks, block_max=soil_block_max,
+    contact=soil_contact, rigid=False,
+    description="deformable soil (SCM class): Bekker-Wong pressure-sinkage, Mohr-Coulomb and "
+                "Janosi shear, a rut that stays (--terrain NAME|FILE.toml)"))

@@ -1,0 +1,84 @@
+"""The soil bed behind the terrain interface: its queries, its answer to a tread block, and the
+ring (which reads the ground through the interface only) rolling on it."""
+
+from __future__ import annotations
+
+import numba as nb
+import numpy as np
+import pytest
+
+from tyrelab.rig.single_wheel import single_wheel
+from tyrelab.road.grid import RoadGrid
+from tyrelab.road.soil.params import Soil
+from tyrelab.road.soil.scm import soil_bed
+from tyrelab.road.soil.terrain import soil_contact
+from tyrelab.road.terrain import terrain_height, terrain_is_rigid, terrain_kind, terrain_names
+from tyrelab.tyre.library import load_tyre
+from tyrelab.tyre.model import TyreModel
+
+LOAD, SPEED = 23.3e3, 1.0
+
+
+@nb.njit
+def _heights(bed, xs, ys):
+    out = np.empty(xs.size)
+    for k in range(xs.size):
+        out[k] = terrain_height(bed, xs[k], ys[k])
+    return out, terrain_is_rigid(bed)
+
+
+def test_the_soil_is_a_deformable_terrain_whose_surface_is_the_rut():
+    """Registered as "soil", not rigid; after a rigid wheel has passed, the interface's height
+    is the undisturbed height less the rut at every node, and bilinear between nodes
+    (numpy's interpolation of the rut, written here)."""
+    assert "soil" in terrain_names() and terrain_kind("soil").rigid is False
+    _, bed = single_wheel(TyreModel(load_tyre(), "rigid"), "sandy-loam", LOAD, SPEED, slip=0.2,
+                          duration=1.0, length=4.0, progress=False, return_bed=True)
+    rut = bed.rut
+    assert rut.max() > 0.03                                   # the wheel left a rut
+    i, k = np.unravel_index(np.argmax(rut), rut.shape)
+    xs = bed.x0 + bed.dx * np.array([i, i, i + 0.5, i + 0.25])
+    ys = bed.y0 + bed.dy * np.array([k, k + 3, k, k + 0.5])
+    h, rigid = _heights(bed, xs, ys)
+    assert not rigid
+    surface = bed.h0 - rut
+    expected = [surface[i, k], surface[i, k + 3], 0.5 * (surface[i, k] + surface[i + 1, k]),
+                np.mean([[surface[i, k], surface[i, k + 1]]]) * 0.75
+                + np.mean([[surface[i + 1, k], surface[i + 1, k + 1]]]) * 0.25]
+    assert h == pytest.approx(expected, abs=1e-12)
+
+
+def test_a_block_and_a_linear_soil_in_series_share_the_force():
+    """A block of secant stiffness kb pressed p into a fresh linear soil (n = 1, kc = 0: sigma =
+    kphi s, yielding at once under a far stiffer elastic line): the soil sinks by
+    Delta = kb p / (kb + kphi A) and carries kb (p - Delta); the node keeps Delta less the
+    elastic rebound sigma / K_e; the shear is capped at A (c + sigma tan phi)."""
+    soil = Soil(n=1.0, kc=0.0, kphi=2e6, cohesion=1e3, friction_angle=np.radians(30.0),
+                janosi_k=0.01, elastic_stiffness=1e9, damping=0.0)
+    bed = soil_bed(soil, RoadGrid(-1.0, -1.0, 0.02, 0.02, np.zeros((101, 101))))
+    area, p, fn = 0.04 * 0.04, 0.01, 500.0
+    kb = fn / p
+    carried, f1, f2 = soil_contact(bed, 0.0, 0.0, p, area, 0.0, 0.0, fn, 3000.0, 0.0, 1e-3)
+    delta = kb * p / (kb + soil.kphi * area)
+    assert carried == pytest.approx(kb * (p - delta), rel=1e-6)
+    sigma = soil.kphi * delta
+    assert bed.rut[50, 50] == pytest.approx(delta - sigma / soil.elastic_stiffness, rel=1e-6)
+    assert f1 == pytest.approx(area * (soil.cohesion + sigma * np.tan(soil.friction_angle)), rel=1e-9)
+    assert f2 == 0.0
+
+
+def test_the_ring_on_soil_agrees_with_the_flexible_wheel():
+    """Two independent ways of a flexible tyre on soil -- the ring's tread blocks each in series
+    with the nodes under them, and the analytic flexible wheel (the vertical law in series
+    with the flattened footprint) -- carry the dead weight, pull within 10 % of each other
+    on LETE sand at s = 0.2, and both sink less than the rigid wheel."""
+    steady = {}
+    for model in ("ring", "point", "rigid"):
+        run = single_wheel(TyreModel(load_tyre(), model), "lete-sand", LOAD, SPEED, slip=0.2,
+                           duration=2.0, progress=False)
+        part = run[run["RUNTIME"] > 1.0]
+        assert (run["FZW"] >= 0).all() and not run.isna().any().any()
+        steady[model] = {c: part[c].mean() for c in ("FX", "FZ", "SINKAGE")}
+    assert steady["ring"]["FZ"] == pytest.approx(LOAD, rel=0.01)
+    assert steady["ring"]["FX"] == pytest.approx(steady["point"]["FX"], rel=0.10)
+    assert max(steady["ring"]["SINKAGE"], steady["point"]["SINKAGE"]) < steady["rigid"]["SINKAGE"]
