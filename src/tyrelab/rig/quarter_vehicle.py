@@ -18,6 +18,7 @@ from ..road.spec import road_from_spec
 from ..tyre.model import TyreModel
 from . import _quarter_kernel as K
 from .simulation import drop_road, levelled_grid, run_chunks, to_signal
+from .soil_ground import soil_meta
 
 G = 9.80665
 
@@ -62,8 +63,13 @@ class QuarterVehicle:
         return (self.sprung_mass + self.unsprung_mass) * G
 
     def run(self, road: Road | str, speed: float, duration: float | None = None,
-            dt: float = 1e-3, output_rate: float = 1000.0, progress: bool | None = None):
-        """Drive over ``road`` at ``speed`` [m/s] from static equilibrium; signal table."""
+            dt: float = 1e-3, output_rate: float = 1000.0, progress: bool | None = None,
+            terrain=None):
+        """Drive over ``road`` at ``speed`` [m/s] from static equilibrium; signal table.
+
+        With ``terrain`` (a soil's name, file or :class:`~tyrelab.road.soil.params.Soil`)
+        the wheel runs on that soil laid over the road (:mod:`.soil_ground`), settled
+        into it at the start."""
         road = road_from_spec(road)
         if not (np.isfinite(speed) and speed > 0):
             raise InputError(f"speed must be a positive number, got {speed}", field="speed")
@@ -71,6 +77,13 @@ class QuarterVehicle:
         if duration is None:
             duration = max(road.extent()[1] - x0_road, 1.0) / speed
         tyre = self.model.tyre
+        if terrain is not None:
+            from .soil_ground import soil_wheel
+            wheel, zu = soil_wheel(self.model, terrain, road, x0_road, x0_road + speed * duration,
+                                   self.wheel_load, level_at=x0_road)
+            return self._run(road, speed, zu, speed / tyre.unloaded_radius, self.wheel_load,
+                             duration, dt, output_rate, progress, "quarter-vehicle", wheel.state,
+                             wheel, terrain)
         # where the model carries the wheel load rolling at this speed
         eq = self.model.equilibrium(self.wheel_load, speed)
         return self._run(road, speed, tyre.unloaded_radius - eq.deflection, eq.spin,
@@ -86,9 +99,10 @@ class QuarterVehicle:
                          dt, output_rate, progress, "wheel-drop")
 
     def _run(self, road, speed, zu, omega0, wheel_load, duration, dt, output_rate, progress, rig,
-             model_state=None):
+             model_state=None, wheel=None, terrain=None):
         """Drive (or hold, at ``speed`` 0) from hub height ``zu``, suspension at its static
-        length, the tyre model in ``model_state`` (default: its static state)."""
+        length, the tyre model in ``model_state`` (default: its static state); ``wheel`` the
+        wheel when it is built already (on soil)."""
         tyre = self.model.tyre
         x0_road = road.run_start
         ms, mu = self.sprung_mass, self.unsprung_mass
@@ -102,7 +116,7 @@ class QuarterVehicle:
         state[K.Q.ZU] = zu
         state[K.Q.ZS] = zu + self.spring_length
         state[K.Q.W] = omega0
-        wheel = self.model.wheel(levelled_grid(road, x0_road), wheel_load, state=model_state)
+        wheel = wheel or self.model.wheel(levelled_grid(road, x0_road), wheel_load, state=model_state)
         n_steps = int(round(duration / dt))
         out_every = max(1, int(round(1.0 / (output_rate * dt))))
 
@@ -113,6 +127,7 @@ class QuarterVehicle:
         meta = {"rig": rig, "tyre": tyre.name, "model": self.model.contact,
                 "handling": self.model.handling,
                 "stiffness": tyre.stiffness, "road": road.name, "speed_m_s": speed,
+                **soil_meta(terrain),
                 "static_wheel_load_N": self.wheel_load, "pressure_Pa": tyre.pressure, "dt_s": dt,
                 "output_rate_Hz": 1.0 / (out_every * dt)}
         return to_signal(data, K.CHANNELS, meta)

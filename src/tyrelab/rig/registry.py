@@ -140,7 +140,7 @@ def rig_named(name: str) -> Rig:
 def _trailer(req: RigRequest):
     from .trailer import Trailer
     return Trailer(req.model, req.load, left=req.left).run(req.road, req.speed, req.duration, req.dt,
-                                                          req.output_rate, req.progress)
+                                                          req.output_rate, req.progress, req.terrain)
 
 
 def _trailer_drop(req: RigRequest):
@@ -165,7 +165,8 @@ def _quarter(req: RigRequest):
 
 
 def _quarter_run(req: RigRequest):
-    return _quarter(req).run(req.road, req.speed, req.duration, req.dt, req.output_rate, req.progress)
+    return _quarter(req).run(req.road, req.speed, req.duration, req.dt, req.output_rate, req.progress,
+                             req.terrain)
 
 
 def _quarter_drop(req: RigRequest):
@@ -190,9 +191,10 @@ def _single_wheel(req: RigRequest):
 
 
 register_rig(Rig("trailer", _trailer, "the towed test trailer (thesis 3.4), two wheels", wheels=2,
-                 channels="tyrelab.rig._trailer_kernel:CHANNELS"))
+                 channels="tyrelab.rig._trailer_kernel:CHANNELS", terrain="any"))
 register_rig(Rig("quarter-vehicle", _quarter_run, "a sprung mass over one wheel",
-                 channels="tyrelab.rig._quarter_kernel:CHANNELS", check=_carries_wheel_mass))
+                 channels="tyrelab.rig._quarter_kernel:CHANNELS", check=_carries_wheel_mass,
+                 terrain="any"))
 register_rig(Rig("rolling", _rolling, "the axle at the static height of the load, rolled",
                  channels="tyrelab.rig.rolling:CHANNELS"))
 register_rig(Rig("drop", _trailer_drop, "the trailer's drop test (thesis 3.4.1)", wheels=2,

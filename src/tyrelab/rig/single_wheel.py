@@ -20,10 +20,10 @@ import numpy as np
 
 from ..core.named_index import named_index
 from ..errors import InputError
-from ..limits import MAX_MEMORY
 from ..road.soil.scm import undisturbed_height
-from ..tyre.wheel import Wheel, WheelPose, wheel_step
+from ..tyre.wheel import WheelPose, wheel_step
 from .frames import WHEEL_CHANNELS, WC, wheel_row
+from .soil_ground import BED_SPACING, BED_WIDTH, settle, soil_wheel
 from .simulation import run_chunks, to_signal
 
 G = 9.80665
@@ -34,14 +34,6 @@ STATE = ("Z", "VZ", "T")
 S = named_index("SingleWheelStateIndex", STATE)
 #: where the carriage starts along the bin [m]
 X_START = 0.0
-#: the soil bed's node spacing [m]: halving it moves the pull of the XZL's rigid wheel on LETE
-#: sand at s = 0.2 by 0.15 % and its sinkage by 1.8 %, and costs four times the time
-BED_SPACING = 0.02
-#: memory of a soil node: undisturbed height, plastic sinkage, shear displacement, stress
-BYTES_PER_NODE = 4 * 8
-#: the static equilibrium is found to this height [m]
-SETTLE_TOLERANCE = 1e-7
-
 
 @nb.njit(cache=True)
 def single_wheel_steps(wheel, mass, speed, omega, state, n_steps, dt, out_every, out, row0):
@@ -71,37 +63,8 @@ def single_wheel_steps(wheel, mass, speed, omega, state, n_steps, dt, out_every,
     return row
 
 
-@nb.njit(cache=True)
-def _vertical_force(wheel, z):
-    """The ground's vertical force on the wheel standing at centre height ``z`` (dt = 0: the
-    shear does not grow; the nodes' plastic sinkage does -- call on a copy of the ground)."""
-    pose = WheelPose(X_START, 0.0, z, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0)
-    return wheel_step(wheel, pose, 0.0).fz
-
-
-def _fresh(wheel):
-    """The wheel on a copy of its ground's node state (an equilibrium trial leaves no rut)."""
-    return wheel._replace(road=wheel.road.fresh_copy())
-
-
-def static_height(wheel, load: float, top: float, radius: float) -> float:
-    """The centre height [m] at which the ground carries ``load`` [N] under the wheel at rest
-    (bisection between touching the highest ground, ``top``, and a full radius deep)."""
-    lo, hi = top, top + radius        # the force falls as the wheel rises
-    if _vertical_force(_fresh(wheel), lo) < load:
-        raise InputError(f"the soil does not carry {load:.6g} N under this wheel even a full radius "
-                         "deep; a lighter load or a stiffer soil", field="load")
-    while hi - lo > SETTLE_TOLERANCE:
-        mid = 0.5 * (lo + hi)
-        if _vertical_force(_fresh(wheel), mid) > load:
-            lo = mid
-        else:
-            hi = mid
-    return 0.5 * (lo + hi)
-
-
 def single_wheel(model, soil, load: float, speed: float, slip: float = 0.0, length: float = 10.0,
-                 width: float = 2.0, spacing: float = BED_SPACING, duration: float | None = None,
+                 width: float = BED_WIDTH, spacing: float = BED_SPACING, duration: float | None = None,
                  dt: float = 1e-3, output_rate: float = 1000.0, progress: bool | None = None,
                  road=None, passes: int = 1, return_bed: bool = False):
     """Drive ``model`` through a soil bin; returns the signal table (a list of them, one per
@@ -134,30 +97,14 @@ def single_wheel(model, soil, load: float, speed: float, slip: float = 0.0, leng
     """
     from ..road.obstacles import Flat
     from ..road.soil import load_soil
-    from ..road.soil.scm import soil_bed
     if not 0.0 <= slip < 1.0:
         raise InputError(f"slip must be in [0, 1), got {slip!r}", field="slip")
-    from ..tyre.contact.soil_wheel import wheel_params
-    if "soil" not in model.contact_model.terrains:
-        from ..tyre.registry import contact_models
-        on_soil = [n for n, m in contact_models().items() if "soil" in m.terrains]
-        raise InputError(f"the '{model.contact}' model does not run on soil yet; models that do: "
-                         f"{', '.join(on_soil)}", field="model")
     if duration is not None:
         length = max(length, X_START + speed * duration + 2.0)
-    soil_params, soil_name = load_soil(soil)
+    _, soil_name = load_soil(soil)
     road = road or Flat()
     x_end = X_START + length - 1.0
-    nodes = (length + 2.0) / spacing * (width / spacing)
-    if nodes * BYTES_PER_NODE > MAX_MEMORY:
-        raise InputError(f"a soil bed {length + 2.0:.6g} m long and {width:g} m wide at {spacing:g} m "
-                         f"needs {nodes * BYTES_PER_NODE / 1024 ** 3:.3g} GiB, above the "
-                         f"{MAX_MEMORY / 1024 ** 3:g} GiB allowed; a shorter run or a coarser bed",
-                         field="duration")
-    ground = soil_bed(soil_params, _bed_grid(road, X_START - 1.0, x_end + 1.0, width, spacing))
-    params = wheel_params(model.contact_model, model.tyre, ground, model.options)
-    wheel = Wheel(model.tyre.vertical_law, params, model.handling_params(), ground,
-                  model.initial_state(load, params))
+    wheel, z0 = soil_wheel(model, soil, road, X_START, x_end, load, spacing=spacing, width=width)
     radius = model.tyre.unloaded_radius
     if duration is None:
         duration = (x_end - X_START) / speed
@@ -165,9 +112,9 @@ def single_wheel(model, soil, load: float, speed: float, slip: float = 0.0, leng
     n_steps = int(round(duration / dt))
     out_every = max(1, int(round(1.0 / (output_rate * dt))))
     tables = []
-    for _ in range(passes):
-        z0 = static_height(wheel, load, ground.zmax, radius)
-        _vertical_force(wheel, z0)          # the bed pressed where the wheel stands at the start
+    for k in range(passes):
+        if k:                               # again from the start, settled into the rut
+            z0 = settle(wheel, load, X_START, radius)
         state = np.zeros(len(STATE))
         state[S.Z] = z0
 
@@ -207,14 +154,3 @@ def slip_curve(model, soil, load: float, speed: float, slips, duration: float = 
         if progress:
             progress(k + 1)
     return pd.DataFrame(rows)
-
-
-def _bed_grid(road, x0: float, x1: float, width: float, spacing: float):
-    """The road's heights on the bed's node grid (x from ``x0`` to ``x1``, y across ``width``)."""
-    from ..road.grid import RoadGrid
-    nx = int(np.ceil((x1 - x0) / spacing)) + 1
-    ny = int(np.ceil(width / spacing)) + 1
-    xs = x0 + spacing * np.arange(nx)
-    ys = -0.5 * width + spacing * np.arange(ny)
-    X, Y = np.meshgrid(xs, ys, indexing="ij")
-    return RoadGrid(x0, -0.5 * width, spacing, spacing, road.height(X, Y))

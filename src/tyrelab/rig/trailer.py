@@ -24,12 +24,13 @@ import numpy as np
 
 from ..errors import InputError
 from ..tyre.library import load_cases
-from ..tyre.model import TyreModel
+from ..tyre.model import Equilibrium, TyreModel
 from ..road.base import Road
 from ..road.obstacles import Flat
 from ..road.spec import road_from_spec
 from . import _trailer_kernel as K
 from .simulation import drop_road, levelled_grid, run_chunks, to_signal
+from .soil_ground import soil_meta
 
 G = 9.80665
 
@@ -210,12 +211,16 @@ class Trailer:
             gravity=G, road_y=0.5 * float(gm.track))
 
     def run(self, road: Road | str, speed: float, duration: float | None = None,
-            dt: float = 1e-3, output_rate: float = 1000.0, progress: bool | None = None):
+            dt: float = 1e-3, output_rate: float = 1000.0, progress: bool | None = None,
+            terrain=None):
         """Tow the trailer over ``road`` at ``speed`` [m/s]; returns the signal table.
 
         The test wheel starts at x = 0 in static equilibrium. Without
         ``duration`` the run lasts until the test wheel reaches the end of
-        the road's extent.
+        the road's extent. With ``terrain`` (a soil's name, file or
+        :class:`~tyrelab.road.soil.params.Soil`) the test wheel runs on that soil laid
+        over the road (:mod:`.soil_ground`), settled into it at the start; the
+        left wheel stays on flat rigid ground.
         """
         road = road_from_spec(road)
         if not (np.isfinite(speed) and speed > 0):
@@ -234,15 +239,24 @@ class Trailer:
         # ring's own load-deflection and centrifugal growth; the vertical law's
         # static deflection for the analytic models); the frame pitches and
         # rolls to put the wheel centres there
-        right = self.model.equilibrium(s.wheel_load, speed)
         left = self.left.equilibrium(s.wheel_load, speed)
         r0 = self.model.tyre.unloaded_radius
-        z_right, z_left = r0 - right.deflection, r0 - left.deflection
+        on_soil = None
+        if terrain is None:
+            right = self.model.equilibrium(s.wheel_load, speed)
+            z_right = r0 - right.deflection
+        else:
+            from .soil_ground import soil_wheel
+            on_soil, z_right = soil_wheel(self.model, terrain, road, x0_road,
+                                          x0_road + speed * duration, s.wheel_load, level_at=x0_road)
+            right = Equilibrium(r0 - z_right, speed / r0, on_soil.state)
+        z_left = r0 - left.deflection
         pitch = math.asin((0.5 * (z_right + z_left) - s.hitch_height)
                           / self.geometry.hitch_to_axle)
         roll = math.asin((z_left - z_right) / (self.geometry.track * math.cos(pitch)))
         return self._run(road, speed, pitch, (right.spin, left.spin), s.wheel_load, duration,
-                         dt, output_rate, progress, "trailer", roll, (right.state, left.state))
+                         dt, output_rate, progress, "trailer", roll, (right.state, left.state),
+                         on_soil, terrain)
 
     def drop(self, road: Road | str = "flat", lift: float = 0.0, duration: float = 3.0,
              dt: float = 1e-3, output_rate: float = 1000.0, progress: bool | None = None):
@@ -263,9 +277,10 @@ class Trailer:
                          progress, "trailer-drop")
 
     def _run(self, road, speed, pitch0, spins, wheel_load, duration, dt, output_rate, progress,
-             rig, roll0=0.0, states=None):
+             rig, roll0=0.0, states=None, right_wheel=None, terrain=None):
         """Tow (or hold, at ``speed`` 0) the trailer from ``pitch0``, ``roll0`` [rad] at rest,
-        the wheels spinning at ``spins`` (right, left) [rad/s], in the models' ``states``."""
+        the wheels spinning at ``spins`` (right, left) [rad/s], in the models' ``states``;
+        ``right_wheel`` the test wheel when it is built already (on soil)."""
         x0_road = road.run_start
         grid = levelled_grid(road, x0_road)
         tp = self.params(speed)
@@ -279,7 +294,7 @@ class Trailer:
         out_every = max(1, int(round(1.0 / (output_rate * dt))))
 
         right_state, left_state = states or (None, None)
-        right = self.model.wheel(grid, wheel_load, state=right_state)
+        right = right_wheel or self.model.wheel(grid, wheel_load, state=right_state)
         left = self.left.wheel(Flat().grid(), wheel_load, state=left_state)
 
         def advance(n, out, row):
@@ -292,6 +307,7 @@ class Trailer:
                 "left_wheel": self.left.contact,
                 "handling": self.model.handling,
                 "stiffness": self.model.tyre.stiffness, "road": road.name, "speed_m_s": speed,
+                **soil_meta(terrain),
                 "load_case": str(self.load_case), "static_wheel_load_N": s.wheel_load,
                 "pressure_Pa": self.model.tyre.pressure, "dt_s": dt,
                 "output_rate_Hz": 1.0 / (out_every * dt)}

@@ -88,7 +88,8 @@ class TyreModel:
             extra = self.contact_model.static_options
             for key, value in (extra(grid) if callable(extra) else extra).items():
                 options.setdefault(key, value)
-        return self.contact_model.build(self.tyre, grid, **options)
+        from .contact.soil_wheel import wheel_params  # on soil an analytic model is a flexible wheel
+        return wheel_params(self.contact_model, self.tyre, grid, options)
 
     def handling_params(self):
         """The handling model's parameter record."""

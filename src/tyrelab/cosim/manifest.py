@@ -1,0 +1,193 @@
+"""What travels inside tyrelab's FMU: the tyre's data, the road file, and the manifest naming them.
+
+:func:`write_data` fills a folder (the FMU's ``resources/tyrelab_data/``) at
+export; :func:`read_manifest` and :func:`build_stepper` turn it back into a
+:class:`~.stepper.WheelStepper` when the FMU is initialised. The folder holds
+
+* ``manifest.json`` -- the tyrelab version that exported it, the tyre (its
+  file in the folder, the built-in name it came from, the pressure it
+  describes, the stiffness mode), the contact and handling models and their
+  options, the road (a name, or its file in the folder and the lateral offset),
+  and the defaults of the FMU's parameters;
+* ``tyre/`` -- the tyre: a ``.tir`` or Chrono ``.json`` file as the user gave it,
+  or a built-in tyre written at the export's pressure (with the ring's
+  ``[FLEXIBLE_RING]`` section when the ring needs it and the tyre's own file
+  has none);
+* ``road/`` -- the road file, when the road is one.
+
+Names, not code: the models themselves are the installed tyrelab's.
+"""
+
+from __future__ import annotations
+
+import copy
+import json
+import math
+import shutil
+from pathlib import Path
+
+from .._version import __version__
+from ..errors import InputError
+from ..road.formats import road_file
+from ..tyre.model import TyreModel
+from .stepper import WheelStepper, wheel_stepper
+
+#: the folder inside the FMU's resources, and its manifest's name and format version
+DATA = "tyrelab_data"
+MANIFEST = "manifest.json"
+FORMAT = 1
+#: option values a manifest can carry (JSON scalars)
+SCALARS = (bool, int, float, str)
+
+
+def _tyre_record(folder: Path, tm: TyreModel, tyre) -> dict:
+    """Write the tyre into ``folder/tyre``; its manifest entry."""
+    from ..tyre.library import BUILT_IN, SINGLE_FILE
+    from ..tyre.params import Tyre
+
+    names = {k.lower(): k for k in (*BUILT_IN, *SINGLE_FILE)}
+    builtin = names.get(str(tyre).lower()) if isinstance(tyre, (str, Path)) else None
+    (folder / "tyre").mkdir()
+    t = tm.tyre
+    if builtin is None and not isinstance(tyre, Tyre):  # the user's file, as it is
+        source = Path(tyre)
+        name = source.name
+        shutil.copyfile(source, folder / "tyre" / name)
+    else:  # a built-in tyre (or a Tyre object) at its pressure, as a property file
+        out = copy.deepcopy(t)
+        if tm.contact_model.has_state and not out.tir.has("FLEXIBLE_RING"):
+            _add_ring_section(out)
+        name = f"{_file_stem(out.name)}.tir"
+        out.write(folder / "tyre" / name)
+    pressure = float(t.pressure)
+    return {"file": f"tyre/{name}", "builtin": builtin,
+            "pressure": pressure if math.isfinite(pressure) else None,
+            "stiffness": t.stiffness, "unloaded_radius": float(t.unloaded_radius)}
+
+
+def _add_ring_section(tyre) -> None:
+    """Copy the identified ``[FLEXIBLE_RING]`` of a built-in tyre into its property file."""
+    from importlib import resources
+
+    from ..tyre.ring.parameters import BUILT_IN_RING, SECTION
+    from ..tyre.tir import read_tir
+    key = {k.lower(): k for k in BUILT_IN_RING}.get(str(tyre.name).lower())
+    if key is None:
+        return  # the ring's own build names what is missing
+    with resources.as_file(resources.files("tyrelab.tyre").joinpath("data", BUILT_IN_RING[key])) as p:
+        ring = read_tir(p)
+    if ring.has(SECTION):
+        tyre.tir.sections[SECTION] = copy.deepcopy(ring.sections[SECTION])
+
+
+def _file_stem(name: str) -> str:
+    """A file name from a tyre's name (its own characters where safe)."""
+    stem = "".join(c if c.isalnum() or c in "-_." else "_" for c in Path(str(name)).name)
+    return stem.strip(".") or "tyre"
+
+
+def _road_record(folder: Path, road) -> dict:
+    """Copy a road file into ``folder/road``; the road's manifest entry (a name or the file)."""
+    if not isinstance(road, str):
+        raise InputError("give the road by its name or file to put it in an FMU (a Road object "
+                         "cannot travel inside one)", field="road")
+    named = road_file(road)
+    if named is None:
+        return {"spec": road}
+    _, path_text, offset = named
+    source = Path(path_text)
+    (folder / "road").mkdir()
+    shutil.copyfile(source, folder / "road" / source.name)
+    return {"file": f"road/{source.name}", "offset": offset}
+
+
+def write_data(folder, tm: TyreModel, tyre, road: str, load: float, frame: str,
+               internal_step: float) -> dict:
+    """Write the tyre, the road and ``manifest.json`` into ``folder`` (it must exist, empty).
+
+    ``tm`` the checked model (:func:`tyrelab.api.make_tyre_model`) of ``tyre``
+    (the name or file the user gave); ``road`` a road name or file
+    ``FILE[@V]``; ``load`` [N], ``frame`` and ``internal_step`` [s] the
+    defaults of the parameters INITIAL_LOAD, OUTPUT_FRAME and INTERNAL_STEP.
+    Returns the manifest.
+    """
+    folder = Path(folder)
+    bad = {k: v for k, v in tm.options.items() if not isinstance(v, SCALARS)}
+    if bad or "pattern" in tm.options:
+        raise InputError(f"the option(s) {', '.join(sorted(set(bad) | ({'pattern'} & set(tm.options))))} "
+                         "cannot travel inside an FMU (numbers, true/false and texts can; a tread "
+                         "pattern file cannot yet)", field="options")
+    z_start = tm.tyre.unloaded_radius - (tm.tyre.static_deflection(load) if load > 0 else 0.0)
+    manifest = {
+        "format": FORMAT,
+        "tyrelab": __version__,
+        "tyre": _tyre_record(folder, tm, tyre),
+        "model": tm.contact,
+        "handling": tm.handling,
+        "options": dict(tm.options),
+        "road": _road_record(folder, road),
+        "load": float(load),
+        "frame": frame,
+        "internal_step": float(internal_step),
+        "z_start": float(z_start),
+    }
+    (folder / MANIFEST).write_text(json.dumps(manifest, indent=1) + "\n", encoding="utf-8")
+    return manifest
+
+
+def read_manifest(resources) -> dict:
+    """The manifest of an FMU's resources folder (``resources/tyrelab_data/manifest.json``)."""
+    path = Path(_path(resources)) / DATA / MANIFEST
+    if not path.is_file():
+        raise InputError("no tyrelab manifest in the FMU's resources", source=str(path))
+    manifest = json.loads(path.read_text(encoding="utf-8"))
+    if manifest.get("format") != FORMAT:
+        raise InputError(f"manifest format {manifest.get('format')!r}; this tyrelab reads format "
+                         f"{FORMAT}", source=str(path))
+    return manifest
+
+
+def _path(resources) -> str:
+    """A folder from a resources location (a path or a ``file://`` URI)."""
+    text = str(resources)
+    if text.startswith("file://"):
+        from urllib.parse import unquote, urlparse
+        text = unquote(urlparse(text).path)
+    return text
+
+
+def road_spec(resources, manifest: dict) -> str:
+    """The road of a manifest as :func:`tyrelab.road.spec.road_from_spec` takes it."""
+    road = manifest["road"]
+    if "spec" in road:
+        return road["spec"]
+    path = Path(_path(resources)) / DATA / road["file"]
+    return f"{path}@{road['offset']}" if road["offset"] else str(path)
+
+
+def build_stepper(resources, manifest: dict, pressure: float, load: float, max_step: float,
+                  frame: str, speed: float, start_time: float) -> WheelStepper:
+    """The wheel an FMU instance steps, from its manifest and its parameters.
+
+    ``pressure`` [Pa]: 0 or the tyre file's own takes the file in the FMU; another
+    pressure takes the built-in tyre at that pressure from the installed tyrelab
+    (a tyre file describes one pressure only: an InputError). ``load`` [N] and
+    ``speed`` [m/s] the equilibrium the state starts in; ``max_step`` [s], 0
+    for the model's stable step.
+    """
+    from ..api import make_tyre_model
+
+    tyre = manifest["tyre"]
+    path = Path(_path(resources)) / DATA / tyre["file"]
+    own = tyre["pressure"]
+    if pressure == 0.0 or (own is not None and math.isclose(pressure, own, rel_tol=1e-9)):
+        source, at = str(path), None
+    elif tyre["builtin"] is not None:
+        source, at = tyre["builtin"], pressure
+    else:
+        source, at = str(path), pressure
+    tm = make_tyre_model(source, manifest["model"], at, tyre["stiffness"], manifest["handling"],
+                         manifest["options"])
+    return wheel_stepper(model=tm, road=road_spec(resources, manifest), load=load,
+                         speed=max(speed, 0.0), max_step=max_step if max_step > 0 else None,
+                         frame=frame, start_time=start_time)

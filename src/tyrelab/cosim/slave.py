@@ -1,0 +1,148 @@
+"""tyrelab's wheel as an FMI 2.0 co-simulation slave (pythonfmu's ``Fmi2Slave``).
+
+The FMU that :func:`tyrelab.cosim.fmu.export_fmu` writes holds a one-line
+script importing :class:`TyrelabWheel`, the manifest and data of
+:mod:`.manifest`, and pythonfmu's binary, which runs this class in the Python
+of the process that loads the FMU (a Python host such as FMPy) or in a Python
+it starts. So the host needs a Python 3 with tyrelab installed (and its
+libpython loadable); the FMU carries no Python of its own.
+
+At ``exitInitializationMode`` the instance builds its wheel
+(:func:`.manifest.build_stepper`: the parameters, and the initial inputs'
+speed for the equilibrium), and publishes the loads of the initial state at
+the initial inputs; each ``doStep(t, h)`` is one
+:meth:`~.stepper.WheelStepper.step` from the inputs at ``t``, the outputs
+being the loads over ``[t, t + h]``. Variables: :mod:`.variables`.
+"""
+
+from __future__ import annotations
+
+import math
+from xml.etree.ElementTree import Element, SubElement
+
+from pythonfmu import DefaultExperiment, Fmi2Causality, Fmi2Slave, Fmi2Variability, Integer, Real
+
+from .._version import __version__
+from ..errors import InputError
+from .kernel import WheelCentre
+from .manifest import build_stepper, read_manifest
+from .variables import INPUTS, OUTPUT_FRAMES, OUTPUTS, PARAMETERS, UNITS
+
+#: the communication step the model description suggests [s]: the rigs' default step
+SUGGESTED_STEP = 1e-3
+
+
+def host_requirements(version: str = __version__) -> str:
+    """What a host needs to run the FMU, in words (the model description and the docs say it)."""
+    return (f"Needs a Python 3 with tyrelab {version} installed (pip install tyrelab) in the process "
+            "that loads the FMU: a Python host (FMPy, OMSimulator's Python API) runs it in its own "
+            "interpreter; any other host must have that Python's libpython loaded "
+            "(Linux: LD_PRELOAD=.../libpython3.X.so) and tyrelab on its PYTHONPATH.")
+
+
+class TyrelabWheel(Fmi2Slave):
+    """A tyrelab tyre model on its road, stepped by the FMU's host (pythonfmu slave)."""
+
+    def __init__(self, **kwargs):
+        super().__init__(**kwargs)
+        manifest = read_manifest(self.resources)
+        self._manifest = manifest
+        self._stepper = None
+        self._start_time = 0.0
+        tyre = manifest["tyre"]
+        self.modelName = _identifier(f"tyrelab_{manifest['model']}")
+        self.author = "tyrelab"
+        self.version = manifest["tyrelab"]
+        road = manifest["road"].get("spec") or manifest["road"]["file"]
+        self.description = (f"tyrelab {manifest['tyrelab']}: tyre {tyre['file']} "
+                            f"({_kpa(tyre['pressure'])}), contact model {manifest['model']}, "
+                            f"handling {manifest['handling']}, road {road}. SI units; road frame "
+                            "x along the road, y left, z up; loads of the road on the tyre "
+                            "(TYDEX C-axis, tyrelab.signal). " + host_requirements(manifest["tyrelab"]))
+        self.default_experiment = DefaultExperiment(start_time=0.0, step_size=SUGGESTED_STEP)
+        for v in INPUTS:
+            # start: at rest, level, heading +x, the centre where the vertical law carries the
+            # initial load on a level road at z = 0
+            setattr(self, v.name, float(manifest["z_start"]) if v.field == "z" else 0.0)
+            self.register_variable(Real(v.name, causality=Fmi2Causality.input,
+                                        variability=Fmi2Variability.continuous,
+                                        description=v.description))
+        for v in OUTPUTS:
+            setattr(self, v.name, 0.0)
+            self.register_variable(Real(v.name, causality=Fmi2Causality.output,
+                                        variability=Fmi2Variability.continuous,
+                                        description=v.description))
+        starts = {"pressure": tyre["pressure"] or 0.0, "load": manifest["load"],
+                  "max_step": manifest["internal_step"],
+                  "frame": OUTPUT_FRAMES.index(manifest["frame"])}
+        for v in PARAMETERS:
+            kind = Integer if v.kind == "Integer" else Real
+            setattr(self, v.name, starts[v.field])
+            self.register_variable(kind(v.name, causality=Fmi2Causality.parameter,
+                                        variability=Fmi2Variability.fixed, description=v.description))
+
+    # --- the FMI calls --------------------------------------------------------------------
+
+    def setup_experiment(self, start_time, stop_time=None, tolerance=None):
+        self._start_time = float(start_time)
+
+    def exit_initialization_mode(self):
+        frame = int(self.OUTPUT_FRAME)
+        if frame not in range(len(OUTPUT_FRAMES)):
+            raise InputError(f"OUTPUT_FRAME {frame}: expected 0 (C-axis) or 1 (road frame)",
+                             field="OUTPUT_FRAME")
+        centre = self._centre()
+        speed = centre.vx * math.cos(centre.yaw) + centre.vy * math.sin(centre.yaw)
+        self._stepper = build_stepper(self.resources, self._manifest, float(self.PRESSURE),
+                                      float(self.INITIAL_LOAD), float(self.INTERNAL_STEP),
+                                      OUTPUT_FRAMES[frame], speed, self._start_time)
+        self._publish(self._stepper.loads(centre))
+
+    def do_step(self, current_time, step_size):
+        self._publish(self._stepper.step(current_time, self._centre(), step_size))
+        return True
+
+    def terminate(self):
+        self._stepper = None
+
+    # --- between the FMI variables and the stepping API's records ------------------------
+
+    def _centre(self) -> WheelCentre:
+        return WheelCentre(**{v.field: float(getattr(self, v.name)) for v in INPUTS})
+
+    def _publish(self, loads) -> None:
+        for v in OUTPUTS:
+            setattr(self, v.name, getattr(loads, v.field))
+
+    def to_xml(self, model_options=None) -> Element:
+        """pythonfmu's model description plus what it leaves out: the unit of every real
+        variable (UnitDefinitions) and the outputs as initial unknowns (calculated at
+        initialisation from the inputs and parameters)."""
+        root = super().to_xml(model_options or {})
+        units = SubElement(root, "UnitDefinitions")
+        for name, exponents in UNITS.items():
+            unit = SubElement(units, "Unit", {"name": name})
+            if exponents:
+                SubElement(unit, "BaseUnit", {k: str(e) for k, e in exponents.items()})
+        root.remove(units)
+        root.insert(list(root).index(root.find("CoSimulation")) + 1, units)
+        unit_of = {v.name: v.unit for v in INPUTS + OUTPUTS + PARAMETERS if v.unit}
+        for sv in root.find("ModelVariables"):
+            real = sv.find("Real")
+            if real is not None and sv.get("name") in unit_of:
+                real.set("unit", unit_of[sv.get("name")])
+        structure = root.find("ModelStructure")
+        initial = SubElement(structure, "InitialUnknowns")
+        for unknown in structure.find("Outputs"):
+            SubElement(initial, "Unknown", {"index": unknown.get("index")})
+        return root
+
+
+def _identifier(text: str) -> str:
+    """A C identifier (the FMI modelIdentifier) from ``text``."""
+    out = "".join(c if c.isalnum() or c == "_" else "_" for c in text)
+    return out if not out[0].isdigit() else "_" + out
+
+
+def _kpa(pressure) -> str:
+    return "pressure not stated" if pressure is None else f"{pressure / 1e3:g} kPa"

@@ -1,0 +1,231 @@
+"""The stepping API: a tyre model as a wheel that the user's vehicle model moves.
+
+>>> from tyrelab.cosim import WheelCentre, wheel_stepper
+>>> wheel = wheel_stepper("xzl-16.00R20", "point", "cleat:50x50")          # doctest: +SKIP
+>>> loads = wheel.step(0.0, WheelCentre(x=0.0, y=0.0, z=0.63, vx=3.33, vy=0.0, vz=0.0,
+...                                     omega=5.4), dt=1e-3)                 # doctest: +SKIP
+>>> loads.fz                                                                   # doctest: +SKIP
+
+As Project Chrono's ``ChTire`` (synchronise with the wheel's state, advance,
+report the force): :meth:`WheelStepper.step` takes the wheel centre's pose,
+velocities and spin at the start of a step (:class:`~.kernel.WheelCentre`),
+advances the model's internal state over the step (the ring's belt and
+tread blocks; the analytic models have none) in sub-steps no longer than
+the model's stable step, and returns the loads of the road on the tyre at
+the wheel centre over the step (:class:`~.kernel.CentreLoads`). The rigs
+step the same kernel (:func:`tyrelab.tyre.wheel.wheel_step`): a host that
+moves the wheel as a rig does gets the rig's loads, to round-off.
+
+The host owns the wheel's motion: its position, its velocity and its spin
+(integrate the spin with ``MY``; ``dmy_domega`` lets it do so implicitly,
+as the rigs do). Conventions: SI, the road frame and the TYDEX C-axis
+sign convention of :mod:`tyrelab.signal` (loads of the road on the tyre).
+"""
+
+from __future__ import annotations
+
+import copy
+import math
+
+from ..api import make_tyre_model
+from ..errors import InputError
+from ..tyre.model import TyreModel
+from .kernel import C_AXIS_FRAME, ROAD_FRAME, CentreLoads, WheelCentre, advance
+
+#: the frames the loads at the wheel centre may be given in (``frame``), by name
+FRAMES = {"C-axis": C_AXIS_FRAME, "road": ROAD_FRAME}
+#: relative tolerance on a step's start time against the stepper's own time
+TIME_TOLERANCE = 1e-9
+#: the internal step when no stable step can be stated (a tyre without a wheel mass, no load) [s]
+DEFAULT_STEP = 1e-3
+
+
+class WheelStepper:
+    """A wheel a host steps: the model's state, its road and its time.
+
+    Build one with :func:`wheel_stepper` (by names) or from a
+    :class:`~tyrelab.tyre.model.TyreModel` and its
+    :class:`~tyrelab.tyre.wheel.Wheel` record.
+
+    Parameters
+    ----------
+    model : TyreModel
+        The tyre and its contact and handling models.
+    wheel : Wheel
+        The record the compiled step takes (``model.wheel(ground, load, state=...)``);
+        its state is advanced in place.
+    max_step : float
+        Longest internal step [s]; a step of length ``dt`` runs
+        ``ceil(dt / max_step)`` equal sub-steps.
+    frame : {"C-axis", "road"}
+        Frame of the forces and moments at the wheel centre: the wheel's TYDEX
+        C-axis system (:mod:`tyrelab.signal`) or the road frame.
+    start_time : float
+        Time [s] of the wheel's initial state.
+    equilibrium : Equilibrium, optional
+        Where the wheel's state was started (:meth:`TyreModel.equilibrium`):
+        its ``deflection`` puts the wheel centre at ``R0 - deflection`` above
+        a level road, its ``spin`` is the free-rolling spin.
+    """
+
+    def __init__(self, model: TyreModel, wheel, max_step: float, frame: str = "C-axis",
+                 start_time: float = 0.0, equilibrium=None):
+        if frame not in FRAMES:
+            raise InputError(f"unknown frame '{frame}', expected one of {', '.join(FRAMES)}",
+                             field="frame")
+        if not (math.isfinite(max_step) and max_step > 0):
+            raise InputError(f"the internal step must be a positive number of seconds, got "
+                             f"{max_step!r}", field="max_step")
+        if not math.isfinite(start_time):
+            raise InputError(f"the start time must be a finite number, got {start_time!r}",
+                             field="start_time")
+        self.model = model
+        self.wheel = wheel
+        self.max_step = float(max_step)
+        self.frame = frame
+        self._frame = FRAMES[frame]
+        self._time = float(start_time)
+        self.equilibrium = equilibrium
+
+    @property
+    def time(self) -> float:
+        """The time [s] the model's state has been advanced to."""
+        return self._time
+
+    def sub_steps(self, dt: float) -> int:
+        """How many internal steps a step of ``dt`` [s] takes."""
+        return max(1, math.ceil(dt / self.max_step - 1e-9))
+
+    def step(self, time: float, centre: WheelCentre, dt: float) -> CentreLoads:
+        """Advance the wheel from ``time`` to ``time + dt`` [s]; the loads over the step.
+
+        Parameters
+        ----------
+        time : float
+            Start of the step [s]: the stepper's :attr:`time` (a wheel's state
+            cannot be taken back or jump ahead).
+        centre : WheelCentre
+            The wheel centre's pose, velocity and spin at ``time`` (road frame,
+            SI); over the step the centre moves along that velocity.
+        dt : float
+            Length of the step [s], positive.
+
+        Returns
+        -------
+        CentreLoads
+            Forces and moments of the road on the tyre at the wheel centre
+            (means over the step), the contact force in the W-axis system, the
+            deflection, contact point and slips at the step's end.
+        """
+        if not (isinstance(dt, (int, float)) and math.isfinite(dt) and dt > 0):
+            raise InputError(f"the step must be a positive number of seconds, got {dt!r}", field="dt")
+        if not abs(time - self._time) <= TIME_TOLERANCE * max(1.0, abs(time)) + 1e-6 * dt:
+            raise InputError(f"the wheel's state is at t = {self._time!r} s, the step starts at "
+                             f"{time!r} s: step on from where the wheel is", field="time")
+        centre = _checked(centre)
+        n = self.sub_steps(dt)
+        loads = advance(self.wheel, centre, n, dt / n, self._frame)
+        self._time = float(time) + dt
+        return loads
+
+    def loads(self, centre: WheelCentre) -> CentreLoads:
+        """The loads of the present state at ``centre``, leaving the state as it is.
+
+        A step of length 0 on a copy of the state: for the analytic models the
+        loads of the vertical law and the handling model at this pose, for the
+        ring the foundation's reaction on the rim.
+        """
+        wheel = self.wheel._replace(state=copy.deepcopy(self.wheel.state))
+        return advance(wheel, _checked(centre), 1, 0.0, self._frame)
+
+
+def _checked(centre) -> WheelCentre:
+    """``centre`` as a :class:`WheelCentre` of floats, or InputError naming a value that is not
+    finite."""
+    if not isinstance(centre, WheelCentre):
+        centre = WheelCentre(*centre)
+    values = tuple(float(v) for v in centre)
+    for name, v in zip(WheelCentre._fields, values):
+        if not math.isfinite(v):
+            raise InputError(f"the wheel centre's {name} is not a finite number ({v})", field=name)
+    return WheelCentre(*values)
+
+
+def wheel_stepper(tyre="xzl-16.00R20", model: str | TyreModel = "point", road="flat", *,
+                  pressure: float | None = None, stiffness: str | None = None,
+                  handling: str | None = None, options: dict | None = None, load=0.0,
+                  speed: float = 0.0, max_step: float | None = None, frame: str = "C-axis",
+                  start_time: float = 0.0) -> WheelStepper:
+    """A :class:`WheelStepper` from a tyre, a contact model and a road, by name.
+
+    Parameters
+    ----------
+    tyre : str or Tyre
+        Built-in name or ``.tir`` / Chrono ``.json`` file
+        (:func:`tyrelab.api.make_tyre_model`).
+    model : str or TyreModel
+        Contact model (``point``, ``volume``, ``enveloping``, ``ring``, ...);
+        a :class:`~tyrelab.tyre.model.TyreModel` is taken as it is (then
+        ``tyre``, ``pressure``, ``stiffness``, ``handling`` and ``options`` are
+        not used).
+    road : str, Road, RoadGrid or ground
+        A road name or file (:func:`tyrelab.road.spec.road_from_spec`), a road,
+        its grid, or any ground of the terrain interface (an object with
+        ``surface()``, :mod:`tyrelab.road.terrain`). Positions are in its own
+        frame: unlike the rigs, the stepper does not level a road whose start
+        is not at height zero.
+    pressure, stiffness, handling, options
+        As :func:`tyrelab.api.make_tyre_model`.
+    load : str or float
+        Static load [N] (or a load case ``"LC1"`` ...) at which the model's
+        internal state starts in equilibrium on a flat road, rolling at
+        ``speed`` (:meth:`~tyrelab.tyre.model.TyreModel.equilibrium`, where the
+        rigs start it); 0: unloaded (the ring's inflated belt off the road).
+        Start the wheel centre at ``R0 -`` that equilibrium's deflection above
+        the road (:attr:`WheelStepper.equilibrium`).
+    speed : float
+        Rolling speed [m/s] of that equilibrium.
+    max_step : float, optional
+        Longest internal step [s]; default the model's stable step at
+        ``load`` (:func:`tyrelab.limits.stable_step`: the ring's 2 ms, an
+        analytic model's wheel-hop bound; 1 ms for a tyre without a wheel mass
+        and no load).
+    frame : {"C-axis", "road"}
+        Frame of the forces and moments at the wheel centre.
+    start_time : float
+        Time [s] of the initial state.
+    """
+    from .. import limits
+    from ..road.spec import road_from_spec
+
+    if isinstance(model, TyreModel):
+        tm = model
+    else:
+        tm = make_tyre_model(tyre, model, pressure, stiffness, handling, options)
+    if isinstance(load, str):
+        from ..rig.trailer import load_case_wheel_load
+        load = load_case_wheel_load(load)
+    load = float(load)
+    if load != 0.0:
+        load = limits.check_wheel_load(load, tm.tyre)
+    speed = limits.check_number(speed, "speed", 0.0, limits.MAX_SPEED, "m/s")
+    if hasattr(road, "surface"):
+        ground = road
+    else:
+        if "rigid" not in tm.contact_model.terrains:
+            from ..tyre.registry import contact_models
+            rigid = [n for n, m in contact_models().items() if "rigid" in m.terrains]
+            raise InputError(f"the '{tm.contact}' model does not run on a rigid road; models that "
+                             f"do: {', '.join(rigid)}", field="model")
+        ground = road_from_spec(road).grid()
+    # where the rigs start a wheel: in equilibrium at the load, rolling at the speed
+    eq = tm.equilibrium(load, speed) if load > 0 else None
+    if max_step is None:
+        if tm.tyre.wheel_mass > 0 or load > 0:
+            max_step = limits.stable_step(tm, load)[0]
+        else:
+            max_step = DEFAULT_STEP
+    max_step = limits.check_number(max_step, "max_step", 0.0, limits.MAX_DT, "s", low_open=True,
+                                   what="internal step")
+    wheel = tm.wheel(ground, load, state=None if eq is None else eq.state)
+    return WheelStepper(tm, wheel, max_step, frame, start_time, eq)

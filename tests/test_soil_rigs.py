@@ -1,0 +1,56 @@
+"""The rigs on soil: the trailer and the quarter vehicle carry a wheel on a soil bed laid over
+the road, settled into it at the start (tyrelab.rig.soil_ground)."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+import tyrelab
+from tyrelab.rig.quarter_vehicle import QuarterVehicle
+from tyrelab.rig.registry import G
+from tyrelab.rig.single_wheel import single_wheel
+from tyrelab.road.soil.params import Soil
+from tyrelab.tyre.library import load_tyre
+from tyrelab.tyre.model import TyreModel
+
+LOAD = 23.3e3
+#: a soil a thousand times stiffer than any in the library: the tyre cannot sink in it
+HARD = Soil(n=1.0, kc=0.0, kphi=1e11, cohesion=1e3, friction_angle=0.6, janosi_k=0.01,
+            elastic_stiffness=1e12, damping=0.0)
+
+
+def test_the_quarter_vehicle_starts_at_rest_in_equilibrium_on_soil():
+    """Creeping at 10 um/s on sandy loam (5 um in half a second: at rest), the quarter vehicle's
+    hub moves by under 0.01 mm and its wheel carries the static load to 0.05 %: it starts
+    where the soil, through the tyre, carries it. (At 1 cm/s the hub sinks 1 mm in the same
+    time: rolling, the wheel compacts fresh soil ahead.)"""
+    tm = TyreModel(load_tyre(), "point")
+    mu = tm.tyre.wheel_mass
+    quarter = QuarterVehicle(tm, sprung_mass=LOAD / G - mu, unsprung_mass=mu)
+    run = quarter.run("flat", 1e-5, 0.5, terrain="sandy-loam", progress=False)
+    assert np.ptp(run["Z_WC"].to_numpy()) < 1e-5
+    assert run["FZ"].to_numpy() == pytest.approx(LOAD, rel=5e-4)
+    assert run.attrs["metadata"]["soil"] == "sandy loam"
+
+
+def test_the_ring_settles_into_the_soil_before_it_starts():
+    """The ring's loads depend on its belt's state, so the soil bin settles it at rest (damped)
+    before the run: standing still on sandy loam its centre then moves by under 0.05 mm and
+    its load stays within 0.5 % of the dead weight."""
+    run = single_wheel(TyreModel(load_tyre(), "ring"), "sandy-loam", LOAD, 1e-4, slip=0.0,
+                       duration=0.5, progress=False)
+    assert np.ptp(run["Z_WC"].to_numpy()) < 5e-5
+    assert run["FZ"].to_numpy() == pytest.approx(LOAD, rel=0.005)
+
+
+def test_the_trailer_on_a_ground_too_stiff_to_sink_is_the_trailer_on_the_road():
+    """The trailer towing the point model at 12 km/h over flat ground: on a soil too stiff to
+    sink its test wheel rides at the height it rides on the rigid road (to 1 % of the tyre's
+    deflection) and carries the same load (to 0.5 %)."""
+    kw = dict(model="point", rig="trailer", road="flat", speed=12 / 3.6, duration=1.0, progress=False)
+    road = tyrelab.simulate(**kw)
+    soil = tyrelab.simulate(terrain=HARD, **kw)
+    deflection = load_tyre().unloaded_radius - road["Z_WC"].mean()
+    assert abs(soil["Z_WC"].mean() - road["Z_WC"].mean()) < 0.01 * deflection
+    assert soil["FZ"].mean() == pytest.approx(road["FZ"].mean(), rel=0.005)
