@@ -104,7 +104,7 @@ def test_the_plugins_extensions_are_listed(plugin_env):
     done = _tyrelab(plugin_env, "models")
     assert done.returncode == 0, done.stderr
     listed = done.stdout
-    for name in ("preloaded-point", "raised-rolling", ".xz", "demo"):
+    for name in ("preloaded-point", "raised-rolling", ".xz", "slick", "demo"):
         assert name in listed, listed
     without = _tyrelab({k: v for k, v in plugin_env.items() if k != "PYTHONPATH"}, "models")
     assert "preloaded-point" not in without.stdout and "point" in without.stdout
@@ -124,6 +124,30 @@ def test_the_plugin_runs_through_the_command_line(plugin_env, tmp_path):
                        str(tmp_path / "no.csv"))
     assert refused.returncode == 2 and "unknown model 'preloaded-point'" in refused.stderr
     assert not (tmp_path / "no.csv").exists()
+
+
+def test_the_plugins_terrain_reaches_the_command_line(plugin_env, tmp_path):
+    """``--terrain slick:0`` (the plugin's rigid ground, the road's heights, friction scaled by
+    0): the trailer's test wheel (the HMMWV tyre, Pacejka '89) rides exactly as on the plain
+    road up to the cleat (same heights, same normal load), but its longitudinal force, scaled
+    by the ground's friction, is nil, where over the cleat on the plain road it is not. An
+    unknown terrain lists what each kind takes."""
+    runs = {}
+    for terrain in (None, "slick:0"):
+        out = tmp_path / f"{terrain or 'road'}.csv".replace(":", "_")
+        args = ["simulate", "--tyre", "hmmwv-pac89", "--model", "point", "--handling", "pac89",
+                "--rig", "trailer", "--road", "cleat:50x50", "--speed", "12", "--duration", "2.5",
+                "-o", str(out)]
+        done = _tyrelab(plugin_env, *args, *(["--terrain", terrain] if terrain else []))
+        assert done.returncode == 0, done.stderr
+        runs[terrain] = pd.read_csv(out, comment="#")
+    road, slick = runs[None], runs["slick:0"]
+    before = road["RUNTIME"] < 1.0                       # rolling freely, ahead of the cleat
+    np.testing.assert_allclose(slick["FZW"][before], road["FZW"][before], rtol=1e-6)
+    assert np.abs(road["FXW"]).max() > 500.0 and np.abs(slick["FXW"]).max() == 0.0
+    refused = _tyrelab(plugin_env, "simulate", "--rig", "trailer", "--terrain", "tarmac", "-o",
+                       str(tmp_path / "no.csv"))
+    assert refused.returncode == 2 and "slick:MU" in refused.stderr and "soil" in refused.stderr
 
 
 def test_the_plugin_runs_in_a_two_worker_study(plugin_env, tmp_path):

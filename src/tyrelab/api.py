@@ -170,8 +170,8 @@ def simulate(tyre: str | Tyre = DEFAULT_TYRE, model: str = "point", road=None,
         raise InputError(f"the {rig} rig runs on the rigid road only; rigs on soil: "
                          f"{', '.join(soil_rigs)}", field="terrain")
     if terrain is not None:
-        from .road.soil import load_soil
-        load_soil(terrain)  # a bad soil name or file: refused before any work
+        from .road.terrain import resolve_terrain
+        resolve_terrain(terrain)  # an unknown terrain or a bad soil file: refused before any work
     if the_rig.rolls:
         speed = limits.check_speed(speed)
     dt = limits.check_dt(dt)

@@ -18,7 +18,7 @@ from ..road.spec import road_from_spec
 from ..tyre.model import TyreModel
 from . import _quarter_kernel as K
 from .simulation import drop_road, levelled_grid, run_chunks, to_signal
-from .soil_ground import soil_meta
+from .soil_ground import terrain_meta
 
 G = 9.80665
 
@@ -78,9 +78,10 @@ class QuarterVehicle:
             duration = max(road.extent()[1] - x0_road, 1.0) / speed
         tyre = self.model.tyre
         if terrain is not None:
-            from .soil_ground import soil_wheel
-            wheel, zu = soil_wheel(self.model, terrain, road, x0_road, x0_road + speed * duration,
-                                   self.wheel_load, level_at=x0_road)
+            from .soil_ground import terrain_wheel
+            wheel, _, zu, _ = terrain_wheel(self.model, terrain, road, x0_road,
+                                            x0_road + speed * duration, self.wheel_load,
+                                            level_at=x0_road, dt=dt)
             return self._run(road, speed, zu, speed / tyre.unloaded_radius, self.wheel_load,
                              duration, dt, output_rate, progress, "quarter-vehicle", wheel.state,
                              wheel, terrain)
@@ -127,7 +128,7 @@ class QuarterVehicle:
         meta = {"rig": rig, "tyre": tyre.name, "model": self.model.contact,
                 "handling": self.model.handling,
                 "stiffness": tyre.stiffness, "road": road.name, "speed_m_s": speed,
-                **soil_meta(terrain),
+                **terrain_meta(terrain),
                 "static_wheel_load_N": self.wheel_load, "pressure_Pa": tyre.pressure, "dt_s": dt,
                 "output_rate_Hz": 1.0 / (out_every * dt)}
         return to_signal(data, K.CHANNELS, meta)

@@ -16,14 +16,16 @@ Channels: the wheel channels (``FX`` the drawbar pull, positive forward; ``FZ``;
 from __future__ import annotations
 
 import numba as nb
+from numba.extending import overload
 import numpy as np
 
 from ..core.named_index import named_index
 from ..errors import InputError
-from ..road.soil.scm import undisturbed_height
+from ..road.soil.scm import SoilSurface, undisturbed_height
+from ..road.terrain import terrain_height
 from ..tyre.wheel import WheelPose, wheel_step
 from .frames import WHEEL_CHANNELS, WC, wheel_row
-from .soil_ground import BED_SPACING, BED_WIDTH, settle, soil_wheel
+from .soil_ground import BED_SPACING, BED_WIDTH, settle, terrain_wheel
 from .simulation import run_chunks, to_signal
 
 G = 9.80665
@@ -34,6 +36,19 @@ STATE = ("Z", "VZ", "T")
 S = named_index("SingleWheelStateIndex", STATE)
 #: where the carriage starts along the bin [m]
 X_START = 0.0
+
+def undisturbed(ground, x, y):
+    """The undisturbed surface's height at (x, y) [m] (compiled only): the soil's before any
+    rut, another ground's height."""
+    raise NotImplementedError("compiled only")
+
+
+@overload(undisturbed)
+def _undisturbed(ground, x, y):
+    if getattr(ground, "instance_class", None) is SoilSurface:
+        return lambda ground, x, y: undisturbed_height(ground, x, y)
+    return lambda ground, x, y: terrain_height(ground, x, y)
+
 
 @nb.njit(cache=True)
 def single_wheel_steps(wheel, mass, speed, omega, state, n_steps, dt, out_every, out, row0):
@@ -52,7 +67,7 @@ def single_wheel_steps(wheel, mass, speed, omega, state, n_steps, dt, out_every,
         if (step % out_every) == 0 and row < out.shape[0]:
             o = out[row]
             wheel_row(o, t, x - X_START, pose, f, cax)
-            o[SC.SINKAGE] = max(0.0, undisturbed_height(wheel.road, f.px, f.py) - f.pz) \
+            o[SC.SINKAGE] = max(0.0, undisturbed(wheel.road, f.px, f.py) - f.pz) \
                 if f.fzw > 0.0 else 0.0
             o[SC.TORQUE] = -o[WC.MY]
             row += 1
@@ -96,15 +111,14 @@ def single_wheel(model, soil, load: float, speed: float, slip: float = 0.0, leng
         earlier ones left (the soil keeps its plastic sinkage).
     """
     from ..road.obstacles import Flat
-    from ..road.soil import load_soil
     if not 0.0 <= slip < 1.0:
         raise InputError(f"slip must be in [0, 1), got {slip!r}", field="slip")
     if duration is not None:
         length = max(length, X_START + speed * duration + 2.0)
-    _, soil_name = load_soil(soil)
     road = road or Flat()
     x_end = X_START + length - 1.0
-    wheel, z0 = soil_wheel(model, soil, road, X_START, x_end, load, spacing=spacing, width=width)
+    wheel, ground, z0, ground_meta = terrain_wheel(model, soil, road, X_START, x_end, load,
+                                                   dt=dt, spacing=spacing, width=width)
     radius = model.tyre.unloaded_radius
     if duration is None:
         duration = (x_end - X_START) / speed
@@ -114,7 +128,8 @@ def single_wheel(model, soil, load: float, speed: float, slip: float = 0.0, leng
     tables = []
     for k in range(passes):
         if k:                               # again from the start, settled into the rut
-            z0 = settle(wheel, load, X_START, radius)
+            z0 = settle(wheel, ground, load, X_START, radius, dynamic=model.contact_model.has_state,
+                        dt=dt)
         state = np.zeros(len(STATE))
         state[S.Z] = z0
 
@@ -124,7 +139,7 @@ def single_wheel(model, soil, load: float, speed: float, slip: float = 0.0, leng
 
         data = run_chunks(advance, n_steps, out_every, len(CHANNELS), dt, progress)
         meta = {"rig": "single-wheel", "tyre": model.tyre.name, "model": model.contact,
-                "soil": soil_name, "road": road.name, "speed_m_s": speed, "slip": slip,
+                **ground_meta, "road": road.name, "speed_m_s": speed, "slip": slip,
                 "static_wheel_load_N": load, "pass": len(tables) + 1,
                 "static_sinkage_m": float(road.height(X_START, 0.0) - (z0 - radius)),
                 "soil_spacing_m": spacing, "dt_s": dt, "output_rate_Hz": 1.0 / (out_every * dt)}

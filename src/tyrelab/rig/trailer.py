@@ -30,7 +30,7 @@ from ..road.obstacles import Flat
 from ..road.spec import road_from_spec
 from . import _trailer_kernel as K
 from .simulation import drop_road, levelled_grid, run_chunks, to_signal
-from .soil_ground import soil_meta
+from .soil_ground import terrain_meta
 
 G = 9.80665
 
@@ -246,9 +246,10 @@ class Trailer:
             right = self.model.equilibrium(s.wheel_load, speed)
             z_right = r0 - right.deflection
         else:
-            from .soil_ground import soil_wheel
-            on_soil, z_right = soil_wheel(self.model, terrain, road, x0_road,
-                                          x0_road + speed * duration, s.wheel_load, level_at=x0_road)
+            from .soil_ground import terrain_wheel
+            on_soil, _, z_right, _ = terrain_wheel(self.model, terrain, road, x0_road,
+                                                   x0_road + speed * duration, s.wheel_load,
+                                                   level_at=x0_road, dt=dt)
             right = Equilibrium(r0 - z_right, speed / r0, on_soil.state)
         z_left = r0 - left.deflection
         pitch = math.asin((0.5 * (z_right + z_left) - s.hitch_height)
@@ -307,7 +308,7 @@ class Trailer:
                 "left_wheel": self.left.contact,
                 "handling": self.model.handling,
                 "stiffness": self.model.tyre.stiffness, "road": road.name, "speed_m_s": speed,
-                **soil_meta(terrain),
+                **terrain_meta(terrain),
                 "load_case": str(self.load_case), "static_wheel_load_N": s.wheel_load,
                 "pressure_Pa": self.model.tyre.pressure, "dt_s": dt,
                 "output_rate_Hz": 1.0 / (out_every * dt)}

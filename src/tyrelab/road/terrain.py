@@ -74,11 +74,13 @@ import numba as nb
 from numba.extending import overload
 
 from .terrain_registry import (BUILTIN_TERRAIN, Ground, TerrainKind, block_maxima, profile_breaks,
+                               resolve_terrain,
                                register_terrain, rigid_contact, terrain_by_record, terrain_kind,
                                terrain_kinds, terrain_names, unit_friction)
 
 #: the one door: the registry and Python side (:mod:`.terrain_registry`) and the compiled interface
 __all__ = ["BUILTIN_TERRAIN", "Ground", "TerrainKind", "block_maxima", "profile_breaks",
+           "resolve_terrain",
            "register_terrain", "rigid_contact", "terrain_by_record", "terrain_kind", "terrain_kinds",
            "terrain_names", "unit_friction", "terrain_height", "terrain_height_gradient",
            "terrain_penetration", "terrain_zmax", "terrain_range", "terrain_friction",

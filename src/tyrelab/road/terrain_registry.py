@@ -62,6 +62,18 @@ class TerrainKind:
         ``terrain_is_rigid``: the ground never moves.
     description : str
         One line for listings (``tyrelab models``).
+    resolve : callable, optional
+        For a kind a user names with ``--terrain`` (``simulate(terrain=...)``):
+        ``resolve(value) -> (description, label)`` when ``value`` names ground of this
+        kind (``label`` for the run's metadata), None when it does not; an
+        :class:`~tyrelab.errors.InputError` when it does but is malformed.
+    lay : callable, optional
+        ``lay(description, road, x0, x1, level_at, **options) -> ground``: the Python
+        ground (:class:`Ground`; a deformable one also ``fresh_copy()``, its state copied)
+        over ``road`` from ``x0`` to ``x1`` [m] along y = 0, heights less the road's at
+        ``(level_at, 0)`` when given; ``options`` a rig's (the soil bed's spacing, width).
+    hint : str
+        What ``--terrain`` takes for this kind, for the message listing them.
     """
 
     name: str
@@ -80,6 +92,9 @@ class TerrainKind:
     contact: Any = rigid_contact
     rigid: bool = True
     description: str = ""
+    resolve: Any = None
+    lay: Any = None
+    hint: str = ""
 
     def __post_init__(self):
         if not self.rigid and self.contact is rigid_contact:
@@ -153,6 +168,19 @@ def terrain_kind(name: str) -> TerrainKind:
         raise InputError(f"unknown terrain '{name}', expected one of {', '.join(kinds)}",
                          field="terrain")
     return kinds[name]
+
+
+def resolve_terrain(value) -> tuple[TerrainKind, Any, str]:
+    """``(kind, description, label)`` of the ground ``value`` names (``--terrain``): the first
+    registered kind whose ``resolve`` claims it; none is an InputError listing what each
+    kind takes."""
+    kinds = [k for k in terrain_kinds().values() if k.resolve is not None]
+    for kind in kinds:
+        found = kind.resolve(value)
+        if found is not None:
+            return (kind, *found)
+    takes = "; ".join(f"{k.name}: {k.hint}" for k in kinds)
+    raise InputError(f"unknown terrain {value!r}, expected {takes}", field="terrain")
 
 
 def terrain_by_record(numba_type) -> TerrainKind:

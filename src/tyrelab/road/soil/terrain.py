@@ -26,13 +26,26 @@ shear-displacement law, which the rigid and flexible wheels apply per node.
 from __future__ import annotations
 
 import math
+from pathlib import Path
 
 import numba as nb
+import numpy as np
 
 from ..grid import (grid_block_max, grid_blocks, grid_line_height, grid_lines, grid_range,
                     grid_row, local_zmax, road_height, road_height_gradient, road_penetration)
 from ..terrain_registry import TerrainKind, register_terrain
-from .scm import SoilSurface, node_stress
+from .params import Soil
+from .scm import SoilSurface, node_stress, soil_bed
+
+#: the soil bed's node spacing [m]: halving it moves the pull of the XZL's rigid wheel on LETE
+#: sand at s = 0.2 by 0.15 % and its sinkage by 1.8 %, and costs four times the time
+BED_SPACING = 0.02
+#: the bed's width [m] across the wheel's track (its centre line y = 0)
+BED_WIDTH = 2.0
+#: the bed reaches this far [m] behind the start and beyond the end of the run
+BED_MARGIN = 1.0
+#: memory of a soil node: undisturbed height, surface, shear displacement, stress
+BYTES_PER_NODE = 4 * 8
 
 #: the series solve stops when the block and the soil agree to this fraction of the force
 SERIES_TOLERANCE = 1e-6
@@ -149,10 +162,48 @@ def soil_contact(bed, x, y, penetration, area, v1, v2, fn, f1, f2, dt):
     return carried, f1 * scale, f2 * scale
 
 
+def resolve_soil(value):
+    """``(Soil, label)`` when ``value`` names a soil (a :class:`Soil`, a built-in soil's name, a
+    ``.toml`` file), else None (:attr:`TerrainKind.resolve`); a malformed soil file is an
+    InputError naming its line."""
+    from . import load_soil, soil_names
+    if isinstance(value, Soil) or (isinstance(value, (str, Path)) and (
+            str(value) in soil_names() or str(value).lower().endswith(".toml"))):
+        return load_soil(value)
+    return None
+
+
+def lay_soil(soil: Soil, road, x0: float, x1: float, level_at: float | None = None,
+             width: float = BED_WIDTH, spacing: float = BED_SPACING) -> SoilSurface:
+    """A fresh soil bed from ``x0`` to ``x1`` [m] (plus :data:`BED_MARGIN` each end), ``width``
+    [m] across y = 0, nodes every ``spacing`` [m], over ``road``'s heights (less its height at
+    ``(level_at, 0)`` when given); refused above the memory allowed
+    (:data:`~tyrelab.limits.MAX_MEMORY`). :attr:`TerrainKind.lay` of the soil."""
+    from ...errors import InputError
+    from ...limits import MAX_MEMORY
+    from ..grid import RoadGrid
+    x0, x1 = x0 - BED_MARGIN, x1 + BED_MARGIN
+    nx = int(np.ceil((x1 - x0) / spacing)) + 1
+    ny = int(np.ceil(width / spacing)) + 1
+    if nx * ny * BYTES_PER_NODE > MAX_MEMORY:
+        raise InputError(f"a soil bed {x1 - x0:.6g} m long and {width:g} m wide at {spacing:g} m "
+                         f"needs {nx * ny * BYTES_PER_NODE / 1024 ** 3:.3g} GiB, above the "
+                         f"{MAX_MEMORY / 1024 ** 3:g} GiB allowed; a shorter run or a coarser bed",
+                         field="duration")
+    xs = x0 + spacing * np.arange(nx)
+    ys = -0.5 * width + spacing * np.arange(ny)
+    X, Y = np.meshgrid(xs, ys, indexing="ij")
+    z = np.asarray(road.height(X, Y), dtype=np.float64)
+    if level_at is not None:
+        z = z - float(road.height(level_at, 0.0))
+    return soil_bed(soil, RoadGrid(x0, -0.5 * width, spacing, spacing, z))
+
+
 register_terrain(TerrainKind(
     "soil", SoilSurface, height=soil_height, height_gradient=soil_height_gradient,
     penetration=soil_penetration, zmax=soil_zmax, range=soil_range, lines=soil_lines,
     row=soil_row, line_height=soil_line_height, blocks=soil_blocks, block_max=soil_block_max,
-    contact=soil_contact, rigid=False,
+    contact=soil_contact, rigid=False, resolve=resolve_soil, lay=lay_soil,
+    hint="a soil, NAME (tyrelab soil list) or FILE.toml",
     description="deformable soil (SCM class): Bekker-Wong pressure-sinkage, Mohr-Coulomb and "
                 "Janosi shear, a rut that stays (--terrain NAME|FILE.toml)"))
