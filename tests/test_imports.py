@@ -37,6 +37,7 @@ LAYERS = (
     ("tyrelab.tyre",),
     ("tyrelab.rig",),
     ("tyrelab.api", "tyrelab.registry", "tyrelab"),
+    ("tyrelab.cosim",),
     ("tyrelab.measure",),
     ("tyrelab.validate",),
     ("tyrelab.fit",),

@@ -44,7 +44,7 @@ def register(sub):
                           "describes)")
     fmu.add_argument("--load", type=load_value, default=0.0,
                      help="INITIAL_LOAD's default: the static load in N (or LC1-LC3) at which the "
-                          "model starts in equilibrium (default 0: unloaded)")
+                          "model starts in equilibrium (default: none, the model starts unloaded)")
     fmu.add_argument("--frame", choices=("C-axis", "road"), default="C-axis",
                      help="OUTPUT_FRAME's default: the frame of FX ... MZ (default C-axis)")
     fmu.add_argument("--internal-step", type=bounded_float("internal step", 0.0, MAX_DT, "s"),

@@ -25,16 +25,19 @@ from ..api import make_tyre_model
 from ..errors import InputError
 from ..tyre.library import DEFAULT_TYRE
 from .manifest import DATA, write_data
+from .stepper import rigid_ground
 from .variables import OUTPUT_FRAMES
 
 #: the slave script inside the FMU (its module name is the file's stem): it only names the class
 SCRIPT_NAME = "tyrelab_wheel.py"
-SCRIPT = '''"""tyrelab's wheel as an FMI 2.0 co-simulation slave (pythonfmu).
+SCRIPT = '''"""tyrelab's wheel as an FMI 2.0 co-simulation slave (pythonfmu {version}).
 
 The class is tyrelab.cosim.slave.TyrelabWheel: the Python that runs this FMU needs
 tyrelab installed (see the model description's text).
 """
-from tyrelab.cosim.slave import TyrelabWheel  # noqa: F401
+from tyrelab.cosim.slave import TyrelabWheel, hold_namespace  # noqa: F401
+
+hold_namespace(globals(), "{version}")  # see tyrelab.cosim.slave.FINDCLASS_DECREF
 '''
 
 
@@ -86,7 +89,6 @@ def export_fmu(path, tyre=DEFAULT_TYRE, model: str = "point", road: str = "flat"
     """
     from .. import limits
     from ..io_atomic import atomic_write, check_output_path
-    from ..road.spec import road_from_spec
 
     out = check_output_path(path, (".fmu",), field="output", inputs=_inputs(tyre, road))
     tm = make_tyre_model(tyre, model, pressure, stiffness, handling, options)
@@ -103,15 +105,16 @@ def export_fmu(path, tyre=DEFAULT_TYRE, model: str = "point", road: str = "flat"
                                         what="internal step")
     if not isinstance(road, str):
         raise InputError("give the road by its name or file to put it in an FMU", field="road")
-    tm.contact_params(road_from_spec(road).grid())  # the model builds on this road
+    tm.contact_params(rigid_ground(tm, road))  # the model builds on this road
     from pythonfmu import FmuBuilder
+    from pythonfmu import __version__ as pythonfmu_version
 
     with tempfile.TemporaryDirectory(prefix="tyrelab-fmu-") as tmp:
         folder = Path(tmp) / DATA
         folder.mkdir()
         write_data(folder, tm, tyre, road, load, frame, internal_step)
         script = Path(tmp) / SCRIPT_NAME
-        script.write_text(SCRIPT, encoding="utf-8")
+        script.write_text(SCRIPT.format(version=pythonfmu_version), encoding="utf-8")
         try:
             built = FmuBuilder.build_FMU(script, dest=Path(tmp) / "built.fmu", project_files=[folder])
         finally:  # the builder leaves its script's folder on sys.path and the module imported

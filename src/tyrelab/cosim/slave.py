@@ -1,11 +1,11 @@
 """tyrelab's wheel as an FMI 2.0 co-simulation slave (pythonfmu's ``Fmi2Slave``).
 
-The FMU that :func:`tyrelab.cosim.fmu.export_fmu` writes holds a one-line
-script importing :class:`TyrelabWheel`, the manifest and data of
-:mod:`.manifest`, and pythonfmu's binary, which runs this class in the Python
-of the process that loads the FMU (a Python host such as FMPy) or in a Python
-it starts. So the host needs a Python 3 with tyrelab installed (and its
-libpython loadable); the FMU carries no Python of its own.
+The FMU that :func:`tyrelab.cosim.fmu.export_fmu` writes holds a short
+script importing :class:`TyrelabWheel` (and calling :func:`hold_namespace`),
+the manifest and data of :mod:`.manifest`, and pythonfmu's binary, which runs
+this class in the Python of the process that loads the FMU (a Python host
+such as FMPy) or in the preloaded libpython it initialises. So the host needs
+a Python 3 with tyrelab installed; the FMU carries no Python of its own.
 
 At ``exitInitializationMode`` the instance builds its wheel
 (:func:`.manifest.build_stepper`: the parameters, and the initial inputs'
@@ -37,7 +37,8 @@ def host_requirements(version: str = __version__) -> str:
     return (f"Needs a Python 3 with tyrelab {version} installed (pip install tyrelab) in the process "
             "that loads the FMU: a Python host (FMPy, OMSimulator's Python API) runs it in its own "
             "interpreter; any other host must have that Python's libpython loaded "
-            "(Linux: LD_PRELOAD=.../libpython3.X.so) and tyrelab on its PYTHONPATH.")
+            "(Linux: LD_PRELOAD=.../libpython3.X.so) and find its standard library and tyrelab "
+            "(PYTHONHOME, PYTHONPATH).")
 
 
 class TyrelabWheel(Fmi2Slave):
@@ -119,12 +120,11 @@ class TyrelabWheel(Fmi2Slave):
         variable (UnitDefinitions) and the outputs as initial unknowns (calculated at
         initialisation from the inputs and parameters)."""
         root = super().to_xml(model_options or {})
-        units = SubElement(root, "UnitDefinitions")
+        units = Element("UnitDefinitions")  # after CoSimulation, as the schema orders them
         for name, exponents in UNITS.items():
             unit = SubElement(units, "Unit", {"name": name})
             if exponents:
                 SubElement(unit, "BaseUnit", {k: str(e) for k, e in exponents.items()})
-        root.remove(units)
         root.insert(list(root).index(root.find("CoSimulation")) + 1, units)
         unit_of = {v.name: v.unit for v in INPUTS + OUTPUTS + PARAMETERS if v.unit}
         for sv in root.find("ModelVariables"):
@@ -136,6 +136,29 @@ class TyrelabWheel(Fmi2Slave):
         for unknown in structure.find("Outputs"):
             SubElement(initial, "Unknown", {"index": unknown.get("index")})
         return root
+
+
+#: pythonfmu releases whose binary, making an instance, runs the slave script's code in its
+#: module's namespace and then releases a reference to that namespace which it does not own
+#: (``findClass``: ``Py_DECREF`` of the borrowed ``PyModule_GetDict``; in its sources from 0.6.5,
+#: Sep 2024, to 0.7.0). A namespace with one reference is freed at the first instance while the
+#: module still uses it: the next instance finds no slave class, or the process crashes at its
+#: next garbage collection (both seen with FMPy)
+FINDCLASS_DECREF = ((0, 6, 5), (0, 7, 0))
+
+
+def hold_namespace(namespace: dict, packed_by: str) -> None:
+    """Take the reference that pythonfmu's binary will release from the slave script's namespace
+    (:data:`FINDCLASS_DECREF`). The script calls this each time its code runs, which the binary
+    does before each release (once more at the first import: one reference too many, kept)."""
+    import ctypes
+
+    try:
+        release = tuple(int(p) for p in packed_by.split(".")[:3])
+    except ValueError:
+        return
+    if FINDCLASS_DECREF[0] <= release <= FINDCLASS_DECREF[1]:
+        ctypes.pythonapi.Py_IncRef(ctypes.py_object(namespace))
 
 
 def _identifier(text: str) -> str:

@@ -117,7 +117,8 @@ class WheelStepper:
             (means over the step), the contact force in the W-axis system, the
             deflection, contact point and slips at the step's end.
         """
-        if not (isinstance(dt, (int, float)) and math.isfinite(dt) and dt > 0):
+        time, dt = _number(time, "time"), _number(dt, "dt")
+        if not dt > 0:
             raise InputError(f"the step must be a positive number of seconds, got {dt!r}", field="dt")
         if not abs(time - self._time) <= TIME_TOLERANCE * max(1.0, abs(time)) + 1e-6 * dt:
             raise InputError(f"the wheel's state is at t = {self._time!r} s, the step starts at "
@@ -125,7 +126,7 @@ class WheelStepper:
         centre = _checked(centre)
         n = self.sub_steps(dt)
         loads = advance(self.wheel, centre, n, dt / n, self._frame)
-        self._time = float(time) + dt
+        self._time = time + dt
         return loads
 
     def loads(self, centre: WheelCentre) -> CentreLoads:
@@ -139,16 +140,40 @@ class WheelStepper:
         return advance(wheel, _checked(centre), 1, 0.0, self._frame)
 
 
+def _number(value, field: str, what: str | None = None) -> float:
+    """``value`` as a finite float, or InputError naming ``field``."""
+    try:
+        v = float(value)
+    except (TypeError, ValueError):
+        v = math.nan
+    if not math.isfinite(v):
+        raise InputError(f"{what or field} must be a finite number, got {value!r}", field=field)
+    return v
+
+
 def _checked(centre) -> WheelCentre:
-    """``centre`` as a :class:`WheelCentre` of floats, or InputError naming a value that is not
-    finite."""
+    """``centre`` as a :class:`WheelCentre` of finite floats, or InputError naming the value."""
     if not isinstance(centre, WheelCentre):
-        centre = WheelCentre(*centre)
-    values = tuple(float(v) for v in centre)
-    for name, v in zip(WheelCentre._fields, values):
-        if not math.isfinite(v):
-            raise InputError(f"the wheel centre's {name} is not a finite number ({v})", field=name)
-    return WheelCentre(*values)
+        try:
+            centre = WheelCentre(*centre)
+        except TypeError:
+            raise InputError(f"a wheel centre is {', '.join(WheelCentre._fields)} (the last two "
+                             f"optional), got {centre!r}", field="centre") from None
+    return WheelCentre(*(_number(v, name, f"the wheel centre's {name}")
+                         for name, v in zip(WheelCentre._fields, centre)))
+
+
+def rigid_ground(model: TyreModel, road):
+    """The grid of a road name, file or :class:`~tyrelab.road.base.Road` for ``model``; an
+    InputError when the model does not run on a rigid road."""
+    from ..road.spec import road_from_spec
+    from ..tyre.registry import contact_models
+
+    if "rigid" not in model.contact_model.terrains:
+        rigid = [n for n, m in contact_models().items() if "rigid" in m.terrains]
+        raise InputError(f"the '{model.contact}' model does not run on a rigid road; models that "
+                         f"do: {', '.join(rigid)}", field="model")
+    return road_from_spec(road).grid()
 
 
 def wheel_stepper(tyre="xzl-16.00R20", model: str | TyreModel = "point", road="flat", *,
@@ -196,7 +221,6 @@ def wheel_stepper(tyre="xzl-16.00R20", model: str | TyreModel = "point", road="f
         Time [s] of the initial state.
     """
     from .. import limits
-    from ..road.spec import road_from_spec
 
     if isinstance(model, TyreModel):
         tm = model
@@ -209,15 +233,7 @@ def wheel_stepper(tyre="xzl-16.00R20", model: str | TyreModel = "point", road="f
     if load != 0.0:
         load = limits.check_wheel_load(load, tm.tyre)
     speed = limits.check_number(speed, "speed", 0.0, limits.MAX_SPEED, "m/s")
-    if hasattr(road, "surface"):
-        ground = road
-    else:
-        if "rigid" not in tm.contact_model.terrains:
-            from ..tyre.registry import contact_models
-            rigid = [n for n, m in contact_models().items() if "rigid" in m.terrains]
-            raise InputError(f"the '{tm.contact}' model does not run on a rigid road; models that "
-                             f"do: {', '.join(rigid)}", field="model")
-        ground = road_from_spec(road).grid()
+    ground = road if hasattr(road, "surface") else rigid_ground(tm, road)
     # where the rigs start a wheel: in equilibrium at the load, rolling at the speed
     eq = tm.equilibrium(load, speed) if load > 0 else None
     if max_step is None:

@@ -1,0 +1,192 @@
+"""The stepping API (tyrelab.cosim): a host that moves the wheel as a rig does gets the rig's loads.
+
+* Stepped with the kinematics of a rolling-rig run (wheel centre and spin at
+  each step), the stepper returns the rig's own channels bit for bit: the same
+  kernel (``wheel_step``), the same records, one call per step.
+* A step of ``n`` sub-steps is the mean of ``n`` steps along the centre's
+  extrapolated path (what "sub-stepping" promises).
+* The frames: on a flat road a yawed, rolling wheel has the C-axis loads of
+  the same wheel heading +x (the road has no direction), and the road-frame
+  loads are the C-axis loads turned by the yaw and the inclination.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from tyrelab.api import make_tyre_model
+from tyrelab.cosim import WheelCentre, wheel_stepper
+from tyrelab.errors import InputError
+from tyrelab.rig.rolling import roll
+
+SPEED = 12 / 3.6
+#: the rolling rig's kinematics that the host replays, as the stepper's record takes them
+KINEMATICS = ("X_WC", "Y_WC", "Z_WC", "VX_WC", "VY_WC", "VZ_WC", "ROTSPEED")
+#: the rig's channels a step returns (CentreLoads field -> signal channel)
+LOADS = {"fx": "FX", "fy": "FY", "fz": "FZ", "mx": "MX", "my": "MY", "mz": "MZ", "fxw": "FXW",
+         "fyw": "FYW", "fzw": "FZW", "deflection": "DEFLECT", "px": "X_CP", "py": "Y_CP",
+         "pz": "Z_CP", "kappa": "LONGSLIP", "alpha": "SLIPANGL"}
+
+
+def replay(stepper, run, dt=1e-3) -> dict[str, np.ndarray]:
+    """Step ``stepper`` through the wheel-centre kinematics of a rig run; the loads by channel."""
+    rows = run[list(KINEMATICS)].to_numpy()
+    out = np.empty((len(rows), len(LOADS)))
+    t = 0.0
+    for k, row in enumerate(rows):
+        loads = stepper.step(t, WheelCentre(*row), dt)
+        out[k] = [getattr(loads, f) for f in LOADS]
+        t += dt
+    return {ch: out[:, j] for j, ch in enumerate(LOADS.values())}
+
+
+# (tyre, contact model, load [N], start x [m], duration [s]): the cleat starts at x = 5 m;
+# the ring's run is the stretch over the cleat only (its default test is kept short)
+CASES = {
+    "point": ("xzl-16.00R20", "point", 23.29e3, None, 2.0),
+    "enveloping-pac89": ("hmmwv-pac89", "enveloping", 10e3, 4.3, 0.8),
+    "ring": ("xzl-16.00R20", "ring", 23.29e3, 4.3, 0.6),
+}
+
+
+@pytest.mark.parametrize("case", list(CASES))
+def test_the_stepper_gives_the_rolling_rigs_loads_bit_for_bit(case):
+    tyre, contact, load, x0, duration = CASES[case]
+    model = make_tyre_model(tyre, contact)
+    run = roll(model, "cleat:50x50", speed=SPEED, load=load, x_start=x0, duration=duration,
+               progress=False)
+    stepper = wheel_stepper(model=model, road="cleat:50x50", load=load, speed=SPEED)
+    assert stepper.sub_steps(1e-3) == 1          # the rig's step is within the model's stable step
+    got = replay(stepper, run)
+    for channel, values in got.items():
+        np.testing.assert_array_equal(values, run[channel].to_numpy(), err_msg=channel)
+    assert run["FZ"].max() > 1.2 * load                                # the cleat was hit
+    assert stepper.time == pytest.approx(len(run) * 1e-3, abs=1e-12)
+
+
+def test_a_step_of_n_sub_steps_is_the_mean_of_n_steps_along_the_path():
+    """The ring over the cleat: one stepper takes 2 ms steps of two 1 ms sub-steps, another
+    1 ms steps at the centre moved along its velocity; forces and moments of the first are
+    the means of the second's pairs, its contact point and deflection the second's last."""
+    model = make_tyre_model("xzl-16.00R20", "ring")
+    load = 23.29e3
+    one = wheel_stepper(model=model, road="cleat:50x50", load=load, speed=SPEED, max_step=1e-3)
+    two = wheel_stepper(model=model, road="cleat:50x50", load=load, speed=SPEED, max_step=1e-3)
+    z = model.tyre.unloaded_radius - one.equilibrium.deflection
+    assert one.sub_steps(2e-3) == 2
+    t = 0.0
+    for k in range(150):  # 0.3 s from x = 4.7 m: over the cleat
+        centre = WheelCentre(4.7 + SPEED * t, 0.0, z, SPEED, 0.0, 0.0, one.equilibrium.spin)
+        coarse = one.step(t, centre, 2e-3)
+        a = two.step(t, centre, 1e-3)
+        b = two.step(t + 1e-3, centre._replace(x=centre.x + SPEED * 1e-3), 1e-3)
+        for f in ("fx", "fy", "fz", "mx", "my", "mz", "fxw", "fyw", "fzw"):
+            assert getattr(coarse, f) == pytest.approx(0.5 * (getattr(a, f) + getattr(b, f)),
+                                                       rel=1e-12, abs=1e-9), f
+        for f in ("deflection", "px", "pz"):
+            assert getattr(coarse, f) == getattr(b, f), f
+        t += 2e-3
+    assert max(coarse.fz, a.fz, b.fz) > 0          # still in contact at the end
+
+
+def _rotation(yaw: float, inclination: float) -> np.ndarray:
+    """Columns: the C-axis x, y, z of a wheel at ``yaw`` and ``inclination`` in the road frame."""
+    cy, sy, ci, si = math.cos(yaw), math.sin(yaw), math.cos(inclination), math.sin(inclination)
+    x = np.array([cy, sy, 0.0])
+    y = np.array([-sy * ci, cy * ci, si])
+    return np.column_stack([x, y, np.cross(x, y)])
+
+
+@pytest.mark.parametrize("yaw", [0.3, -2.0])
+def test_a_yawed_wheel_on_a_flat_road_has_the_loads_of_one_heading_x(yaw):
+    """The PAC89 tyre on the point model, rolling with slip (a slip angle and a braking spin)
+    and leaning: heading +x and heading ``yaw`` give the same C-axis loads (a flat road has no
+    direction), and the road-frame loads are those turned into the road frame."""
+    incl, slip = 0.05, 0.08
+    kwargs = dict(tyre="hmmwv-pac89", model="point", road="flat", handling="pac89", load=10e3)
+    c_axis = wheel_stepper(**kwargs)
+    r0 = c_axis.model.tyre.unloaded_radius
+    z = r0 - c_axis.model.tyre.static_deflection(10e3)
+    v, omega = 10.0, 0.95 * 10.0 / r0
+
+    def centre(heading):
+        vx, vy = v * math.cos(heading + slip), v * math.sin(heading + slip)
+        return WheelCentre(1.0, 2.0, z, vx, vy, 0.0, omega, incl, heading)
+
+    straight = c_axis.step(0.0, centre(0.0), 1e-3)
+    yawed = wheel_stepper(**kwargs).step(0.0, centre(yaw), 1e-3)
+    road = wheel_stepper(**kwargs, frame="road").step(0.0, centre(yaw), 1e-3)
+    assert abs(straight.fy) > 0.2 * straight.fz and straight.kappa < 0   # slip forces are there
+    for f in ("fx", "fy", "fz", "mx", "my", "mz", "fxw", "fyw", "fzw", "deflection", "kappa",
+              "alpha", "dmy_domega"):
+        assert getattr(yawed, f) == pytest.approx(getattr(straight, f), rel=1e-9, abs=1e-6), f
+    rot = _rotation(yaw, incl)
+    np.testing.assert_allclose([road.fx, road.fy, road.fz], rot @ [yawed.fx, yawed.fy, yawed.fz],
+                               rtol=1e-12, atol=1e-6)
+    np.testing.assert_allclose([road.mx, road.my, road.mz], rot @ [yawed.mx, yawed.my, yawed.mz],
+                               rtol=1e-12, atol=1e-6)
+
+
+def test_the_loads_of_the_state_leave_it_as_it_is():
+    """``loads`` evaluates the present state without advancing it: the ring's next step is the
+    same with or without the look."""
+    model = make_tyre_model("xzl-16.00R20", "ring")
+    a = wheel_stepper(model=model, road="flat", load=23.29e3, speed=SPEED)
+    b = wheel_stepper(model=model, road="flat", load=23.29e3, speed=SPEED)
+    z = model.tyre.unloaded_radius - a.equilibrium.deflection
+    centre = WheelCentre(0.0, 0.0, z, SPEED, 0.0, 0.0, a.equilibrium.spin)
+    look = a.loads(centre)
+    assert look.fz == pytest.approx(23.29e3, rel=0.02)        # the equilibrium carries its load
+    assert a.step(0.0, centre, 1e-3) == b.step(0.0, centre, 1e-3)
+
+
+@pytest.mark.parametrize("call, match", [
+    (lambda s, c: s.step(0.0, c, 0.0), "positive"),
+    (lambda s, c: s.step(0.0, c, float("nan")), "finite number"),
+    (lambda s, c: s.step(0.5, c, 1e-3), "step on from where"),
+    (lambda s, c: s.step(0.0, c._replace(z=float("inf")), 1e-3), "centre's z must be a finite"),
+    (lambda s, c: s.step(0.0, tuple(c)[:5], 1e-3), "a wheel centre is x, y, z"),
+])
+def test_bad_steps_are_refused_with_one_line(call, match):
+    stepper = wheel_stepper(model="point", road="flat")
+    with pytest.raises(InputError, match=match):
+        call(stepper, WheelCentre(0.0, 0.0, 0.6, 1.0, 0.0, 0.0, 1.0))
+    assert stepper.time == 0.0
+
+
+@pytest.mark.parametrize("kwargs, match", [
+    (dict(model="nope"), "unknown model"),
+    (dict(model="rigid"), "does not run on a rigid road"),
+    (dict(road="cleat:zz"), "cannot read sizes"),
+    (dict(frame="body"), "unknown frame"),
+    (dict(load=1e9), "onto its rim"),
+    (dict(max_step=-1.0), "internal step"),
+])
+def test_bad_wheels_are_refused_with_one_line(kwargs, match):
+    with pytest.raises(InputError, match=match):
+        wheel_stepper(**kwargs)
+
+
+def test_the_page_lists_every_fmu_variable_with_its_unit():
+    """docs/cosimulation.md's tables name every variable of the FMU (tyrelab.cosim.variables)
+    with its unit, and nothing else; the variables carry the stepping API's records' fields."""
+    import re
+    from pathlib import Path
+
+    from tyrelab.cosim import CentreLoads
+    from tyrelab.cosim.variables import INPUTS, OUTPUTS, PARAMETERS
+
+    page = (Path(__file__).resolve().parents[1] / "docs" / "cosimulation.md").read_text()
+    listed = {}
+    for line in page.splitlines():
+        cells = [c.strip() for c in line.strip().strip("|").split("|")] if line.startswith("| `") else []
+        if len(cells) >= 3:
+            for name in re.findall(r"`([A-Z_]+)`", cells[0]):
+                listed[name] = cells[1]
+    table = INPUTS + OUTPUTS + PARAMETERS
+    assert listed == {v.name: v.unit or "-" for v in table}
+    assert [v.field for v in INPUTS] == list(WheelCentre._fields)
+    assert [v.field for v in OUTPUTS] == list(CentreLoads._fields)
