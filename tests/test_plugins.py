@@ -151,9 +151,12 @@ def test_the_plugins_terrain_reaches_the_command_line(plugin_env, tmp_path):
 
 
 def test_the_plugin_runs_in_a_two_worker_study(plugin_env, tmp_path):
-    """A study spec naming the plugin's model, rig and road file: the two runs are computed by
-    two Dask worker processes, which load the plugin themselves. Editing the road file changes
-    the runs' keys (the format's identity is the file's digest): a rerun computes them again."""
+    """A study spec naming the plugin's model, rig, road file and terrain: the runs are computed
+    by two Dask worker processes, which load the plugin themselves. Editing the road file
+    changes the road runs' keys (the format's identity is the file's digest): a rerun computes
+    them again. On the plugin's rigid ``slick`` ground the soil bin's wheel (the preloaded
+    model at 23.3 kN) carries its dead weight with its axle ``preload`` higher than the
+    vertical law's static deflection puts it, as on the road, and sinks nowhere."""
     road = _profile(tmp_path / "road.xz", 0.02)
     spec = tmp_path / "plugin.toml"
     spec.write_text(f"""
@@ -178,6 +181,15 @@ rig = "raised-rolling"
 speeds_kmh = [{SPEED_KMH}]
 loads = ["LC1", "LC2"]
 duration = 1.8
+
+[[test]]
+name = "slick bin"
+rig = "single-wheel"
+terrain = "slick:0.5"
+slips = [0.1]
+speeds_kmh = [3.6]
+loads = [23300]
+duration = 1.0
 """)
     from tyrelab.study.store import Store
 
@@ -190,10 +202,22 @@ duration = 1.8
         store = Store(tmp_path / "out")
         index = store.index()
         new = index[~index["key"].isin(seen)]
-        assert len(new) == 2 and set(new["status"]) == {"done"}   # computed again after the edit
-        for _, row in new.iterrows():
+        road_runs = new[new["test"] == "profile step"]
+        assert len(road_runs) == 2 and set(new["status"]) == {"done"}   # computed again after the edit
+        for _, row in road_runs.iterrows():
             _check_run(store.signal(row["key"]), load_case_wheel_load(row["load"]), step)
+        assert len(new) == (3 if not seen else 2)       # the slick run's key has no road file
         seen |= set(new["key"])
+    bin_key = index.loc[index["test"] == "slick bin", "key"].item()
+    run = store.signal(bin_key)
+    tyre = load_tyre("xzl-16.00R20")
+    steady = run[run["RUNTIME"] > 0.5]
+    np.testing.assert_allclose(steady["FZW"], 23300.0, rtol=1e-3)
+    np.testing.assert_allclose(steady["DEFLECT"], tyre.static_deflection(23300.0), rtol=1e-3)
+    # the model's tyre is pressed PRELOAD before it touches: its axle rides that much higher
+    np.testing.assert_allclose(steady["Z_WC"], tyre.unloaded_radius - tyre.static_deflection(23300.0)
+                               + PRELOAD, atol=1e-4)
+    assert steady["SINKAGE"].max() == 0.0
 
 
 def test_a_broken_plugin_is_a_warning_and_the_rest_works(monkeypatch):

@@ -143,15 +143,17 @@ def test_builtin_file_is_package_data():
 def test_example_parses(tmp_path):
     text = example_spec()
     spec = parse(text, tmp_path)
-    assert [m.name for m in spec.models] == ["OPC lk", "3D ENV nlk"]
-    assert [t.group for t in spec.tests] == ["discrete obstacles", "rough tracks"]  # second inferred
+    assert [m.name for m in spec.models] == ["OPC lk", "3D ENV nlk", "rigid wheel", "ring"]
+    # second inferred; the third a soil test
+    assert [t.group for t in spec.tests] == ["discrete obstacles", "rough tracks", "soil"]
     assert spec.tests[1].loads == (38197.0,)
     assert spec.tests[0].speeds == pytest.approx((12 / 3.6, 18 / 3.6))
-    assert len(spec.runs()) == (2 + 1) * 2
+    # the rigid-road tests run two models; the soil test three, at three slips each
+    assert len(spec.runs()) == (2 + 1) * 2 + 3 * 3
     # the example explains every key of the schema
     for key in ("name", "output", "dt", "output_rate", "file", "pressure_kpa", "contact", "stiffness",
                 "handling", "group", "road", "speeds_kmh", "loads", "rig", "duration", "reference",
-                "files", "metrics.limits"):
+                "files", "metrics.limits", "models", "terrain", "slips"):
         assert key in text
 
 

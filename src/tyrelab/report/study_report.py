@@ -28,15 +28,18 @@ Sections, in order:
    * for a track (no disturbance segment), the force distributions of every
      model and the reference with normal fits (thesis Figure 5-14).
 
-4. **Summary** in the form of thesis Table 5-15
+4. **On soil** (only when the study has soil tests): each soil test's drawbar
+   pull, driving torque and sinkage against slip, one trace per model, in three
+   stacked zoomable panels, and their table (:mod:`.soil_section`).
+5. **Summary** in the form of thesis Table 5-15
    (:func:`tyrelab.validate.tables.summary_html`), the recommended model per
    group with its expected error (mean and worst |primary metric| over the
    group's runs), and what the rules set aside.
-5. **Against the thesis**: our metrics beside the thesis's and the rank
+6. **Against the thesis**: our metrics beside the thesis's and the rank
    agreement (Spearman's rho per run), when the study has thesis rows; and,
    when the reference is the thesis's FTire TP stand-in, the consistency with
    what the thesis measured (:mod:`.consistency_section`).
-6. **Accuracy against cost**: each model's wall time per simulated second
+7. **Accuracy against cost**: each model's wall time per simulated second
    against its mean error (a scatter), and the parameterization it needs.
 
 Size: the page holds plotly.js once and each figure's data compressed
@@ -74,6 +77,7 @@ from .._version import __version__
 from ..io_atomic import atomic_output
 from ..validate.compare import METRICS
 from .figure_embed import ERRORS_SCRIPT, RENDERED_SCRIPT, FigureSink
+from .soil_section import soil_section
 from .study_figures import (MAX_POINTS, PALETTE, condition_figures, condition_text, cost_figure,
                             cost_points, title_text)
 from .study_sections import (COND, REPEATABILITY, compared_ok, esc, frame_html, metric_tables,
@@ -87,7 +91,7 @@ METRIC_COLUMNS = ["key", "reference", "tyre", "model", "contact", "test", "group
                   "disturbance_start_s", "disturbance_end_s", "response_start_s", "response_end_s",
                   "error"]
 _ATTRIBUTES = ("spec", "folder", "store", "reference_note", "summary", "thesis", "rank_agreement",
-               "consistency", "cost", "signal")
+               "consistency", "cost", "signal", "soil_curves")
 
 _STYLE = """body{font-family:system-ui,sans-serif;max-width:75em;margin:auto;padding:0 1em;color:#222}
 .reference-note{background:#fff3cd;border:2px solid #e0a800;padding:.6em 1em;font-weight:bold;margin:1em 0}
@@ -223,12 +227,14 @@ def study_report_html(study, *, name: str | None = None, max_points: int = MAX_P
                                  *study.metrics["model"].astype(str)]))
     colours = {m: PALETTE[i % len(PALETTE)] for i, m in enumerate(models)}
     figs = FigureSink(exact=full_resolution)
+    conditions = _conditions(study, note, figs, colours, None if full_resolution else max_points)
+    soil = soil_section(study, figs, colours)
     body = [_header(study, name, note),
             "<nav><a href='#runs'>runs</a> &middot; <a href='#conditions'>per condition</a> &middot; "
-            "<a href='#summary'>summary</a> &middot; <a href='#thesis'>thesis</a> &middot; "
+            + ("<a href='#soil'>on soil</a> &middot; " if soil else "")
+            + "<a href='#summary'>summary</a> &middot; <a href='#thesis'>thesis</a> &middot; "
             "<a href='#cost'>cost</a></nav>",
-            run_matrix(study.index),
-            _conditions(study, note, figs, colours, None if full_resolution else max_points),
+            run_matrix(study.index), conditions, soil,
             summary_section(study), thesis_section(study), _cost(study, note, figs, colours)]
     return ("<!DOCTYPE html>\n<html lang='en'><head><meta charset='utf-8'>\n" + ERRORS_SCRIPT
             + f"\n<title>Study report: {esc(name)}</title>\n"

@@ -59,8 +59,18 @@ def frame_html(df: pd.DataFrame, caption: str | None = None) -> str:
     return "<div class='scroll'>" + "\n".join(out + ["</table>"]) + "</div>\n"
 
 
+def _slip_text(run) -> str:
+    """``"s = 0.2: "`` for a soil test's run (the index's ``slip``), else nothing."""
+    slip = getattr(run, "slip", None)
+    try:
+        return f"s = {float(slip):g}: " if slip is not None and np.isfinite(float(slip)) else ""
+    except (TypeError, ValueError):
+        return ""
+
+
 def run_matrix(index: pd.DataFrame) -> str:
-    """Test conditions x models, each cell the runs' status and wall time."""
+    """Test conditions x models, each cell the runs' status and wall time (for a soil test,
+    one line per slip)."""
     if index is None or len(index) == 0:
         return "<section id='runs'><h2>Run matrix</h2><p>The study has no runs.</p></section>\n"
     several = index["tyre"].nunique() > 1
@@ -77,8 +87,8 @@ def run_matrix(index: pd.DataFrame) -> str:
                 cells.append("<td class='text'>&ndash;</td>")
                 continue
             bad = sel["status"] != "done"
-            parts = [("&#10003; " + cell(r.wall_time_s) + " s") if r.status == "done"
-                     else "&#10007; " + esc(r.status) for r in sel.itertuples()]
+            parts = [_slip_text(r) + (("&#10003; " + cell(r.wall_time_s) + " s") if r.status == "done"
+                                      else "&#10007; " + esc(r.status)) for r in sel.itertuples()]
             tip = "; ".join(as_text(e) for e in sel.loc[bad].get("error", []) if as_text(e))
             cls = "failed" if bad.any() else "done"
             cells.append(f"<td class='{cls}' title='{esc(tip)}'>" + "<br>".join(parts) + "</td>")

@@ -2,10 +2,16 @@
 
 As in Wong's and Bekker's soil bins: the carriage moves forward at a prescribed speed
 ``V``, the wheel is driven at the spin that gives the prescribed slip
-``s = 1 - V / (R0 omega)`` (R0 the unloaded radius; s = 0 rolls at the unloaded
-radius, s = 1 spins in place), and the vertical load is a dead weight: the carriage
+``s = 1 - V / (R_e omega)`` (s = 1 spins in place), and the vertical load is a dead
+weight: the carriage
 and wheel, of mass ``W / g``, are free to sink. It starts at rest in static
 equilibrium in the soil (the sinkage at which the soil carries ``W``), then drives.
+
+``R_e`` is the wheel's effective rolling radius, as terramechanics defines the slip of a
+pneumatic tyre (Wong 2008, 2.4): its free-rolling ``V / omega`` on a hard flat surface
+under the same load -- each model's own (:func:`rolling_radius`: the rigid wheel's is its
+radius, an analytic model's its loaded radius, the ring's from its rolling equilibrium). So
+s = 0 rolls each model freely on hard ground, and slips compare across models.
 
 Channels: the wheel channels (``FX`` the drawbar pull, positive forward; ``FZ``;
 ``MY`` the soil's moment on the wheel about its axis; ``LONGSLIP``), plus ``SINKAGE``
@@ -36,6 +42,8 @@ STATE = ("Z", "VZ", "T")
 S = named_index("SingleWheelStateIndex", STATE)
 #: where the carriage starts along the bin [m]
 X_START = 0.0
+#: the slowest speed [m/s] at which a model's rolling radius is found (rolling_radius)
+ROLLING_RADIUS_SPEED = 1.0
 
 def undisturbed(ground, x, y):
     """The undisturbed surface's height at (x, y) [m] (compiled only): the soil's before any
@@ -78,6 +86,18 @@ def single_wheel_steps(wheel, mass, speed, omega, state, n_steps, dt, out_every,
     return row
 
 
+def rolling_radius(model, load: float, speed: float) -> float:
+    """The effective rolling radius ``R_e`` [m] of ``model`` under ``load`` [N]: its free-rolling
+    ``V / omega`` on a hard flat road at ``speed`` [m/s], at least :data:`ROLLING_RADIUS_SPEED`
+    (its rigs' rolling equilibrium; the ring's takes long to find at a crawl, and at soil-bin
+    speeds hardly depends on speed); a model that runs on no rigid road (the rigid wheel)
+    rolls at its unloaded radius."""
+    if "rigid" not in model.contact_model.terrains:
+        return float(model.tyre.unloaded_radius)
+    v = max(float(speed), ROLLING_RADIUS_SPEED)
+    return float(v / model.equilibrium(load, v).spin)
+
+
 def single_wheel(model, soil, load: float, speed: float, slip: float = 0.0, length: float = 10.0,
                  width: float = BED_WIDTH, spacing: float = BED_SPACING, duration: float | None = None,
                  dt: float = 1e-3, output_rate: float = 1000.0, progress: bool | None = None,
@@ -98,7 +118,7 @@ def single_wheel(model, soil, load: float, speed: float, slip: float = 0.0, leng
     speed : float
         Carriage speed [m/s].
     slip : float
-        ``s = 1 - V / (R0 omega)``, 0 to below 1.
+        ``s = 1 - V / (R_e omega)``, 0 to below 1 (``R_e``: :func:`rolling_radius`).
     length, width, spacing : float
         The soil bed [m] and its node spacing [m]; the bed starts 1 m behind the wheel.
     duration, dt, output_rate : float
@@ -122,7 +142,8 @@ def single_wheel(model, soil, load: float, speed: float, slip: float = 0.0, leng
     radius = model.tyre.unloaded_radius
     if duration is None:
         duration = (x_end - X_START) / speed
-    omega = speed / (radius * (1.0 - slip))
+    r_e = rolling_radius(model, load, speed)
+    omega = speed / (r_e * (1.0 - slip))
     n_steps = int(round(duration / dt))
     out_every = max(1, int(round(1.0 / (output_rate * dt))))
     tables = []
@@ -140,7 +161,7 @@ def single_wheel(model, soil, load: float, speed: float, slip: float = 0.0, leng
         data = run_chunks(advance, n_steps, out_every, len(CHANNELS), dt, progress)
         meta = {"rig": "single-wheel", "tyre": model.tyre.name, "model": model.contact,
                 **ground_meta, "road": road.name, "speed_m_s": speed, "slip": slip,
-                "static_wheel_load_N": load, "pass": len(tables) + 1,
+                "static_wheel_load_N": load, "pass": len(tables) + 1, "rolling_radius_m": r_e,
                 "static_sinkage_m": float(road.height(X_START, 0.0) - (z0 - radius)),
                 "soil_spacing_m": spacing, "dt_s": dt, "output_rate_Hz": 1.0 / (out_every * dt)}
         tables.append(to_signal(data, CHANNELS, meta))

@@ -20,6 +20,7 @@ from pathlib import Path
 from ..limits import model_cost
 from .evaluate import evaluate_study
 from .results import Study
+from .soil import soil_curves
 from .spec import RunSpec, StudySpec, builtin_spec, example_spec, load_spec
 from .store import Store
 
@@ -35,7 +36,8 @@ def run_record(run: RunSpec) -> dict:
             "stiffness": run.model.stiffness or "", "test": run.test, "group": run.group,
             "road": run.road, "speed_kmh": round(run.speed_kmh, 9), "load": str(run.load),
             "rig": run.rig, "left_wheel": run.left_contact or run.model.contact
-            if run.rig in ("trailer", "drop") else "", "dt": run.dt}
+            if run.rig in ("trailer", "drop") else "", "dt": run.dt,
+            "terrain": run.terrain or "", "slip": run.slip}
 
 
 #: length assumed for a road run to its end (the thesis tracks are 100 m)
@@ -74,7 +76,8 @@ def run(spec: StudySpec | str | Path | None = None, workers: int | None = None,
         scheduler: str | None = None, output: str | Path | None = None,
         progress: bool = True) -> Study:
     """Run a study (the built-in thesis campaign when ``spec`` is None), evaluate it
-    against its references and write its HTML report (``report.html`` in the results
+    against its references (the soil tests' slip curves: :func:`tyrelab.study.soil.soil_curves`)
+    and write its HTML report (``report.html`` in the results
     folder); returns the :class:`Study` (index, metrics, summary, ...).
 
     ``output`` overrides the spec's results folder; ``workers`` and
@@ -89,6 +92,7 @@ def run(spec: StudySpec | str | Path | None = None, workers: int | None = None,
     _keep_spec(spec, store)
     run_tasks(tasks(spec), store, workers=workers, scheduler=scheduler, progress=progress)
     evaluate_study(spec, store, progress=progress)  # metrics.parquet, rewritten every time
+    soil_curves(spec, store)                        # soil_curves.parquet, likewise
     result = Study(store.folder)
     from ..report.study_report import write_study_report
     write_study_report(result, store.folder / REPORT)
@@ -97,9 +101,10 @@ def run(spec: StudySpec | str | Path | None = None, workers: int | None = None,
 
 def open(folder: str | Path) -> Study:  # noqa: A001 - the name the issue asks for
     """A finished (or partly finished) study folder as a :class:`Study`: ``.index``,
-    ``.metrics``, ``.summary``, ``.thesis``, ``.rank_agreement``, ``.cost``, ``.signal(key)``."""
+    ``.metrics``, ``.summary``, ``.thesis``, ``.rank_agreement``, ``.cost``, ``.soil_curves``,
+    ``.signal(key)``."""
     return Study(folder)
 
 
 __all__ = ["run", "open", "tasks", "run_record", "load_spec", "builtin_spec", "example_spec",
-           "evaluate_study", "Study", "StudySpec", "RunSpec", "Store"]
+           "evaluate_study", "soil_curves", "Study", "StudySpec", "RunSpec", "Store"]

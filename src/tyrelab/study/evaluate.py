@@ -335,7 +335,7 @@ class _Evaluator:
         key, test = self.keys[run], self.test_of(run)
         files = self.spec.reference_files(run)
         out = []
-        if len(files) > 1 and run.model == self.spec.models[0]:
+        if len(files) > 1 and run.model == self.spec.test_models(test)[0]:
             for f in files[1:]:
                 row = self.row(run, f.name, files[0], files[0].name, False, sim_source=f)
                 row.update(model=REPEATABILITY, contact="")
@@ -357,7 +357,8 @@ class _Evaluator:
 
 
 def evaluate_study(spec: StudySpec, store: Store, progress: bool = True) -> pd.DataFrame:
-    """The metrics of every compared run of ``spec`` in ``store`` (module notes).
+    """The metrics of every compared run of ``spec`` in ``store`` (module notes); the runs of
+    soil tests are evaluated by :func:`tyrelab.study.soil.soil_curves` instead.
 
     Returns
     -------
@@ -367,7 +368,7 @@ def evaluate_study(spec: StudySpec, store: Store, progress: bool = True) -> pd.D
     """
     from tqdm import tqdm
     ev = _Evaluator(spec, store)
-    runs = spec.runs()
+    runs = [r for r in spec.runs() if r.slip is None]  # soil tests: tyrelab.study.soil
     rows = []
     for run in tqdm(runs, unit="run", desc="evaluate", disable=not progress):
         rows.extend(ev.rows(run))

@@ -1,8 +1,9 @@
 """Run keys: a short stable hash of everything that decides a run's result.
 
 A run's key covers the content of the tyre files it reads, the model's
-settings, the road (a CRG file by its content), speed, load, rig, duration,
-time step, output rate and the package version -- and nothing else (labels,
+settings, the road (a CRG file by its content), the soil (a soil file's, or the
+built-in soil's file's, content) and the slip of a soil test's run, speed, load,
+rig, duration, time step, output rate and the package version -- and nothing else (labels,
 groups, references, limits and the output folder are left out), so a result
 is reused exactly when it would be computed again identically.
 """
@@ -96,6 +97,20 @@ def _road_identity(road: str):
     return fmt.identity(fmt, Path(path_text), offset)
 
 
+def _terrain_identity(terrain: str) -> dict:
+    """The soil as it enters a run key: the SHA-256 of its file's bytes (a built-in soil's
+    packaged file, with its name), so editing a soil file computes its runs again, as a road
+    file's content does."""
+    if terrain.strip().lower().endswith(".toml"):
+        return {"soil_file_sha256": hashlib.sha256(Path(terrain).read_bytes()).hexdigest()}
+    from ..road.soil import soil_names
+    if terrain.strip().lower() not in soil_names():
+        return {"terrain": terrain}          # another kind's value says all there is (slick:0.5)
+    name = terrain.strip().lower()
+    content = resources.files("tyrelab.road.soil").joinpath("data", f"{name}.toml").read_bytes()
+    return {"soil": name, "soil_file_sha256": hashlib.sha256(content).hexdigest()}
+
+
 @functools.lru_cache(maxsize=None)
 def _load_case(name: str) -> tuple[float, float]:
     from ..tyre.library import load_cases
@@ -119,7 +134,8 @@ def run_key(run: RunSpec, tyre_digest: str) -> str:
     the road (its name, or a ``.crg`` file's content digest and offset);
     the speed [m/s]; the load (a load case with its ballast and wheel mass
     from Table 3-4, or the force [N]); the rig (and the trailer's left-wheel model when
-    it differs from the test wheel's), duration, dt, output rate;
+    it differs from the test wheel's), duration, dt, output rate; on soil, the soil
+    file's content (:func:`_terrain_identity`) and the slip of a soil test;
     and ``tyrelab.__version__``. Labels (study, tyre, model and test names,
     the group), references, limits and the output folder are left out:
     they do not change what is simulated, so renaming a model keeps its
@@ -143,5 +159,9 @@ def run_key(run: RunSpec, tyre_digest: str) -> str:
     }
     if run.left_contact is not None:  # only when set: keys of runs without it stay as they were
         payload["left_wheel"] = run.left_contact
+    if run.terrain is not None:       # as left_wheel: the keys of rigid-road runs stay
+        payload["terrain"] = _terrain_identity(run.terrain)
+    if run.slip is not None:
+        payload["slip"] = float(run.slip)
     text = json.dumps(payload, sort_keys=True, separators=(",", ":"), allow_nan=False)
     return hashlib.sha256(text.encode()).hexdigest()[:16]

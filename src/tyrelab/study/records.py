@@ -80,10 +80,19 @@ class TestSpec:
     duration: float | None = None
     reference_model: str | None = None
     reference_files: tuple[ReferenceFile, ...] = ()
+    models: tuple[str, ...] = ()
+    terrain: str | None = None
+    slips: tuple[float, ...] = ()
 
     @property
     def speeds_kmh(self) -> tuple[float, ...]:
         return tuple(v * 3.6 for v in self.speeds)
+
+    @property
+    def is_soil_test(self) -> bool:
+        """A slip curve on soil (drawbar pull, torque and sinkage against slip; the
+        single-wheel tester), evaluated by :mod:`tyrelab.study.soil`, not chapter 5."""
+        return bool(self.slips)
 
 
 @dataclass(frozen=True)
@@ -91,7 +100,9 @@ class RunSpec:
     """One simulation: everything :func:`tyrelab.simulate` needs, plus its labels.
 
     ``speed`` [m/s], ``load`` a load-case name or a wheel load [N],
-    ``duration`` [s] or None, ``dt`` [s], ``output_rate`` [Hz].
+    ``duration`` [s] or None, ``dt`` [s], ``output_rate`` [Hz]; ``terrain`` the
+    deformable ground (None: the rigid road) and ``slip`` the prescribed slip of a
+    soil test's run (None: the rig's own, free rolling).
     """
 
     tyre: TyreSpec
@@ -106,6 +117,8 @@ class RunSpec:
     dt: float
     output_rate: float
     left_wheel: str | None = None
+    terrain: str | None = None
+    slip: float | None = None
 
     @property
     def speed_kmh(self) -> float:
@@ -126,7 +139,10 @@ class RunSpec:
                 "stiffness": self.model.stiffness, "handling": self.model.handling,
                 "rig": self.rig, "duration": self.duration, "dt": self.dt,
                 "output_rate": self.output_rate, "left_wheel": self.left_contact,
-                "options": dict(self.model.options) or None}
+                "options": dict(self.model.options) or None,
+                # only when set: the keyword arguments of a rigid-road run stay as they were
+                **({"terrain": self.terrain} if self.terrain is not None else {}),
+                **({"rig_options": {"slip": self.slip}} if self.slip is not None else {})}
 
 
 @dataclass(frozen=True)
@@ -154,10 +170,12 @@ class StudySpec:
     store: str = "compact"
 
     def runs(self) -> tuple[RunSpec, ...]:
-        """Every tyre x test x speed x load x model, in that nesting (outermost first).
+        """Every tyre x test x speed x load x model (x slip, for a soil test), in that nesting
+        (outermost first).
 
         Deterministic: the order of the spec's tables and lists. The runs of
-        one condition (test, speed, load) are adjacent, the models in spec
+        one condition (test, speed, load) are adjacent, the models in the
+        test's order (:meth:`test_models`), each model's slips in the test's
         order; a reference model's runs appear once, as any model's.
         """
         out = []
@@ -165,11 +183,18 @@ class StudySpec:
             for test in self.tests:
                 for speed in test.speeds:
                     for load in test.loads:
-                        for model in self.models:
-                            out.append(RunSpec(tyre, model, test.name, test.group, test.road, speed, load,
-                                               test.rig, test.duration, self.dt, self.output_rate,
-                                               self.left_wheel))
+                        for model in self.test_models(test):
+                            for slip in test.slips or (None,):
+                                out.append(RunSpec(tyre, model, test.name, test.group, test.road, speed,
+                                                   load, test.rig, test.duration, self.dt,
+                                                   self.output_rate, self.left_wheel, test.terrain,
+                                                   slip))
         return tuple(out)
+
+    def test_models(self, test: TestSpec) -> tuple[ModelSpec, ...]:
+        """The model variants ``test`` runs: those its ``models`` lists, in that order, or
+        every model of the spec in the spec's order."""
+        return tuple(self.model(name) for name in test.models) if test.models else self.models
 
     def model(self, name: str) -> ModelSpec:
         """The model variant labelled ``name``."""
@@ -178,9 +203,11 @@ class StudySpec:
                 return m
         raise KeyError(name)
 
-    def _test_of(self, run: RunSpec) -> TestSpec:
+    def test_of(self, run: RunSpec) -> TestSpec:
+        """The ``[[test]]`` table ``run`` comes from."""
         for test in self.tests:
-            if (test.name == run.test and run.speed in test.speeds and run.load in test.loads):
+            if (test.name == run.test and run.speed in test.speeds and run.load in test.loads
+                    and (run.slip in test.slips if test.slips else run.slip is None)):
                 return test
         raise KeyError(run.test)
 
@@ -190,16 +217,16 @@ class StudySpec:
         None when the test has no model reference, or ``run`` is a run of
         the reference model itself.
         """
-        test = self._test_of(run)
+        test = self.test_of(run)
         if test.reference_model is None or test.reference_model == run.model.name:
             return None
         return RunSpec(run.tyre, self.model(test.reference_model), run.test, run.group, run.road,
                        run.speed, run.load, run.rig, run.duration, run.dt, run.output_rate,
-                       run.left_wheel)
+                       run.left_wheel, run.terrain, run.slip)
 
     def reference_files(self, run: RunSpec) -> tuple[Path, ...]:
         """The measured files ``run`` is compared with (repeats of its condition); () if none."""
-        test = self._test_of(run)
+        test = self.test_of(run)
         return tuple(f.path for f in test.reference_files
                      if f.speed == run.speed and f.load == run.load)
 

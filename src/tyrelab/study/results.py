@@ -7,12 +7,14 @@
 >>> s.rank_agreement.mean                 # do we rank the models as the thesis did?
 >>> s.consistency.views                  # within the bound the thesis's numbers impose?
 >>> s.cost                                # wall time per simulated second, data each model needs
+>>> s.soil_curves                         # soil tests: steady pull, torque, sinkage against slip
 >>> s.to_xarray()                         # metrics as a Dataset, dims model x condition
 
 The folder holds what the runner wrote: ``runs/`` and ``index.parquet``
 (:mod:`.store`), ``spec.toml`` with ``study.json`` (the folder its relative
 paths start from) and, once evaluated, ``metrics.parquet``
-(:mod:`.evaluate`). Without ``spec.toml`` the spec is None and everything
+(:mod:`.evaluate`) and, with soil tests, ``soil_curves.parquet`` (:mod:`.soil`).
+Without ``spec.toml`` the spec is None and everything
 that needs it (computing missing metrics, the spec's limits) falls back to
 what the folder holds (the metrics' own ``is_reference`` column, the
 default limits).
@@ -31,6 +33,7 @@ from ..errors import InputError
 from ..validate.compare import METRICS, THESIS_CLEAT, THESIS_TRACK
 from ..validate.tables import DEFAULT_LIMITS, RankAgreement, rank_agreement, summary_table
 from .evaluate import METRICS_FILE, REPEATABILITY, evaluate_study
+from .soil import SOIL_FILE, empty_table, soil_curves
 from .spec import StudySpec, parse_spec
 from .store import DONE, Store
 
@@ -92,6 +95,20 @@ class Study:
             raise InputError("the study has no metrics.parquet and no spec.toml to compute it",
                              source=str(self.folder))
         return evaluate_study(self.spec, self.store, progress=False)
+
+    @functools.cached_property
+    def soil_curves(self) -> pd.DataFrame:
+        """The soil tests' steady drawbar pull ``FX`` [N], driving torque ``TORQUE`` [N m],
+        sinkage ``SINKAGE`` [m] and load ``FZ`` [N] per test, model and slip, with each
+        model's difference from the test's reference model
+        (:func:`tyrelab.study.soil.soil_curves`): ``soil_curves.parquet``, or computed (and
+        written) when missing and the spec has soil tests; no rows when the study has none."""
+        path = self.folder / SOIL_FILE
+        if path.is_file():
+            return pd.read_parquet(path)
+        if self.spec is not None and any(t.is_soil_test for t in self.spec.tests):
+            return soil_curves(self.spec, self.store)
+        return empty_table()
 
     def signal(self, key: str) -> pd.DataFrame:
         """The signal table of the finished run ``key``, or of the spec's measured
@@ -242,12 +259,16 @@ class Study:
     @property
     def cost(self) -> pd.DataFrame:
         """Per model: finished runs, median wall time per simulated second (from the index)
-        and the parameterization data the model needs."""
+        and the parameterization data the model needs; over the runs compared with a reference
+        in time (the soil tests' runs, at a prescribed slip, are left out: their wall times are
+        in :attr:`soil_curves`)."""
         idx = self.index
         cols = ["model", "contact", "runs", "wall_per_simulated_s", "parameterization"]
         if idx.empty or "status" not in idx:
             return pd.DataFrame(columns=cols)
         done = idx[(idx["status"] == DONE) & (idx["simulated_s"] > 0)]
+        if "slip" in done:
+            done = done[done["slip"].isna()]
         rows = []
         for model, g in done.groupby("model", sort=False):
             contact = str(g["contact"].iloc[0]) if "contact" in g else ""

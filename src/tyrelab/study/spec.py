@@ -37,8 +37,19 @@ Schema (km/h, kPa, mm at this edge, as the command line; SI in the parsed object
     loads = ["LC1"]                     # "LC1".."LC3" (thesis Table 3-4) or a wheel load in N
     rig = "trailer"                     # optional (tyrelab.registry.rigs())
     duration = 6.0                      # [s] optional (default: the rig runs to the road's end)
+    models = ["OPC lk", "FTire TP"]     # optional: the model labels this test runs (default: all)
     reference = { model = "FTire TP" }  # optional: a model label of this spec, or
     # reference = { files = ["field/c50_12.tdx", "field/c50_18.tdx", "field/c50_42.tdx"] }
+
+    [[test]]                            # a soil test: a slip curve per model (tyrelab.study.soil)
+    name = "LETE sand slip curve"
+    rig = "single-wheel"                # a rig on soil (Rig.terrain "soil"), driven at each slip
+    terrain = "lete-sand"               # a built-in soil (tyrelab soil list) or a soil .toml path
+    slips = [0, 0.2, 0.4]               # s = 1 - V / (R0 omega), each in [0, 1)
+    speeds_kmh = [3.6]
+    loads = [23300]
+    duration = 3.0                      # [s] optional (default 3 s: the steady part is the last half)
+    # road = "flat"                     # optional: the soil's undisturbed surface (default flat)
 
     [metrics.limits."discrete obstacles"]   # optional pass limits per group and metric
     mRE_disturbance_pct = 20
@@ -60,6 +71,12 @@ Rules beyond the types:
 * ``[metrics] limits``: ``{group: {metric: limit}}`` with metrics of
   :data:`tyrelab.validate.compare.METRICS`; a group given replaces that
   group's default (:data:`tyrelab.validate.tables.DEFAULT_LIMITS`) whole.
+* A soil test (:mod:`.spec_soil`): ``terrain`` only on a rig that runs on soil
+  only (the single-wheel tester; the trailer and the quarter vehicle stay on the
+  rigid road in a study), ``slips`` only on a rig that takes a slip, both then
+  required; no ``group`` (its group is "soil") and no measured reference. Every
+  model it runs must run on soil (``ContactModel.terrains``), as every model of a
+  rigid-road test must run on the rigid road.
 * In key paths of error messages, ``test[3]`` is the third ``[[test]]``
   table and ``speeds_kmh[2]`` the second element (counted from 1).
 

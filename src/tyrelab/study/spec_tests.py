@@ -1,7 +1,8 @@
-"""The ``[[test]]`` tables of a study spec: roads, speeds, loads, rig, reference.
+"""The ``[[test]]`` tables of a study spec: roads, speeds, loads, rig, models, reference.
 
 Each value is checked without building anything (a road by its name, a
-reference file by its existence), and a mistake raises one
+reference file by its existence; the ground -- ``terrain``, ``slips`` -- in
+:mod:`.spec_soil`), and a mistake raises one
 :class:`~tyrelab.errors.InputError` naming file, line and key path (through
 :class:`~.checker.Checker`). The other sections and the front doors are in
 :mod:`.spec`.
@@ -17,6 +18,8 @@ from .. import limits
 from ..errors import InputError
 from .checker import Checker, describe_value
 from .records import ReferenceFile, TestSpec
+from .spec_soil import (DEFAULT_SOIL_DURATION, SOIL_GROUP, check_models_on_ground, check_slips,
+                        check_terrain)
 
 #: the obstacle groups of the thesis (Table 5-15); the summary rules differ per group
 GROUPS = ("discrete obstacles", "rough tracks")
@@ -26,7 +29,8 @@ MAX_SPEED_KMH = round(limits.MAX_SPEED * 3.6, 9)
 DEFAULT_DT = 1e-3
 DEFAULT_OUTPUT_RATE = 1000.0
 
-_TEST_KEYS = ("name", "group", "road", "speeds_kmh", "loads", "rig", "duration", "reference")
+_TEST_KEYS = ("name", "group", "road", "speeds_kmh", "loads", "rig", "duration", "models",
+              "reference", "terrain", "slips")
 _REFERENCE_KEYS = ("model", "files", "column_map")
 _REFERENCE_FILE_KEYS = ("file", "speed_kmh", "load")
 _OBSTACLE_KINDS = ("cleat", "bump", "step", "pothole")
@@ -105,10 +109,31 @@ def _nonempty_list(ck: Checker, value, path, what):
     return value
 
 
-def _reference(ck: Checker, raw, path, speeds, loads, models, cases):
+def _models(ck: Checker, t: dict, path, models) -> tuple[str, ...]:
+    """The test's ``models``: labels of the spec's model variants, each once (() if absent:
+    every model)."""
+    if "models" not in t:
+        return ()
+    names = [m.name for m in models]
+    out = []
+    for k, v in enumerate(_nonempty_list(ck, t["models"], path + ("models",), "model labels")):
+        label = ck.string(v, path + ("models", k), "a model label")
+        if label not in names:
+            ck.fail(path + ("models", k), f"no model labelled {json.dumps(label)} in this spec; "
+                    f"expected one of: {', '.join(json.dumps(n) for n in names)}")
+        if label in out:
+            ck.fail(path + ("models", k), f"duplicate model {json.dumps(label)}")
+        out.append(label)
+    return tuple(out)
+
+
+def _reference(ck: Checker, raw, path, speeds, loads, models, cases, soil_test: bool = False):
     t = ck.table(raw, path, _REFERENCE_KEYS, what="a table { model = ... } or { files = [...] }")
     if ("model" in t) == ("files" in t):
         ck.fail(path, "expected exactly one of 'model' (a model label) or 'files' (measured files)")
+    if soil_test and "files" in t:
+        ck.fail(path + ("files",), "a soil test compares its models with a reference model "
+                "(reference = { model = ... }); measured files are for the rigid-road tests")
     if "column_map" in t and "files" not in t:
         ck.fail(path + ("column_map",), "a column map belongs to measured 'files'")
     cmap = (ck.path(t["column_map"], path + ("column_map",), "column map file")
@@ -164,11 +189,22 @@ def _tests(ck: Checker, doc, models, dt: float = DEFAULT_DT,
     conditions: dict[tuple, int] = {}
     for i, raw in enumerate(ck.array_of_tables(doc, "test")):
         path = ("test", i)
-        t = ck.table(raw, path, _TEST_KEYS, required=("name", "road", "speeds_kmh", "loads"),
+        t = ck.table(raw, path, _TEST_KEYS, required=("name", "speeds_kmh", "loads"),
                      what="a table [[test]]")
         name = ck.label(t["name"], path + ("name",))
-        road, group = _road(ck, t["road"], path + ("road",))
-        if "group" in t:
+        rig_name = ck.choice(t.get("rig", "trailer"), path + ("rig",), tuple(rigs()), "rig")
+        the_rig = rigs()[rig_name]
+        terrain = check_terrain(ck, t, path, the_rig)
+        slips = check_slips(ck, t, path, the_rig)
+        if "road" not in t and the_rig.terrain != "soil":
+            ck.fail(path, f"missing key 'road' (required; keys: {', '.join(_TEST_KEYS)})")
+        road, group = _road(ck, t.get("road", the_rig.default_road), path + ("road",))
+        if slips:  # a soil test: a slip curve, none of the thesis's groups
+            if "group" in t:
+                ck.fail(path + ("group",), f"a soil test (with slips) is in the group "
+                        f"'{SOIL_GROUP}'; the groups {', '.join(GROUPS)} are the rigid-road tests'")
+            group = SOIL_GROUP
+        elif "group" in t:
             group = ck.choice(t["group"], path + ("group",), GROUPS, "group")
         speeds = []
         for k, v in enumerate(_nonempty_list(ck, t["speeds_kmh"], path + ("speeds_kmh",), "speeds in km/h")):
@@ -182,23 +218,33 @@ def _tests(ck: Checker, doc, models, dt: float = DEFAULT_DT,
             if load in loads:
                 ck.fail(path + ("loads", k), f"duplicate load {v!r}")
             loads.append(load)
-        rig = ck.choice(t.get("rig", "trailer"), path + ("rig",), tuple(rigs()), "rig")
-        duration = None
+        duration = DEFAULT_SOIL_DURATION if slips else None
         if "duration" in t:
             duration = ck.number(t["duration"], path + ("duration",), "a duration > 0 [s]", low=0.0)
+        if duration is not None:
             try:
                 limits.check_duration(duration, dt, rate)
             except InputError as exc:
                 ck.fail(path + ("duration",), exc.reason)
+        chosen = _models(ck, t, path, models)
+        check_models_on_ground(ck, path, chosen or [m.name for m in models], models, terrain,
+                               listed=bool(chosen))
         reference_model, reference_files = None, ()
         if "reference" in t:
             reference_model, reference_files = _reference(ck, t["reference"], path + ("reference",),
-                                                          speeds, loads, models, cases)
+                                                          speeds, loads, models, cases, bool(slips))
+            if reference_model is not None and chosen and reference_model not in chosen:
+                ck.fail(path + ("reference", "model"), f"the reference {json.dumps(reference_model)} "
+                        "is not among this test's models")
         if name in first:  # the same obstacle again: other conditions of it
             other = tests[first[name]]
             if (other.road, other.group) != (road, group):
                 ck.fail(path + ("road",), f"test {json.dumps(name)} is also test[{first[name] + 1}] "
                         f"with road '{other.road}' ({other.group}); one name, one road and group")
+            if other.terrain != terrain:
+                ck.fail(path + ("terrain",) if "terrain" in t else path,
+                        f"test {json.dumps(name)} is also test[{first[name] + 1}] on "
+                        f"{other.terrain or 'the rigid road'}; one name, one ground")
         else:
             first[name] = i
         for k, v in enumerate(speeds):
@@ -207,6 +253,6 @@ def _tests(ck: Checker, doc, models, dt: float = DEFAULT_DT,
                     ck.fail(path + ("speeds_kmh", k), f"test {json.dumps(name)} at {v * 3.6:g} km/h, load "
                             f"{load} is also in test[{conditions[(name, v, load)] + 1}]")
                 conditions[(name, v, load)] = i
-        tests.append(TestSpec(name, group, road, tuple(speeds), tuple(loads), rig, duration,
-                              reference_model, reference_files))
+        tests.append(TestSpec(name, group, road, tuple(speeds), tuple(loads), rig_name, duration,
+                              reference_model, reference_files, chosen, terrain, slips))
     return tuple(tests)

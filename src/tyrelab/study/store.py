@@ -29,7 +29,10 @@ measured on the 200 runs of the built-in campaign by
   time and the compared force (``FZ_HUB``, or ``FZ`` in a run without it) as
   float64, the others rounded to float32; zstd with byte-stream split. The
   campaign takes 0.13 GB instead of 2.46 GB and every metric of
-  :func:`tyrelab.study.evaluate.evaluate_study` is bit-identical. The other
+  :func:`tyrelab.study.evaluate.evaluate_study` is bit-identical. A soil test's
+  run (its record has a ``slip``) also keeps, as float64, the channels its steady
+  state is read from (:data:`SOIL_CHANNELS`), so its slip curve
+  (:func:`tyrelab.study.soil.soil_curves`) is that of the full table. The other
   channels are gone: a study that needs them says ``"lossless"`` or ``"full"``.
 * ``"lossless"``: every channel, float64, zstd with byte-stream split (1.35 GB).
 * ``"full"``: every channel, float64, snappy -- the form of every store written
@@ -63,6 +66,9 @@ DEFAULT_STORAGE = COMPACT
 #: compared force ``FZ_HUB`` or, without it, ``FZ``, and the contact point's and wheel
 #: centre's x and z that place the disturbance) and the report plots (time, that force)
 COMPACT_CHANNELS = ("RUNTIME", "FZ_HUB", "FZ", "X_CP", "Z_CP", "X_WC", "Z_WC")
+#: what a compact soil-test run keeps besides, exactly: the drawbar pull, the driving torque,
+#: the sinkage (with FZ, the steady means of :mod:`tyrelab.study.soil`) and the slip
+SOIL_CHANNELS = ("FX", "TORQUE", "SINKAGE", "LONGSLIP")
 
 
 def compact_float64(columns) -> tuple[str, ...]:
@@ -80,8 +86,9 @@ def check_storage(value, source=None) -> str:
     return value
 
 
-def write_run(signal: pd.DataFrame, path, storage: str = DEFAULT_STORAGE) -> None:
-    """Write a run's signal table to ``path`` in the form ``storage`` (module notes)."""
+def write_run(signal: pd.DataFrame, path, storage: str = DEFAULT_STORAGE, exact=()) -> None:
+    """Write a run's signal table to ``path`` in the form ``storage`` (module notes); a compact
+    run also keeps the channels ``exact`` (float64)."""
     check_storage(storage)
     if storage == FULL:
         write_signal(signal, path)  # today's form, byte for byte
@@ -89,12 +96,13 @@ def write_run(signal: pd.DataFrame, path, storage: str = DEFAULT_STORAGE) -> Non
     if storage == LOSSLESS:
         write_signal(signal, path, compression="zstd", storage={"form": LOSSLESS})
         return
-    kept = [c for c in signal.columns if c in COMPACT_CHANNELS]
-    dropped = [c for c in signal.columns if c not in COMPACT_CHANNELS]
+    keep = (*COMPACT_CHANNELS, *exact)
+    kept = [c for c in signal.columns if c in keep]
+    dropped = [c for c in signal.columns if c not in keep]
     table = signal[kept]
     table.attrs = {**signal.attrs, "units": {c: u for c, u in
                                              signal.attrs.get("units", {}).items() if c in kept}}
-    double = compact_float64(kept)
+    double = (*compact_float64(kept), *exact)
     write_signal(table, path, compression="zstd", float32=[c for c in kept if c not in double],
                  storage={"form": COMPACT, "dropped": dropped})
 
@@ -145,8 +153,10 @@ class Store:
         return self._storage or DEFAULT_STORAGE
 
     def save(self, key: str, spec: dict, signal: pd.DataFrame, wall_time: float) -> None:
-        """Store a finished run: its table first (in the form :attr:`storage`), then its record."""
-        write_run(signal, self.signal_path(key), self.storage)
+        """Store a finished run: its table first (in the form :attr:`storage`; a soil test's
+        run, whose record has a ``slip``, with :data:`SOIL_CHANNELS`), then its record."""
+        exact = SOIL_CHANNELS if spec.get("slip") is not None else ()
+        write_run(signal, self.signal_path(key), self.storage, exact)
         _write_json(self.record_path(key), {**spec, "key": key, "status": DONE,
                                             "wall_time_s": float(wall_time),
                                             "simulated_s": float(signal["RUNTIME"].iloc[-1]

@@ -188,7 +188,9 @@ def wheel_loads(bed, cx, cy, cz, ax, ay, az, vx, vy, vz, omega, radius, width, f
     Every node under the wheel's footprint is visited: the wheel's lower surface above it
     (the flat, or the lower root of ``|q|^2 = R^2``, ``q`` the node's offset from the axis)
     gives its total sinkage; the node's stresses act on the surface element above it. The
-    tread moves round the wheel at ``omega R`` (inextensible), on the flat too. With
+    wheel's surface moves with it as a rigid body (``v + omega a x p``); on the flat, the
+    tread moves along it at ``omega flat``, the speed of the flat's middle (the kinematics of
+    the analytic models on a rigid road, whose contact point turns at the loaded radius). With
     ``update`` the nodes' plastic sinkage and shear displacement advance (a step of the run);
     without, the bed is only read (an equilibrium search).
     """
@@ -215,7 +217,7 @@ def wheel_loads(bed, cx, cy, cz, ax, ay, az, vx, vy, vz, omega, radius, width, f
     # the flat's plane: (p - c) . d = flat, tilted no further than MIN_COS from level
     _, _, _, dx_, dy_, dz_ = wheel_axes(ax, ay, az)
     has_flat = flat < radius and -dz_ >= MIN_COS
-    # the tread on the flat slides with v + omega R (a x d)
+    # the tread on the flat slides with v + omega flat (a x d)
     rx_, ry_, rz_ = cross(ax, ay, az, dx_, dy_, dz_)
     fx = fy = fz = mx = my = mz = 0.0
     normal = dnormal = 0.0
@@ -256,9 +258,9 @@ def wheel_loads(bed, cx, cy, cz, ax, ay, az, vx, vy, vz, omega, radius, width, f
             px, py, pz = d0x, d0y, zr                        # the surface point, from the centre
             if on_flat:
                 nxw, nyw, nzw = dx_, dy_, dz_
-                ux = vx + omega * radius * rx_
-                uy = vy + omega * radius * ry_
-                uz = vz + omega * radius * rz_
+                ux = vx + omega * flat * rx_
+                uy = vy + omega * flat * ry_
+                uz = vz + omega * flat * rz_
             else:
                 # the outward normal (from the axis); the velocity v + omega a x p
                 nxw, nyw, nzw = unit(q0x + zr * mx_, q0y + zr * my_, q0z + zr * mzz)

@@ -19,7 +19,9 @@ under the cut wheel pushes back along the wheel plane's upward direction::
 
 solved every step by Newton's method safeguarded by bisection
 (:func:`flexible_deflection`), from the last step's deflection (rolling steadily one
-trial pass over the soil and the step's own pass). A soft soil
+trial pass over the soil and the step's own pass). The flat's tread moves at
+``omega (R - delta)``, as the analytic models' contact point turns at the loaded radius on
+a rigid road: on a ground too hard to sink it rolls freely where they do. A soft soil
 carries the tyre with ``delta`` near 0 (the rigid-wheel mode); a hard one with
 ``delta`` near the tyre's deflection on a rigid road. A stiffer tyre (higher
 inflation) flattens less, so it sinks deeper. On soil the analytic models differ
@@ -29,7 +31,8 @@ and how each model envelopes a rigid obstacle does not apply there.
 The loads (:class:`~tyrelab.tyre.wheel.WheelLoads`): force and moment of the soil
 about the centre; the contact point the wheel's lowest point (on the flat);
 ``deflection`` the tyre's (0 for the rigid wheel); ``kappa`` the longitudinal
-slip ``(omega R - V) / max(omega R, V)`` (terramechanics' s for a driven wheel),
+slip ``(omega (R - delta) - V) / max(omega (R - delta), V)`` (terramechanics' s for a
+driven wheel),
 ``alpha`` the slip angle.
 """
 
@@ -176,7 +179,7 @@ def soil_wheel_step(wheel, pose, dt):
     fzw = max(0.0, dot(L.fx, L.fy, L.fz, zx, zy, zz))
     v_fwd = dot(pose.vx, pose.vy, pose.vz, fx_, fy_, fz_)
     v_lat = dot(pose.vx, pose.vy, pose.vz, pose.ax, pose.ay, pose.az)
-    v_rim = pose.omega * p.radius
+    v_rim = pose.omega * (p.radius - delta)      # the tread's speed on the flat (scm.wheel_loads)
     kappa = (v_rim - v_fwd) / max(abs(v_rim), abs(v_fwd), 1e-6)
     alpha = math.atan2(-v_lat, abs(v_fwd)) if abs(v_fwd) > 1e-6 else 0.0
     # the contact point: the wheel's lowest point, on the flat, in its plane below the centre

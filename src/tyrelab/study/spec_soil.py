@@ -1,0 +1,130 @@
+"""The ground of a ``[[test]]`` table: ``terrain``, ``slips`` and the models that run on it.
+
+A test on the rigid road names no terrain. A rig that runs on soil only (the
+single-wheel tester) needs ``terrain``, and only such a rig takes one here (the
+trailer and the quarter vehicle also run on soil in :func:`tyrelab.simulate`, but
+a study compares their runs as the thesis's rigid-road tests, so it keeps them
+there): a built-in soil's name (``tyrelab soil
+list``) or a soil file (TOML, relative to the spec's folder), read now so a bad
+soil stops the study before it starts. A rig that drives at a prescribed slip
+(the single-wheel tester) needs ``slips``, each in [0, 1); its test is a *soil
+test* (:attr:`tyrelab.study.records.TestSpec.is_soil_test`). Each model a test
+runs must run on its ground (:attr:`tyrelab.tyre.registry.ContactModel.terrains`).
+Every mistake is one :class:`~tyrelab.errors.InputError` naming file, line and
+key path (:class:`~.checker.Checker`).
+"""
+
+from __future__ import annotations
+
+import json
+
+from ..errors import InputError
+from .checker import Checker, describe_value
+
+#: simulated time of a soil test's run when the test gives none [s]: the default of
+#: :func:`tyrelab.rig.single_wheel.slip_curve`, whose last half is the steady state
+DEFAULT_SOIL_DURATION = 3.0
+#: the group of every soil test (the thesis's groups are for its rigid-road tests)
+SOIL_GROUP = "soil"
+
+
+def ground_of(terrain: str | None):
+    """The kind of ground a test runs on: the registered
+    :class:`~tyrelab.road.terrain.TerrainKind` its terrain names (the rigid grid's without one)."""
+    from ..road.terrain import resolve_terrain, terrain_kind
+    return terrain_kind("rigid") if terrain is None else resolve_terrain(terrain)[0]
+
+
+def check_terrain(ck: Checker, t: dict, path, rig) -> str | None:
+    """The test's ``terrain`` as the study passes it to :func:`tyrelab.simulate`: a built-in
+    soil's name (lower case) or a soil file's absolute path; None on the rigid road."""
+    from ..road.soil import soil_names
+    from ..road.terrain import resolve_terrain, terrain_kinds
+    from ..rig.registry import rigs
+
+    if "terrain" not in t:
+        if rig.terrain == "soil":
+            ck.fail(path, f"missing key 'terrain': the {rig.name} rig runs on soil; give a built-in "
+                    f"soil ({', '.join(soil_names())}) or a soil file FILE.toml")
+        return None
+    key = path + ("terrain",)
+    if rig.terrain == "rigid":
+        on_soil = [name for name, r in rigs().items() if r.terrain != "rigid"]
+        ck.fail(key, f"the {rig.name} rig runs on the rigid road only; a terrain needs a rig on "
+                f"soil: {', '.join(on_soil)}")
+    if rig.terrain != "soil":  # "any": a study evaluates these rigs on the thesis's terms only
+        soil_rigs = [name for name, r in rigs().items() if r.terrain == "soil"]
+        ck.fail(key, f"a study runs the {rig.name} rig on the rigid road only (its runs are "
+                "compared as the thesis's rigid-road tests are); soil tests use a rig on soil: "
+                f"{', '.join(soil_rigs)} (the {rig.name} on soil: tyrelab.simulate(terrain=...))")
+    text = ck.string(t["terrain"], key, "a soil's name or a soil file FILE.toml").strip()
+    if text.lower().endswith(".toml"):
+        terrain = str(ck.path(text, key, "soil file"))
+    elif text.lower() in soil_names():
+        terrain = text.lower()
+    else:
+        terrain = text                       # another registered kind's (a plugin's) value
+        try:
+            resolve_terrain(terrain)
+        except InputError:
+            others = "; ".join(f"{k.name}: {k.hint}" for k in terrain_kinds().values()
+                               if k.resolve is not None and k.name != "soil")
+            ck.fail(key, f"unknown soil {json.dumps(text)}; expected one of: "
+                    f"{', '.join(soil_names())} or a soil file FILE.toml"
+                    + (f" (or another terrain: {others})" if others else ""))
+    try:  # read it now: a broken soil file stops the study before it starts
+        resolve_terrain(terrain)
+    except InputError as exc:
+        ck.fail(key, f"cannot use this soil: {exc}")
+    return terrain
+
+
+def check_slips(ck: Checker, t: dict, path, rig) -> tuple[float, ...]:
+    """The test's ``slips`` (each in [0, 1), no repeats); () for a rig without a slip."""
+    from ..rig.registry import rigs
+
+    takes_slip = "slip" in rig.options
+    if "slips" not in t:
+        if takes_slip:
+            ck.fail(path, f"missing key 'slips': the {rig.name} rig drives at prescribed slips, "
+                    "e.g. slips = [0, 0.2, 0.4]")
+        return ()
+    key = path + ("slips",)
+    if not takes_slip:
+        with_slip = [name for name, r in rigs().items() if "slip" in r.options]
+        ck.fail(key, f"the {rig.name} rig takes no slip; slips are for the rigs that drive at a "
+                f"prescribed slip: {', '.join(with_slip)}")
+    value = t["slips"]
+    if not isinstance(value, list) or not value:
+        what = describe_value(value) if not isinstance(value, list) else "an empty array"
+        ck.fail(key, f"expected a non-empty array of slips in [0, 1), got {what}")
+    slips = []
+    for k, v in enumerate(value):
+        s = ck.number(v, key + (k,), "a slip s = 1 - V / (R0 omega) in [0, 1)", low=0.0, high=1.0,
+                      low_open=False)
+        if s >= 1.0:
+            ck.fail(key + (k,), f"expected a slip in [0, 1) (1 spins in place, at no speed), got {v!r}")
+        if s in slips:
+            ck.fail(key + (k,), f"duplicate slip {v!r}")
+        slips.append(s)
+    return tuple(slips)
+
+
+def check_models_on_ground(ck: Checker, path, names, models, terrain: str | None,
+                           listed: bool) -> None:
+    """Every model ``names`` labels runs on the test's ground; else a line naming the model,
+    at its place in the test's ``models`` (``listed``) or at the test."""
+    from ..rig.soil_ground import runs_on
+    from ..tyre.registry import contact_model
+
+    kind = ground_of(terrain)
+    for k, name in enumerate(names):
+        contact = next(m.contact for m in models if m.name == name)
+        entry = contact_model(contact)
+        if not runs_on(entry, kind):
+            where = {"soil": "on soil", "rigid": "on the rigid road"}.get(kind.name, f"on {kind.name}")
+            hint = ("remove it from this test's models" if listed else
+                    "give this test a models list without it")
+            ck.fail(path + ("models", k) if listed else path,
+                    f"model {json.dumps(name)} ({contact}) does not run {where} (it runs on: "
+                    f"{', '.join(entry.terrains)}); {hint}")
