@@ -158,6 +158,20 @@ def test_differences_from_the_reference_model(study):
                                / ref["SINKAGE"].to_numpy() - 1), rtol=1e-12)
 
 
+def test_the_command_prints_the_soil_table(study, capsys):
+    """``tyrelab study`` on the finished study (every run kept: nothing is computed again)
+    prints each model's pull, torque and sinkage per slip, the table's values to the digits
+    shown."""
+    from tyrelab.cli.main import main
+    folder = study.folder
+    assert main(["study", str(folder / "spec.toml"), "--workers", "1", "-o", str(folder)]) == 0
+    out = capsys.readouterr().out
+    for row in study.soil_curves.itertuples():
+        line = next(ln for ln in out.splitlines()
+                    if ln.strip().startswith(row.model) and f"s = {row.slip:.2f}:" in ln)
+        assert f"pull {row.FX / 1e3:7.2f} kN" in line and f"sinkage {row.SINKAGE * 1e3:6.1f} mm" in line
+
+
 def test_two_workers_give_the_same_table(study, tmp_path):
     """The soil test alone, in another folder, on two worker processes: the same run keys (a
     key does not depend on the other tests) and bit for bit the same steady values."""

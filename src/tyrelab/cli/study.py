@@ -59,6 +59,14 @@ def run(args) -> int:
     if len(summary):
         print("verdict (thesis Table 5-15 rules):")
         print(summary.to_string())
+    soil = result.soil_curves
+    if len(soil):
+        print("on soil (steady drawbar pull, driving torque, sinkage per model and slip):")
+        for test, part in soil.groupby("test", sort=False):
+            print(f"  {test}:")
+            for row in part.itertuples():
+                print(f"    {row.model:<16}s = {row.slip:.2f}: pull {row.FX / 1e3:7.2f} kN  "
+                      f"torque {row.TORQUE / 1e3:7.2f} kN m  sinkage {row.SINKAGE * 1e3:6.1f} mm")
     for _, row in failed.iterrows():
         print(f"  failed: {row['model']} on {row['test']} at {row['speed_kmh']:g} km/h "
               f"{row['load']}: {row['error']}", file=sys.stderr)
