@@ -39,10 +39,12 @@ def register(sub):
                    help="tangential force model: none, pac89, mf or a plugin's (tyrelab models lists "
                         "them; default: what the property file describes)")
     p.add_argument("--terrain", default=None, metavar="SOIL",
-                   help="deformable ground: a built-in soil (lete-sand, dry-sand, sandy-loam, clayey-soil, "
-                        "snow, chrono-demo) or a soil file FILE.toml; the road is its initial surface")
+                   help="the ground over the road: a built-in soil (lete-sand, dry-sand, sandy-loam, "
+                        "clayey-soil, snow, chrono-demo), a soil file FILE.toml, or a plugin's terrain "
+                        "(tyrelab models); the road is its initial surface")
     p.add_argument("--slip", type=bounded_float("slip", 0.0, 0.99), default=None,
-                   metavar="S", help="single-wheel tester: the slip s = 1 - V / (R0 omega), 0 to 0.99")
+                   metavar="S", help="single-wheel tester: the slip s = 1 - V / (R_e omega) "
+                        "(R_e: the model's free-rolling radius on hard ground), 0 to 0.99")
     p.add_argument("--road", default=None,
                    help="road: flat, cleat:WxH[@ANGLE], bump:H, step:H, pothole:DxL[xW], a track name "
                         f"or FILE{'|'.join(road_suffixes())}[@V] (sizes in mm; default cleat:50x50, "

@@ -33,7 +33,8 @@ def register(sub):
                                                    scale=1 / 3.6), default=1.0, metavar="KMH",
                      help="carriage speed in km/h (default 3.6)")
     cur.add_argument("--slips", type=_slips, default=(0.0, 0.1, 0.2, 0.3, 0.4, 0.6), metavar="S,S,...",
-                     help="slips s = 1 - V/(R0 omega), comma-separated, each in [0, 0.99] "
+                     help="slips s = 1 - V/(R_e omega), R_e the free-rolling radius, comma-separated, "
+                          "each in [0, 0.99] "
                           "(default 0,0.1,0.2,0.3,0.4,0.6)")
     cur.add_argument("--duration", type=bounded_float("duration", 0.5, 60.0, "s"), default=3.0, metavar="S",
                      help="simulated time of each run in s; the second half is averaged (default 3)")

@@ -45,7 +45,7 @@ Schema (km/h, kPa, mm at this edge, as the command line; SI in the parsed object
     name = "LETE sand slip curve"
     rig = "single-wheel"                # a rig on soil (Rig.terrain "soil"), driven at each slip
     terrain = "lete-sand"               # a built-in soil (tyrelab soil list) or a soil .toml path
-    slips = [0, 0.2, 0.4]               # s = 1 - V / (R0 omega), each in [0, 1)
+    slips = [0, 0.2, 0.4]               # s = 1 - V / (R_e omega), each in [0, 1)
     speeds_kmh = [3.6]
     loads = [23300]
     duration = 3.0                      # [s] optional (default 3 s: the steady part is the last half)

@@ -100,7 +100,7 @@ def check_slips(ck: Checker, t: dict, path, rig) -> tuple[float, ...]:
         ck.fail(key, f"expected a non-empty array of slips in [0, 1), got {what}")
     slips = []
     for k, v in enumerate(value):
-        s = ck.number(v, key + (k,), "a slip s = 1 - V / (R0 omega) in [0, 1)", low=0.0, high=1.0,
+        s = ck.number(v, key + (k,), "a slip s = 1 - V / (R_e omega) in [0, 1)", low=0.0, high=1.0,
                       low_open=False)
         if s >= 1.0:
             ck.fail(key + (k,), f"expected a slip in [0, 1) (1 spins in place, at no speed), got {v!r}")
