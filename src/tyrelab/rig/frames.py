@@ -15,6 +15,9 @@ import numba as nb
 from ..core.named_index import named_index
 from ..core.vec3 import cross, wheel_axes
 
+#: standard gravity [m/s^2], the one value every rig uses
+G = 9.80665
+
 #: the loads :func:`c_axis_loads` writes, in this order
 C_AXIS = ("FX", "FY", "FZ", "MX", "MY", "MZ")
 CA = named_index("CAxisIndex", C_AXIS)

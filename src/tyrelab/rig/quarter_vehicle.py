@@ -18,9 +18,8 @@ from ..road.spec import road_from_spec
 from ..tyre.model import TyreModel
 from . import _quarter_kernel as K
 from .simulation import drop_road, levelled_grid, run_chunks, to_signal
-from .soil_ground import terrain_meta
+from .frames import G
 
-G = 9.80665
 
 
 @dataclass
@@ -79,12 +78,12 @@ class QuarterVehicle:
         tyre = self.model.tyre
         if terrain is not None:
             from .soil_ground import terrain_wheel
-            wheel, _, zu, _ = terrain_wheel(self.model, terrain, road, x0_road,
+            wheel, _, zu, ground_meta = terrain_wheel(self.model, terrain, road, x0_road,
                                             x0_road + speed * duration, self.wheel_load,
                                             level_at=x0_road, dt=dt)
             return self._run(road, speed, zu, speed / tyre.unloaded_radius, self.wheel_load,
                              duration, dt, output_rate, progress, "quarter-vehicle", wheel.state,
-                             wheel, terrain)
+                             wheel, ground_meta)
         # where the model carries the wheel load rolling at this speed
         eq = self.model.equilibrium(self.wheel_load, speed)
         return self._run(road, speed, tyre.unloaded_radius - eq.deflection, eq.spin,
@@ -100,7 +99,7 @@ class QuarterVehicle:
                          dt, output_rate, progress, "wheel-drop")
 
     def _run(self, road, speed, zu, omega0, wheel_load, duration, dt, output_rate, progress, rig,
-             model_state=None, wheel=None, terrain=None):
+             model_state=None, wheel=None, ground_meta=None):
         """Drive (or hold, at ``speed`` 0) from hub height ``zu``, suspension at its static
         length, the tyre model in ``model_state`` (default: its static state); ``wheel`` the
         wheel when it is built already (on soil)."""
@@ -128,7 +127,7 @@ class QuarterVehicle:
         meta = {"rig": rig, "tyre": tyre.name, "model": self.model.contact,
                 "handling": self.model.handling,
                 "stiffness": tyre.stiffness, "road": road.name, "speed_m_s": speed,
-                **terrain_meta(terrain),
+                **(ground_meta or {}),
                 "static_wheel_load_N": self.wheel_load, "pressure_Pa": tyre.pressure, "dt_s": dt,
                 "output_rate_Hz": 1.0 / (out_every * dt)}
         return to_signal(data, K.CHANNELS, meta)

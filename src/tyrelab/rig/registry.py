@@ -18,9 +18,7 @@ from typing import Any, Callable
 
 from .. import plugins
 from ..errors import InputError
-
-#: standard gravity [m/s^2]
-G = 9.80665
+from .frames import G
 
 
 @dataclass(frozen=True)

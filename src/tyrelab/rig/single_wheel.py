@@ -33,8 +33,8 @@ from ..tyre.wheel import WheelPose, wheel_step
 from .frames import WHEEL_CHANNELS, WC, wheel_row
 from .soil_ground import BED_SPACING, BED_WIDTH, settle, terrain_wheel
 from .simulation import run_chunks, to_signal
+from .frames import G
 
-G = 9.80665
 CHANNELS = WHEEL_CHANNELS + ("SINKAGE", "TORQUE")
 SC = named_index("SingleWheelChannelIndex", CHANNELS)
 #: the carriage's state: height of the wheel centre [m], its vertical speed [m/s], time [s]

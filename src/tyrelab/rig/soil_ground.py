@@ -19,6 +19,7 @@ from ..errors import InputError
 from ..road.soil.terrain import BED_SPACING, BED_WIDTH  # noqa: F401  (the rigs' defaults)
 from ..road.terrain import terrain_range
 from ..tyre.wheel import WheelPose, wheel_step
+from .frames import G
 
 #: the static equilibrium is found to this height [m] ...
 SETTLE_TOLERANCE = 1e-7
@@ -54,12 +55,11 @@ def _settle_steps(wheel, mass, x, y, z, damping, dt, n_max, still):
     damped by ``damping`` [N s/m], stepped until it moves slower than ``still`` [m/s] (at most
     ``n_max`` steps); returns the centre height [m]."""
     vz = 0.0
-    g = 9.80665
     for _ in range(n_max):
         f = wheel_step(wheel, WheelPose(x, y, z, 0.0, 1.0, 0.0, 0.0, 0.0, vz, 0.0), dt)
-        vz += dt * (f.fz - mass * g - damping * vz) / mass
+        vz += dt * (f.fz - mass * G - damping * vz) / mass
         z += dt * vz
-        if abs(vz) < still and abs(f.fz - mass * g) < 1e-3 * mass * g:
+        if abs(vz) < still and abs(f.fz - mass * G) < 1e-3 * mass * G:
             break
     return z
 
@@ -95,7 +95,7 @@ def settle(wheel, ground, load: float, x: float, radius: float, y: float = 0.0,
     z0 = 0.5 * (lo + hi)
     _vertical_force(wheel, x, y, z0)
     if dynamic:
-        mass = load / 9.80665
+        mass = load / G
         stiffness = load / (radius / 20.0)
         z0 = _settle_steps(wheel, mass, x, y, z0, SETTLE_DAMPING * 2.0 * np.sqrt(stiffness * mass),
                            dt, int(SETTLE_TIME / dt), SETTLE_SPEED)
@@ -127,12 +127,3 @@ def runs_on(entry, kind) -> bool:
     or any rigid kind for a model of the rigid road (it reads the ground through the terrain
     interface only)."""
     return kind.name in entry.terrains or (kind.rigid and "rigid" in entry.terrains)
-
-
-def terrain_meta(terrain) -> dict:
-    """A run's ground for its metadata, ``{kind: label}`` (nothing on a rigid road)."""
-    if terrain is None:
-        return {}
-    from ..road.terrain import resolve_terrain
-    kind, _, label = resolve_terrain(terrain)
-    return {kind.name: label}

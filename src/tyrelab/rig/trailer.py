@@ -30,9 +30,8 @@ from ..road.obstacles import Flat
 from ..road.spec import road_from_spec
 from . import _trailer_kernel as K
 from .simulation import drop_road, levelled_grid, run_chunks, to_signal
-from .soil_ground import terrain_meta
+from .frames import G
 
-G = 9.80665
 
 
 @dataclass
@@ -241,13 +240,13 @@ class Trailer:
         # rolls to put the wheel centres there
         left = self.left.equilibrium(s.wheel_load, speed)
         r0 = self.model.tyre.unloaded_radius
-        on_soil = None
+        on_soil = ground_meta = None
         if terrain is None:
             right = self.model.equilibrium(s.wheel_load, speed)
             z_right = r0 - right.deflection
         else:
             from .soil_ground import terrain_wheel
-            on_soil, _, z_right, _ = terrain_wheel(self.model, terrain, road, x0_road,
+            on_soil, _, z_right, ground_meta = terrain_wheel(self.model, terrain, road, x0_road,
                                                    x0_road + speed * duration, s.wheel_load,
                                                    level_at=x0_road, dt=dt)
             right = Equilibrium(r0 - z_right, speed / r0, on_soil.state)
@@ -257,7 +256,7 @@ class Trailer:
         roll = math.asin((z_left - z_right) / (self.geometry.track * math.cos(pitch)))
         return self._run(road, speed, pitch, (right.spin, left.spin), s.wheel_load, duration,
                          dt, output_rate, progress, "trailer", roll, (right.state, left.state),
-                         on_soil, terrain)
+                         on_soil, ground_meta)
 
     def drop(self, road: Road | str = "flat", lift: float = 0.0, duration: float = 3.0,
              dt: float = 1e-3, output_rate: float = 1000.0, progress: bool | None = None):
@@ -278,10 +277,11 @@ class Trailer:
                          progress, "trailer-drop")
 
     def _run(self, road, speed, pitch0, spins, wheel_load, duration, dt, output_rate, progress,
-             rig, roll0=0.0, states=None, right_wheel=None, terrain=None):
+             rig, roll0=0.0, states=None, right_wheel=None, ground_meta=None):
         """Tow (or hold, at ``speed`` 0) the trailer from ``pitch0``, ``roll0`` [rad] at rest,
         the wheels spinning at ``spins`` (right, left) [rad/s], in the models' ``states``;
-        ``right_wheel`` the test wheel when it is built already (on soil)."""
+        ``right_wheel`` the test wheel when it is built already (on a terrain, named in
+        ``ground_meta`` for the metadata)."""
         x0_road = road.run_start
         grid = levelled_grid(road, x0_road)
         tp = self.params(speed)
@@ -308,7 +308,7 @@ class Trailer:
                 "left_wheel": self.left.contact,
                 "handling": self.model.handling,
                 "stiffness": self.model.tyre.stiffness, "road": road.name, "speed_m_s": speed,
-                **terrain_meta(terrain),
+                **(ground_meta or {}),
                 "load_case": str(self.load_case), "static_wheel_load_N": s.wheel_load,
                 "pressure_Pa": self.model.tyre.pressure, "dt_s": dt,
                 "output_rate_Hz": 1.0 / (out_every * dt)}

@@ -112,8 +112,7 @@ class SoilSurface(NamedTuple):
 class SoilLoads(NamedTuple):
     """Loads of the soil on a wheel, about its centre (road frame) [N], [N m].
 
-    ``sinkage`` the deepest node's sinkage below its undisturbed height [m]; ``area`` the
-    horizontal area in contact [m^2]; ``normal`` the force's component along the wheel's
+    ``area`` the horizontal area in contact [m^2]; ``normal`` the force's component along the wheel's
     in-plane upward direction ``-d`` [N] (what the tyre's vertical law must carry) and
     ``dnormal`` its derivative with the tyre's deflection ``radius - flat`` [N/m] (<= 0:
     the flat rising unloads the soil under it; the flat's nodes only).
@@ -125,7 +124,6 @@ class SoilLoads(NamedTuple):
     mx: float
     my: float
     mz: float
-    sinkage: float
     area: float
     normal: float
     dnormal: float
@@ -201,7 +199,7 @@ def wheel_loads(bed, cx, cy, cz, ax, ay, az, vx, vy, vz, omega, radius, width, f
     # its heading, and its width (plus the tilt of its axis) across
     depth = bed.zmax - (cz - radius)
     if depth <= 0.0:
-        return SoilLoads(0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
+        return SoilLoads(0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
     chord = math.sqrt(max(0.0, radius * radius - (radius - min(depth, radius)) ** 2))
     across = 0.5 * width + radius * abs(az)
     reach_x = chord * math.sqrt(max(0.0, 1.0 - ax * ax)) + across * abs(ax) + bed.dx
@@ -221,7 +219,6 @@ def wheel_loads(bed, cx, cy, cz, ax, ay, az, vx, vy, vz, omega, radius, width, f
     rx_, ry_, rz_ = cross(ax, ay, az, dx_, dy_, dz_)
     fx = fy = fz = mx = my = mz = 0.0
     normal = dnormal = 0.0
-    deepest = 0.0
     area = 0.0
     for i in range(i0, i1 + 1):
         x = bed.x0 + i * bed.dx
@@ -292,9 +289,8 @@ def wheel_loads(bed, cx, cy, cz, ax, ay, az, vx, vy, vz, omega, radius, width, f
             mz += qz
             if sigma > 0.0:
                 area += cell
-                deepest = max(deepest, s)
             if update:
                 bed.ground.z[i, k] = bed.h0[i, k] - sp_new
                 bed.j[i, k] = jn
                 bed.sigma[i, k] = sigma
-    return SoilLoads(fx, fy, fz, mx, my, mz, deepest, area, normal, dnormal)
+    return SoilLoads(fx, fy, fz, mx, my, mz, area, normal, dnormal)
