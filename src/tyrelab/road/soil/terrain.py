@@ -35,7 +35,7 @@ from ..grid import (grid_block_max, grid_blocks, grid_line_height, grid_lines, g
                     grid_row, local_zmax, road_height, road_height_gradient, road_penetration)
 from ..terrain_registry import TerrainKind, register_terrain
 from .params import Soil
-from .scm import SoilSurface, node_stress, soil_bed
+from .scm import SoilSurface, bekker_modulus, node_stress, soil_bed
 
 #: the soil bed's node spacing [m]: halving it moves the pull of the XZL's rigid wheel on LETE
 #: sand at s = 0.2 by 0.15 % and its sinkage by 1.8 %, and costs four times the time
@@ -124,10 +124,11 @@ def soil_contact(bed, x, y, penetration, area, v1, v2, fn, f1, f2, dt):
     i, k = _nearest(bed, x, y)
     s0 = bed.h0[i, k] - bed.ground.z[i, k]
     kb = fn / penetration
+    modulus = bekker_modulus(soil, side)
     lo, hi = 0.0, penetration
     delta = 0.5 * penetration
     for _ in range(SERIES_ITERATIONS):
-        sigma, _, slope = node_stress(soil, s0 + delta, s0, side)
+        sigma, _, slope = node_stress(soil, modulus, s0 + delta, s0)
         g = kb * (penetration - delta) - sigma * a
         if abs(g) <= SERIES_TOLERANCE * fn:
             break
@@ -137,7 +138,7 @@ def soil_contact(bed, x, y, penetration, area, v1, v2, fn, f1, f2, dt):
             hi = delta
         nxt = delta + g / (kb + slope * a)
         delta = nxt if lo < nxt < hi else 0.5 * (lo + hi)
-    sigma, _, _ = node_stress(soil, s0 + delta, s0, side)
+    sigma, _, _ = node_stress(soil, modulus, s0 + delta, s0)
     carried = sigma * a
     # the block's sole, Delta below the surface where it presses; the nodes under it follow
     sole = soil_height(bed, x, y) - delta
@@ -152,7 +153,7 @@ def soil_contact(bed, x, y, penetration, area, v1, v2, fn, f1, f2, dt):
                 continue
             if bed.ground.z[ii, kk] > sole:
                 s_i = bed.h0[ii, kk] - sole
-                sig_i, sp_i, _ = node_stress(soil, s_i, bed.h0[ii, kk] - bed.ground.z[ii, kk], side)
+                sig_i, sp_i, _ = node_stress(soil, modulus, s_i, bed.h0[ii, kk] - bed.ground.z[ii, kk])
                 bed.ground.z[ii, kk] = bed.h0[ii, kk] - sp_i
                 bed.sigma[ii, kk] = sig_i
     # Mohr-Coulomb: the soil shears off beyond its strength under the carried stress

@@ -3,7 +3,7 @@
 **The rigid wheel** (model ``rigid``) is a cylinder of the tyre's unloaded radius
 and width, the textbook wheel of Bekker (1969) and Wong & Reece (1967): it does
 not deflect, so all of its sinkage is the soil's, which computes the stresses on
-its surface node by node (:func:`tyrelab.road.soil.scm.wheel_loads`). On a rigid
+its surface node by node (:func:`tyrelab.road.soil.wheel.wheel_loads`). On a rigid
 road it has no contact law, and its ``build`` refuses one.
 
 **A flexible wheel** is how the analytic models (point, volume, enveloping,
@@ -45,7 +45,8 @@ import numba as nb
 import numpy as np
 
 from ...core.vec3 import cross, dot, wheel_axes
-from ...road.soil.scm import SoilSurface, wheel_loads
+from ...road.soil.scm import SoilSurface
+from ...road.soil.wheel import wheel_loads
 from ..registry import ContactModel, register_contact
 from ..vertical import normal_force, static_load
 from ..wheel import WheelLoads
@@ -107,11 +108,12 @@ def wheel_params(entry, tyre, ground, options: dict):
 
 
 @nb.njit(cache=True)
-def _soil(wheel, pose, flat, dt, update):
+def _soil(wheel, pose, flat, dt, update, normal_only):
     """The soil's loads on the wheel cut flat at ``flat`` from its axis."""
     p = wheel.contact
     return wheel_loads(wheel.road, pose.cx, pose.cy, pose.cz, pose.ax, pose.ay, pose.az,
-                       pose.vx, pose.vy, pose.vz, pose.omega, p.radius, p.width, flat, dt, update)
+                       pose.vx, pose.vy, pose.vz, pose.omega, p.radius, p.width, flat, dt, update,
+                       normal_only)
 
 
 @nb.njit(cache=True)
@@ -145,7 +147,7 @@ def flexible_deflection(wheel, pose, dt):
     delta = min(max(last, lo), hi)
     for _ in range(MAX_ITERATIONS):
         f, df = _tyre_force(wheel.law, delta, last, dt)
-        soil = _soil(wheel, pose, p.radius - delta, dt, False)
+        soil = _soil(wheel, pose, p.radius - delta, dt, False, True)
         h = f - soil.normal
         if abs(h) <= FORCE_TOLERANCE:
             break
@@ -168,7 +170,7 @@ def soil_wheel_step(wheel, pose, dt):
     """Loads of the soil on the wheel over ``dt`` [s]; the soil's nodes advance."""
     p = wheel.contact
     delta = flexible_deflection(wheel, pose, dt) if p.flexible else 0.0
-    L = _soil(wheel, pose, p.radius - delta if p.flexible else p.radius, dt, True)
+    L = _soil(wheel, pose, p.radius - delta if p.flexible else p.radius, dt, True, False)
     if p.flexible:
         p.last[0] = delta       # (a static trial too: a run starts from its equilibrium's)
     fx_, fy_, fz_, dx_, dy_, dz_ = wheel_axes(pose.ax, pose.ay, pose.az)
@@ -179,7 +181,7 @@ def soil_wheel_step(wheel, pose, dt):
     fzw = max(0.0, dot(L.fx, L.fy, L.fz, zx, zy, zz))
     v_fwd = dot(pose.vx, pose.vy, pose.vz, fx_, fy_, fz_)
     v_lat = dot(pose.vx, pose.vy, pose.vz, pose.ax, pose.ay, pose.az)
-    v_rim = pose.omega * (p.radius - delta)      # the tread's speed on the flat (scm.wheel_loads)
+    v_rim = pose.omega * (p.radius - delta)      # the tread's speed on the flat (soil.wheel.wheel_loads)
     kappa = (v_rim - v_fwd) / max(abs(v_rim), abs(v_fwd), 1e-6)
     alpha = math.atan2(-v_lat, abs(v_fwd)) if abs(v_fwd) > 1e-6 else 0.0
     # the contact point: the wheel's lowest point, on the flat, in its plane below the centre
