@@ -18,6 +18,7 @@ from ..road.spec import road_from_spec
 from ..tyre.model import TyreModel
 from . import _quarter_kernel as K
 from .simulation import drop_road, levelled_grid, run_chunks, to_signal
+from .soil_ground import Following
 from .frames import G
 
 
@@ -78,12 +79,12 @@ class QuarterVehicle:
         tyre = self.model.tyre
         if terrain is not None:
             from .soil_ground import terrain_wheel
-            wheel, _, zu, ground_meta = terrain_wheel(self.model, terrain, road, x0_road,
-                                            x0_road + speed * duration, self.wheel_load,
-                                            level_at=x0_road, dt=dt)
+            wheel, ground, zu, ground_meta = terrain_wheel(self.model, terrain, road, x0_road,
+                                                 x0_road + speed * duration, self.wheel_load,
+                                                 level_at=x0_road, dt=dt)
             return self._run(road, speed, zu, speed / tyre.unloaded_radius, self.wheel_load,
                              duration, dt, output_rate, progress, "quarter-vehicle", wheel.state,
-                             wheel, ground_meta)
+                             wheel, ground_meta, ground)
         # where the model carries the wheel load rolling at this speed
         eq = self.model.equilibrium(self.wheel_load, speed)
         return self._run(road, speed, tyre.unloaded_radius - eq.deflection, eq.spin,
@@ -99,10 +100,10 @@ class QuarterVehicle:
                          dt, output_rate, progress, "wheel-drop")
 
     def _run(self, road, speed, zu, omega0, wheel_load, duration, dt, output_rate, progress, rig,
-             model_state=None, wheel=None, ground_meta=None):
+             model_state=None, wheel=None, ground_meta=None, ground=None):
         """Drive (or hold, at ``speed`` 0) from hub height ``zu``, suspension at its static
         length, the tyre model in ``model_state`` (default: its static state); ``wheel`` the
-        wheel when it is built already (on soil)."""
+        wheel when it is built already (on soil), on its Python ``ground``."""
         tyre = self.model.tyre
         x0_road = road.run_start
         ms, mu = self.sprung_mass, self.unsprung_mass
@@ -120,7 +121,11 @@ class QuarterVehicle:
         n_steps = int(round(duration / dt))
         out_every = max(1, int(round(1.0 / (output_rate * dt))))
 
+        follow = Following(ground, x0_road, speed, dt, tyre.unloaded_radius)
+
         def advance(n, out, row):
+            nonlocal wheel
+            wheel = follow.wheel(wheel, n)
             return K.quarter_steps(wheel, qp, state, n, dt, out_every, out, row)
 
         data = run_chunks(advance, n_steps, out_every, K.N_CH, dt, progress)

@@ -31,7 +31,7 @@ from ..road.soil.scm import SoilSurface, undisturbed_height
 from ..road.terrain import terrain_height
 from ..tyre.wheel import WheelPose, wheel_step
 from .frames import WHEEL_CHANNELS, WC, wheel_row
-from .soil_ground import BED_SPACING, BED_WIDTH, settle, terrain_wheel
+from .soil_ground import BED_SPACING, BED_WIDTH, Following, settle, terrain_wheel
 from .simulation import run_chunks, to_signal
 from .frames import G
 
@@ -138,7 +138,8 @@ def single_wheel(model, soil, load: float, speed: float, slip: float = 0.0, leng
     road = road or Flat()
     x_end = X_START + length - 1.0
     wheel, ground, z0, ground_meta = terrain_wheel(model, soil, road, X_START, x_end, load,
-                                                   dt=dt, spacing=spacing, width=width)
+                                                   dt=dt, spacing=spacing, width=width,
+                                                   moving=passes == 1)
     radius = model.tyre.unloaded_radius
     if duration is None:
         duration = (x_end - X_START) / speed
@@ -154,7 +155,11 @@ def single_wheel(model, soil, load: float, speed: float, slip: float = 0.0, leng
         state = np.zeros(len(STATE))
         state[S.Z] = z0
 
-        def advance(n, out, row, state=state):
+        follow = Following(ground, X_START, speed, dt, radius)
+
+        def advance(n, out, row, state=state, follow=follow):
+            nonlocal wheel
+            wheel = follow.wheel(wheel, n)
             return single_wheel_steps(wheel, load / G, float(speed), omega, state, n, dt, out_every,
                                       out, row)
 

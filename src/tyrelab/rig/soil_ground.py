@@ -122,6 +122,33 @@ def terrain_wheel(model, terrain, road, x0: float, x1: float, load: float,
     return wheel, ground, z0, {kind.name: label}
 
 
+#: a rig keeps this much of its ground behind its wheel's centre [m] (where a moving ground,
+#: the soil's active patch, may forget it) ...
+KEEP_BEHIND = 2.0
+#: ... and this much, beyond its radius, ahead of where a chunk of its run ends
+KEEP_AHEAD = 1.0
+
+
+class Following:
+    """A rig's wheel, moving forward at ``speed`` [m/s] from ``x`` [m], kept on the part of its
+    Python ``ground`` each chunk of the run drives: a ground too long to hold at once (the
+    soil, :mod:`tyrelab.road.soil.patch`) moves with the wheel; any other stays as it is."""
+
+    def __init__(self, ground, x: float, speed: float, dt: float, radius: float):
+        self._follow = getattr(ground, "follow", None)
+        self.x, self.speed, self.dt, self.radius = float(x), float(speed), float(dt), float(radius)
+
+    def wheel(self, wheel, n: int):
+        """``wheel`` with its ground covering the next ``n`` steps (and the rut just behind)."""
+        travel = abs(self.speed) * n * self.dt
+        if self._follow is not None:
+            record = self._follow(self.x - KEEP_BEHIND, self.x + travel + self.radius + KEEP_AHEAD)
+            if record is not None:
+                wheel = wheel._replace(road=record)
+        self.x += travel
+        return wheel
+
+
 def runs_on(entry, kind) -> bool:
     """Whether the registered contact model ``entry`` runs on terrain ``kind``: a kind it names,
     or any rigid kind for a model of the rigid road (it reads the ground through the terrain

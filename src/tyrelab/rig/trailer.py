@@ -30,6 +30,7 @@ from ..road.obstacles import Flat
 from ..road.spec import road_from_spec
 from . import _trailer_kernel as K
 from .simulation import drop_road, levelled_grid, run_chunks, to_signal
+from .soil_ground import Following
 from .frames import G
 
 
@@ -240,15 +241,15 @@ class Trailer:
         # rolls to put the wheel centres there
         left = self.left.equilibrium(s.wheel_load, speed)
         r0 = self.model.tyre.unloaded_radius
-        on_soil = ground_meta = None
+        on_soil = ground_meta = ground = None
         if terrain is None:
             right = self.model.equilibrium(s.wheel_load, speed)
             z_right = r0 - right.deflection
         else:
             from .soil_ground import terrain_wheel
-            on_soil, _, z_right, ground_meta = terrain_wheel(self.model, terrain, road, x0_road,
-                                                   x0_road + speed * duration, s.wheel_load,
-                                                   level_at=x0_road, dt=dt)
+            on_soil, ground, z_right, ground_meta = terrain_wheel(
+                self.model, terrain, road, x0_road, x0_road + speed * duration, s.wheel_load,
+                level_at=x0_road, dt=dt)
             right = Equilibrium(r0 - z_right, speed / r0, on_soil.state)
         z_left = r0 - left.deflection
         pitch = math.asin((0.5 * (z_right + z_left) - s.hitch_height)
@@ -256,7 +257,7 @@ class Trailer:
         roll = math.asin((z_left - z_right) / (self.geometry.track * math.cos(pitch)))
         return self._run(road, speed, pitch, (right.spin, left.spin), s.wheel_load, duration,
                          dt, output_rate, progress, "trailer", roll, (right.state, left.state),
-                         on_soil, ground_meta)
+                         on_soil, ground_meta, ground)
 
     def drop(self, road: Road | str = "flat", lift: float = 0.0, duration: float = 3.0,
              dt: float = 1e-3, output_rate: float = 1000.0, progress: bool | None = None):
@@ -277,11 +278,11 @@ class Trailer:
                          progress, "trailer-drop")
 
     def _run(self, road, speed, pitch0, spins, wheel_load, duration, dt, output_rate, progress,
-             rig, roll0=0.0, states=None, right_wheel=None, ground_meta=None):
+             rig, roll0=0.0, states=None, right_wheel=None, ground_meta=None, ground=None):
         """Tow (or hold, at ``speed`` 0) the trailer from ``pitch0``, ``roll0`` [rad] at rest,
         the wheels spinning at ``spins`` (right, left) [rad/s], in the models' ``states``;
-        ``right_wheel`` the test wheel when it is built already (on a terrain, named in
-        ``ground_meta`` for the metadata)."""
+        ``right_wheel`` the test wheel when it is built already (on a terrain, its Python
+        ``ground``, named in ``ground_meta`` for the metadata)."""
         x0_road = road.run_start
         grid = levelled_grid(road, x0_road)
         tp = self.params(speed)
@@ -298,7 +299,11 @@ class Trailer:
         right = right_wheel or self.model.wheel(grid, wheel_load, state=right_state)
         left = self.left.wheel(Flat().grid(), wheel_load, state=left_state)
 
+        follow = Following(ground, x_start, speed, dt, self.model.tyre.unloaded_radius)
+
         def advance(n, out, row):
+            nonlocal right
+            right = follow.wheel(right, n)
             return K.trailer_steps(right, left, tp, state, n, dt, out_every, out, row, x_start)
 
         data = run_chunks(advance, n_steps, out_every, K.N_CH, dt, progress)

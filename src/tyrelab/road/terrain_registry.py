@@ -69,7 +69,9 @@ class TerrainKind:
         :class:`~tyrelab.errors.InputError` when it does but is malformed.
     lay : callable, optional
         ``lay(description, road, x0, x1, level_at, **options) -> ground``: the Python
-        ground (:class:`Ground`; a deformable one also ``fresh_copy()``, its state copied)
+        ground (:class:`Ground`; a deformable one also ``fresh_copy()``, its state copied;
+        one too long to hold at once also ``follow(x_behind, x_ahead)``, the record moved
+        to cover that stretch or None, which the rigs call before each chunk of a run)
         over ``road`` from ``x0`` to ``x1`` [m] along y = 0, heights less the road's at
         ``(level_at, 0)`` when given; ``options`` a rig's (the soil bed's spacing, width).
     hint : str

@@ -38,7 +38,6 @@ ahead of the rut) is not modelled.
 
 from __future__ import annotations
 
-import math
 from typing import NamedTuple
 
 import numba as nb

@@ -35,7 +35,7 @@ from ..grid import (grid_block_max, grid_blocks, grid_line_height, grid_lines, g
                     grid_row, local_zmax, road_height, road_height_gradient, road_penetration)
 from ..terrain_registry import TerrainKind, register_terrain
 from .params import Soil
-from .scm import SoilSurface, bekker_modulus, node_stress, soil_bed
+from .scm import SoilSurface, bekker_modulus, node_stress
 
 #: the soil bed's node spacing [m]: halving it moves the pull of the XZL's rigid wheel on LETE
 #: sand at s = 0.2 by 0.15 % and its sinkage by 1.8 %, and costs four times the time
@@ -175,29 +175,29 @@ def resolve_soil(value):
 
 
 def lay_soil(soil: Soil, road, x0: float, x1: float, level_at: float | None = None,
-             width: float = BED_WIDTH, spacing: float = BED_SPACING) -> SoilSurface:
-    """A fresh soil bed from ``x0`` to ``x1`` [m] (plus :data:`BED_MARGIN` each end), ``width``
-    [m] across y = 0, nodes every ``spacing`` [m], over ``road``'s heights (less its height at
-    ``(level_at, 0)`` when given); refused above the memory allowed
+             width: float = BED_WIDTH, spacing: float = BED_SPACING, moving: bool = True):
+    """The soil from ``x0`` to ``x1`` [m] (plus :data:`BED_MARGIN` each end), ``width`` [m]
+    across y = 0, nodes every ``spacing`` [m], over ``road``'s heights (less its height at
+    ``(level_at, 0)`` when given): a :class:`~tyrelab.road.soil.patch.SoilPatch` holding at
+    most :data:`~tyrelab.road.soil.patch.PATCH_LENGTH` of it at once, the whole of it when not
+    ``moving`` (a run that comes back over its rut); refused above the memory allowed
     (:data:`~tyrelab.limits.MAX_MEMORY`). :attr:`TerrainKind.lay` of the soil."""
     from ...errors import InputError
     from ...limits import MAX_MEMORY
-    from ..grid import RoadGrid
+    from .patch import PATCH_LENGTH, SoilPatch
     x0, x1 = x0 - BED_MARGIN, x1 + BED_MARGIN
-    nx = int(np.ceil((x1 - x0) / spacing)) + 1
+    n_run = int(np.ceil((x1 - x0) / spacing)) + 1
     ny = int(np.ceil(width / spacing)) + 1
-    if nx * ny * BYTES_PER_NODE > MAX_MEMORY:
-        raise InputError(f"a soil bed {x1 - x0:.6g} m long and {width:g} m wide at {spacing:g} m "
-                         f"needs {nx * ny * BYTES_PER_NODE / 1024 ** 3:.3g} GiB, above the "
-                         f"{MAX_MEMORY / 1024 ** 3:g} GiB allowed; a shorter run or a coarser bed",
-                         field="duration")
-    xs = x0 + spacing * np.arange(nx)
-    ys = -0.5 * width + spacing * np.arange(ny)
-    X, Y = np.meshgrid(xs, ys, indexing="ij")
-    z = np.asarray(road.height(X, Y), dtype=np.float64)
-    if level_at is not None:
-        z = z - float(road.height(level_at, 0.0))
-    return soil_bed(soil, RoadGrid(x0, -0.5 * width, spacing, spacing, z))
+    rows = min(n_run, int(np.ceil(PATCH_LENGTH / spacing)) + 1) if moving else n_run
+    if rows * ny * BYTES_PER_NODE > MAX_MEMORY:
+        length = (rows - 1) * spacing
+        raise InputError(f"a soil bed {length:.6g} m long and {width:g} m wide at {spacing:g} m "
+                         f"needs {rows * ny * BYTES_PER_NODE / 1024 ** 3:.3g} GiB, above the "
+                         f"{MAX_MEMORY / 1024 ** 3:g} GiB allowed; "
+                         + ("a shorter run or a coarser bed" if not moving else "a coarser bed"),
+                         field="duration" if not moving else "spacing")
+    level = float(road.height(level_at, 0.0)) if level_at is not None else 0.0
+    return SoilPatch(soil, road, x0, n_run, -0.5 * width, ny, spacing, level, rows)
 
 
 register_terrain(TerrainKind(

@@ -92,17 +92,22 @@ def rigid_params(tyre, ground, **options) -> SoilWheelParams:
     from ...errors import InputError
     if options:
         raise InputError(f"the rigid model takes no options, got {', '.join(options)}", field="options")
-    if not isinstance(ground, SoilSurface):
+    if not _on_soil(ground):
         raise InputError("the rigid model runs on soil only (a rigid wheel on a rigid road has no "
                          "contact law); give a terrain, e.g. --terrain lete-sand", field="model")
     return soil_wheel_params(tyre, flexible=False)
+
+
+def _on_soil(ground) -> bool:
+    """Whether the Python ground (:class:`~tyrelab.road.terrain.Ground`) is a soil."""
+    return isinstance(ground.surface(), SoilSurface)
 
 
 def wheel_params(entry, tyre, ground, options: dict):
     """The contact record of the registered model ``entry`` for ``tyre`` on ``ground``: on a soil
     bed an analytic model is a flexible wheel (its options, which shape its view of a rigid
     road, do not apply there); anything else is the model's own ``build``."""
-    if isinstance(ground, SoilSurface) and entry.geometry is not None:
+    if _on_soil(ground) and entry.geometry is not None:
         return soil_wheel_params(tyre, flexible=True)
     return entry.build(tyre, ground, **options)
 
