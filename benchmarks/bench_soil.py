@@ -9,7 +9,8 @@ its own settling timed apart and subtracted).
 On level ground a straight rut is the same across the wheel, and the soil's pass computes
 each distinct node state of a row once (:mod:`tyrelab.road.soil.wheel`); the rows marked
 "paving" lay the soil over the Belgian paving instead, where a row's nodes differ from
-block to block and the rut follows the blocks.
+block to block and the rut follows the blocks; "dozing": LETE sand that bulldozes (angle
+of repose 55 deg, Chrono's demo values otherwise).
 
     NUMBA_NUM_THREADS=1 python benchmarks/bench_soil.py
 """
@@ -22,6 +23,8 @@ import time
 os.environ.setdefault("NUMBA_NUM_THREADS", "1")
 
 from tyrelab.rig.single_wheel import single_wheel  # noqa: E402
+from tyrelab.road.soil import load_soil  # noqa: E402
+from tyrelab.road.soil.params import bulldozing_from_table  # noqa: E402
 from tyrelab.road.tracks import belgian_paving  # noqa: E402
 from tyrelab.tyre.library import load_tyre  # noqa: E402
 from tyrelab.tyre.model import TyreModel  # noqa: E402
@@ -29,9 +32,9 @@ from tyrelab.tyre.model import TyreModel  # noqa: E402
 SOIL, LOAD, SPEED, SLIP, SIMULATED = "lete-sand", 23.3e3, 1.0, 0.2, 10.0
 
 
-def wall(model, duration, dt, road=None):
+def wall(model, duration, dt, road=None, soil=SOIL):
     t = time.perf_counter()
-    single_wheel(model, SOIL, LOAD, SPEED, slip=SLIP, duration=duration, dt=dt, progress=False,
+    single_wheel(model, soil, LOAD, SPEED, slip=SLIP, duration=duration, dt=dt, progress=False,
                  road=road)
     return time.perf_counter() - t
 
@@ -39,17 +42,21 @@ def wall(model, duration, dt, road=None):
 def main():
     tyre = load_tyre()
     paving = belgian_paving()
-    cases = [("rigid", {}, 1e-3, None), ("rigid", {}, 2e-3, None), ("point", {}, 1e-3, None),
-             ("point", {}, 2e-3, None), ("rigid", {}, 1e-3, paving), ("point", {}, 1e-3, paving),
-             ("ring", {"n_segments": 100, "n_blocks": 10}, 1e-3, None), ("ring-tp", {}, 1e-3, None)]
-    print(f"{'model':<10}{'options':<38}{'ground':<8}{'step':>8}{'x real time':>14}")
-    for name, options, dt, road in cases:
+    dozing = bulldozing_from_table(load_soil(SOIL)[0], {"erosion_angle": 55.0})
+    cases = [("rigid", {}, 1e-3, None, SOIL), ("rigid", {}, 2e-3, None, SOIL),
+             ("point", {}, 1e-3, None, SOIL), ("point", {}, 2e-3, None, SOIL),
+             ("rigid", {}, 1e-3, paving, SOIL), ("point", {}, 1e-3, paving, SOIL),
+             ("rigid", {}, 1e-3, None, dozing), ("point", {}, 1e-3, None, dozing),
+             ("ring", {"n_segments": 100, "n_blocks": 10}, 1e-3, None, SOIL),
+             ("ring-tp", {}, 1e-3, None, SOIL)]
+    print(f"{'model':<10}{'options':<38}{'ground':<12}{'step':>8}{'x real time':>14}")
+    for name, options, dt, road, soil in cases:
         model = TyreModel(tyre, name, options=options)
-        wall(model, 0.05, dt, road)                         # compile
-        setup = wall(model, dt, dt, road)                   # the bed and the settling alone
-        run = wall(model, SIMULATED, dt, road) - setup
-        ground = "paving" if road else "level"
-        print(f"{name:<10}{str(options or '-'):<38}{ground:<8}{dt * 1e3:>6g}ms"
+        wall(model, 0.05, dt, road, soil)                   # compile
+        setup = wall(model, dt, dt, road, soil)             # the bed and the settling alone
+        run = wall(model, SIMULATED, dt, road, soil) - setup
+        ground = ("paving" if road else "level") + (" dozing" if soil is dozing else "")
+        print(f"{name:<10}{str(options or '-'):<38}{ground:<12}{dt * 1e3:>6g}ms"
               f"{SIMULATED / run:>13.1f}x")
 
 

@@ -14,6 +14,15 @@ Chrono's ``SCMTerrain::SetSoilParameters``::
     elastic_stiffness = 4e7     # optional: unloading/reloading stiffness [Pa/m]
     damping = 0.0               # optional: viscous damping of the normal stress [Pa s/m]
 
+    [bulldozing]                # optional: the soil a wheel presses down flows beside and ahead
+    erosion_angle = 55.0        # angle of repose of the displaced soil [deg], 0 < angle < 90
+    flow_factor = 1.0           # optional: volume raised / volume pressed down (default 1)
+    iterations = 5              # optional: erosion sweeps per step (default 5)
+    propagations = 6            # optional: nodes the erosion reaches beyond the rut's edge (6)
+
+(the ``[bulldozing]`` keys are those of Chrono's ``SCMTerrain::SetBulldozingParameters``;
+the defaults its rigid-tyre demo's; without the table the soil does not bulldoze).
+
 The equations these parameters enter (:mod:`tyrelab.road.soil.scm`):
 
 * pressure-sinkage, Bekker (1969): ``p = (k_c / b + k_phi) z^n``, ``b`` the
@@ -57,7 +66,11 @@ class Soil(NamedTuple):
     ``n``, ``kc`` [N/m^(n+1)], ``kphi`` [N/m^(n+2)]: Bekker's pressure-sinkage law;
     ``cohesion`` [Pa] and ``friction_angle`` [rad]: Mohr-Coulomb; ``janosi_k`` [m]:
     Janosi-Hanamoto; ``elastic_stiffness`` [Pa/m] and ``damping`` [Pa s/m]: the
-    normal stress below the largest sinkage reached.
+    normal stress below the largest sinkage reached. ``bulldozing``: the soil pressed down
+    is raised beside and ahead of the rut (:mod:`tyrelab.road.soil.bulldozing`), eroded to
+    the slope ``erosion_slope`` (tan of the angle of repose) by ``erosion_iterations``
+    sweeps over ``erosion_propagations`` nodes beyond the contact, ``flow_factor`` times
+    the volume pressed down.
     """
 
     n: float
@@ -68,6 +81,11 @@ class Soil(NamedTuple):
     janosi_k: float
     elastic_stiffness: float
     damping: float
+    bulldozing: bool = False
+    erosion_slope: float = 0.0
+    flow_factor: float = 1.0
+    erosion_iterations: int = 5
+    erosion_propagations: int = 6
 
     def bekker_pressure(self, sinkage, width):
         """Bekker's pressure [Pa] at ``sinkage`` [m] under a contact ``width`` [m] wide."""
@@ -124,6 +142,49 @@ def soil_from_table(table: dict, source: str | None = None, lines=None) -> tuple
     return Soil(**values), name or ""
 
 
+#: the keys of a [bulldozing] table and their defaults (None: required)
+BULLDOZING = {"erosion_angle": None, "flow_factor": 1.0, "iterations": 5, "propagations": 6}
+
+
+def bulldozing_from_table(soil: Soil, table, source: str | None = None, lines=None) -> Soil:
+    """``soil`` that bulldozes as a ``[bulldozing]`` table says (see the module docstring):
+    ``0 < erosion_angle < 90`` deg, ``flow_factor >= 0``, ``iterations`` a whole number from 1
+    to 1000 and ``propagations`` from 1 to 100."""
+    def fail(key, why):
+        raise InputError(why, source=source, line=lines(key) if lines else None,
+                         field=f"bulldozing.{key}" if key else "bulldozing")
+
+    if not isinstance(table, dict):
+        fail(None, "expected a [bulldozing] table")
+    unknown = sorted(set(table) - set(BULLDOZING))
+    if unknown:
+        fail(unknown[0], f"unknown key '{unknown[0]}'; a [bulldozing] table takes: "
+                         f"{', '.join(BULLDOZING)}")
+    if "erosion_angle" not in table:
+        fail(None, "missing key 'erosion_angle' [deg] in [bulldozing]")
+    values = {}
+    for key, default in BULLDOZING.items():
+        v = table.get(key, default)
+        whole = key in ("iterations", "propagations")
+        if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v) \
+                or (whole and v != int(v)):
+            fail(key, f"expected a {'whole' if whole else 'finite'} number, got {v!r}")
+        values[key] = v
+    if not 0.0 < values["erosion_angle"] < 90.0:
+        fail("erosion_angle", f"expected an angle of repose in (0, 90) deg, got "
+                              f"{values['erosion_angle']!r}")
+    if values["flow_factor"] < 0:
+        fail("flow_factor", f"expected a value >= 0, got {values['flow_factor']!r}")
+    for key, most in (("iterations", 1000), ("propagations", 100)):
+        if not 1 <= values[key] <= most:
+            fail(key, f"expected a whole number from 1 to {most}, got {values[key]!r}")
+    return soil._replace(bulldozing=True,
+                         erosion_slope=math.tan(math.radians(values["erosion_angle"])),
+                         flow_factor=float(values["flow_factor"]),
+                         erosion_iterations=int(values["iterations"]),
+                         erosion_propagations=int(values["propagations"]))
+
+
 def read_soil(path) -> tuple[Soil, str]:
     """``(Soil, name)`` from a soil file (see the module docstring); errors name file and line."""
     from ...core.toml_lines import TomlLocator
@@ -139,13 +200,16 @@ def read_soil(path) -> tuple[Soil, str]:
         doc = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
         raise InputError(f"not valid TOML: {exc}", source=str(path)) from None
-    unknown = sorted(set(doc) - {"soil"})
+    unknown = sorted(set(doc) - {"soil", "bulldozing"})
     if unknown or "soil" not in doc:
-        raise InputError("expected one [soil] table" + (f", found '{unknown[0]}'" if unknown else ""),
-                         source=str(path))
+        raise InputError("expected one [soil] table (and an optional [bulldozing] table)"
+                         + (f", found '{unknown[0]}'" if unknown else ""), source=str(path))
     where = TomlLocator(text)
     soil, name = soil_from_table(doc["soil"], str(path), lambda key: where.line(("soil", key) if key
                                                                                 else ("soil",)))
+    if "bulldozing" in doc:
+        soil = bulldozing_from_table(soil, doc["bulldozing"], str(path), lambda key: where.line(
+            ("bulldozing", key) if key else ("bulldozing",)))
     return soil, name or path.stem
 
 

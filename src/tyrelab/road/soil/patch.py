@@ -20,7 +20,7 @@ import numpy as np
 
 from ..grid import RoadGrid
 from .params import Soil
-from .scm import SINK_BOUND, SoilSurface, soil_bed
+from .scm import SoilSurface, bed_record, soil_bed
 
 #: the longest stretch of soil held at once [m] (a run's first chunk and its margins fit)
 PATCH_LENGTH = 30.0
@@ -72,16 +72,14 @@ class SoilPatch:
         rows = min(max(nx, reach - drop), self.n_run - self.offset - drop)
         fresh = self._heights(self.offset + nx, rows - (nx - drop))
         zeros = np.zeros_like(fresh)
-        h0 = np.concatenate([b.h0[drop:], fresh])
+        base = np.concatenate([b.base[drop:], fresh])
+        h0 = np.concatenate([b.h0[drop:], fresh]) if b.h0 is not b.base else base
         z = np.concatenate([b.ground.z[drop:], fresh])
         j = np.concatenate([b.j[drop:], zeros])
         sigma = np.concatenate([b.sigma[drop:], zeros])
         self.offset += drop
-        x0 = self.x_first + self.offset * self.spacing
-        # the bounds from the undisturbed heights (the soil only sinks)
-        ground = RoadGrid(x0, b.y0, b.dx, b.dy, h0).surface()
-        ground = ground._replace(z=z, zmin=float(h0.min()) - SINK_BOUND)
-        self.bed = b._replace(x0=x0, h0=h0, j=j, sigma=sigma, zmax=float(h0.max()), ground=ground)
+        self.bed = bed_record(self.soil, self.x_first + self.offset * self.spacing, b.y0, b.dx,
+                              b.dy, base, h0, z, j, sigma)
         return self.bed
 
     # the Python side of the terrain interface (tyrelab.road.terrain.Ground)

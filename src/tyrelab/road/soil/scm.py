@@ -33,7 +33,7 @@ normal stress is the compaction resistance in the drawbar pull. (Chrono's SCM
 applies the normal stress along the undisturbed terrain normal and the shear
 horizontally, which drops that resistance.) A wheel's pass over the nodes:
 :mod:`tyrelab.road.soil.wheel`. Bulldozing (soil pushed beside and
-ahead of the rut) is not modelled.
+ahead of the rut), optional: :mod:`tyrelab.road.soil.bulldozing`.
 """
 
 from __future__ import annotations
@@ -50,12 +50,15 @@ class SoilSurface(NamedTuple):
     """A soil bed: its parameters and the state of every node (arrays ``(nx, ny)``).
 
     Node ``(i, j)`` sits at ``(x0 + i dx, y0 + j dy)``. ``h0`` the undisturbed height
-    [m]; ``ground`` the surface as it is now, a rigid-road record
-    (:class:`~tyrelab.road.grid.RoadSurface`) whose heights ``ground.z`` are ``h0`` less
-    each node's plastic sinkage (the rut) and whose bounds are those of ``h0`` (the soil
-    only sinks); ``j`` the shear displacement [m] accumulated in the current contact,
-    ``sigma`` the last normal stress [Pa] (for plots of the patch); ``zmax`` the highest
-    undisturbed height [m] (bounds the nodes a wheel can reach).
+    [m] (from which its sinkage counts); ``ground`` the surface as it is now, a rigid-road
+    record (:class:`~tyrelab.road.grid.RoadSurface`) whose heights ``ground.z`` are ``h0``
+    less each node's plastic sinkage (the rut) and whose bounds are those of ``h0`` (the
+    soil only sinks) -- of ``base`` plus :data:`PILE_LIMIT` on a soil that bulldozes; ``j``
+    the shear displacement [m] accumulated in the current contact, ``sigma`` the last
+    normal stress [Pa] (> 0: in contact at the last step); ``zmax`` the highest of those
+    bounds [m] (bounds the nodes a wheel can reach); ``base`` the surface as laid [m] (the
+    same array as ``h0``, unless the soil bulldozes: soil pushed onto a node raises its
+    ``h0`` and its surface alike, as in Chrono's SCM, while ``base`` stays).
 
     It is also the Python ground a model's ``build`` receives
     (:class:`~tyrelab.road.terrain.Ground`): its record is itself.
@@ -71,6 +74,7 @@ class SoilSurface(NamedTuple):
     sigma: np.ndarray
     zmax: float
     ground: RoadSurface
+    base: np.ndarray
 
     @property
     def rut(self) -> np.ndarray:
@@ -79,7 +83,8 @@ class SoilSurface(NamedTuple):
 
     def fresh_copy(self) -> "SoilSurface":
         """The bed with its own copy of every node's state (a trial that leaves no rut)."""
-        return self._replace(j=self.j.copy(), sigma=self.sigma.copy(),
+        h0 = self.h0.copy() if self.soil.bulldozing else self.h0
+        return self._replace(h0=h0, j=self.j.copy(), sigma=self.sigma.copy(),
                              ground=self.ground._replace(z=self.ground.z.copy()))
 
     # the Python side of the terrain interface (tyrelab.road.terrain.Ground)
@@ -100,7 +105,7 @@ class SoilSurface(NamedTuple):
         from ..terrain_registry import block_maxima
         per = max(1, int(round(length / self.dx)))
         if self.h0.shape[0] > 2:
-            return per, block_maxima(self.h0, per)
+            return per, block_maxima(self.base + pile_limit(self.soil), per)
         return per, np.zeros((0, self.h0.shape[1] - 1))
 
 
@@ -109,28 +114,50 @@ class SoilSurface(NamedTuple):
 SINK_BOUND = 10.0
 
 
+#: on a soil that bulldozes, the highest [m] soil may pile above the surface as laid (the
+#: bounds the contact models' searches take); a node is raised no further
+PILE_LIMIT = 0.15
+
+
+def pile_limit(soil: Soil) -> float:
+    """How far [m] the soil may rise above the surface as laid: :data:`PILE_LIMIT` on a soil
+    that bulldozes, else 0."""
+    return PILE_LIMIT if soil.bulldozing else 0.0
+
+
+def bed_record(soil: Soil, x0: float, y0: float, dx: float, dy: float, base: np.ndarray,
+               h0: np.ndarray, z: np.ndarray, j: np.ndarray, sigma: np.ndarray) -> SoilSurface:
+    """The record of a bed over nodes from ``(x0, y0)`` every ``dx``, ``dy`` [m] laid on heights
+    ``base``, in the state ``h0``, ``z`` (its surface), ``j``, ``sigma``; its bounds those
+    of ``base`` (plus :func:`pile_limit`)."""
+    from ..grid import RoadGrid
+    top = base + pile_limit(soil) if soil.bulldozing else base
+    ground = RoadGrid(x0, y0, dx, dy, top).surface()
+    ground = ground._replace(z=z, zmin=float(base.min()) - SINK_BOUND)
+    return SoilSurface(soil, float(x0), float(y0), float(dx), float(dy), h0, j, sigma,
+                       float(top.max()), ground, base)
+
+
 def soil_bed(soil: Soil, road_grid) -> SoilSurface:
     """A fresh soil bed over a road's grid (its heights the undisturbed surface)."""
-    from ..grid import RoadGrid
-    h0 = np.ascontiguousarray(road_grid.z, dtype=np.float64).copy()
-    ground = RoadGrid(road_grid.x0, road_grid.y0, road_grid.dx, road_grid.dy, h0.copy()).surface()
-    ground = ground._replace(zmin=float(h0.min()) - SINK_BOUND)
-    zeros = np.zeros_like(h0)
-    return SoilSurface(soil, float(road_grid.x0), float(road_grid.y0), float(road_grid.dx),
-                       float(road_grid.dy), h0, zeros, zeros.copy(), float(h0.max()), ground)
+    base = np.ascontiguousarray(road_grid.z, dtype=np.float64).copy()
+    h0 = base.copy() if soil.bulldozing else base
+    zeros = np.zeros_like(base)
+    return bed_record(soil, road_grid.x0, road_grid.y0, road_grid.dx, road_grid.dy, base, h0,
+                      base.copy(), zeros, zeros.copy())
 
 
 @nb.njit(cache=True)
 def undisturbed_height(bed, x, y):
-    """The bed's undisturbed surface [m] at (x, y): bilinear between its nodes (clamped to the bed)."""
-    nx, ny = bed.h0.shape
+    """The bed's surface as laid [m] at (x, y): bilinear between its nodes (clamped to the bed)."""
+    nx, ny = bed.base.shape
     u = min(max((x - bed.x0) / bed.dx, 0.0), nx - 1.0)
     v = min(max((y - bed.y0) / bed.dy, 0.0), ny - 1.0)
     i = min(int(u), nx - 2)
     k = min(int(v), ny - 2)
     a, b = u - i, v - k
-    return ((bed.h0[i, k] * (1.0 - b) + bed.h0[i, k + 1] * b) * (1.0 - a)
-            + (bed.h0[i + 1, k] * (1.0 - b) + bed.h0[i + 1, k + 1] * b) * a)
+    return ((bed.base[i, k] * (1.0 - b) + bed.base[i, k + 1] * b) * (1.0 - a)
+            + (bed.base[i + 1, k] * (1.0 - b) + bed.base[i + 1, k + 1] * b) * a)
 
 
 @nb.njit(cache=True)

@@ -23,6 +23,7 @@ from typing import NamedTuple
 import numba as nb
 
 from ...core.vec3 import cross, unit, wheel_axes
+from .bulldozing import bulldoze
 from .scm import bekker_modulus, node_stress
 
 #: the wheel surface's slope beyond which a node's cell is not scaled further: cos >= this
@@ -146,7 +147,9 @@ def wheel_loads(bed, cx, cy, cz, ax, ay, az, vx, vy, vz, omega, radius, width, f
     on the flat, the tread moves along it at ``omega flat``, the speed of the flat's middle
     (the kinematics of the analytic models on a rigid road, whose contact point turns at the
     loaded radius). With ``update`` the nodes' plastic sinkage and shear displacement advance
-    (a step of the run); without, the bed is only read (an equilibrium search). With
+    (a step of the run; on a soil that bulldozes, the soil pressed down then moves to the
+    rut's edge: :mod:`tyrelab.road.soil.bulldozing`); without, the bed is only read (an
+    equilibrium search). With
     ``normal_only`` (a trial: only ``normal`` and ``dnormal`` are wanted) the shear on the
     flat, which lies in the flat and so has no part along ``d``, is not computed, and the
     other loads leave it out.
@@ -180,6 +183,9 @@ def wheel_loads(bed, cx, cy, cz, ax, ay, az, vx, vy, vz, omega, radius, width, f
     fx = fy = fz = mx = my = mz = 0.0
     normal = dnormal = 0.0
     area = 0.0
+    bulldozing = update and soil.bulldozing
+    pressed = 0.0           # the plastic sinkage the step adds, summed over the nodes [m]
+    ci0, ci1, ck0, ck1 = i1 + 1, i0 - 1, k1 + 1, k0 - 1      # the nodes in contact's box
     for i in range(i0, i1 + 1):
         x = bed.x0 + i * bed.dx
         d0x = x - cx
@@ -238,10 +244,15 @@ def wheel_loads(bed, cx, cy, cz, ax, ay, az, vx, vy, vz, omega, radius, width, f
             mz += qz
             if sigma > 0.0:
                 area += cell
+            if bulldozing and sigma > 0.0:
+                pressed += max(0.0, sp_new - (h - surface))
+                ci0, ci1, ck0, ck1 = min(ci0, i), max(ci1, i), min(ck0, k), max(ck1, k)
             if update:
                 bed.ground.z[i, k] = h - sp_new
                 bed.j[i, k] = jn
                 bed.sigma[i, k] = sigma
+    if bulldozing and ci1 >= ci0:
+        bulldoze(bed, ci0, ci1, ck0, ck1, pressed)
     return SoilLoads(fx, fy, fz, mx, my, mz, area, normal, dnormal)
 
 

@@ -109,6 +109,10 @@ def wheel_params(entry, tyre, ground, options: dict):
     road, do not apply there); anything else is the model's own ``build``."""
     if _on_soil(ground) and entry.geometry is not None:
         return soil_wheel_params(tyre, flexible=True)
+    if _on_soil(ground) and ground.surface().soil.bulldozing and entry.step is not soil_wheel_step:
+        from ...errors import InputError
+        raise InputError(f"the '{entry.name}' model does not bulldoze: a soil with a [bulldozing] "
+                         "table takes the rigid wheel and the analytic models", field="model")
     return entry.build(tyre, ground, **options)
 
 
