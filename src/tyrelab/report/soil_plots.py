@@ -30,14 +30,15 @@ def plot_slip_curve(curve, title: str = ""):
 
 
 def plot_rut(bed, title: str = ""):
-    """The rut a run left: the soil's plastic sinkage [mm] over the bed, seen from above, and
-    its deepest cut along the track."""
+    """The rut a run left: how far the surface lies below the surface as laid [mm] over the bed,
+    seen from above (negative: soil a bulldozing soil raised), and its deepest cut along the
+    track."""
     import matplotlib.pyplot as plt
-    sp = bed.rut * 1e3
+    sp = (bed.base - bed.ground.z) * 1e3
     nx, ny = sp.shape
     x = bed.x0 + bed.dx * np.arange(nx)
     y = bed.y0 + bed.dy * np.arange(ny)
-    touched = np.flatnonzero(sp.max(axis=1) > 0.0)
+    touched = np.flatnonzero(np.abs(sp).max(axis=1) > 0.0)
     if touched.size:  # the part of the bed the wheel went over, and a metre either side
         keep = slice(max(0, touched[0] - int(1.0 / bed.dx)), touched[-1] + int(1.0 / bed.dx) + 1)
         sp, x = sp[keep], x[keep]
