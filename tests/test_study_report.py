@@ -193,6 +193,21 @@ def test_the_study_is_real_and_complete(study):
     assert (study.folder / "report.html").is_file()        # study.run writes the report too
 
 
+def test_the_workers_evaluate_as_this_process_does(study, tmp_path):
+    """study.run evaluates each condition on a worker of its cluster: its metrics.parquet is,
+    value for value and row for row, what this process computes alone (a failed worker or
+    an order that depended on which finished first would show)."""
+    from tyrelab.study.evaluate import evaluate_study
+    from tyrelab.study.store import Store
+    on_workers = pd.read_parquet(study.folder / "metrics.parquet")
+    copy = tmp_path / "copy"
+    import shutil
+    shutil.copytree(study.folder, copy)
+    here = evaluate_study(study.spec, Store(copy), progress=False)
+    assert len(here) >= 9 and here["error"].eq("").sum() >= 8
+    pd.testing.assert_frame_equal(on_workers, here)
+
+
 def _expected_figures(study):
     """One overlay per compared condition, a distribution per track, one cost scatter."""
     m = study.metrics[study.metrics["model"] != "measured repeatability"]

@@ -90,8 +90,10 @@ def run(spec: StudySpec | str | Path | None = None, workers: int | None = None,
         spec = load_spec(spec)
     store = Store(output if output is not None else spec.output, storage=spec.store)
     _keep_spec(spec, store)
-    run_tasks(tasks(spec), store, workers=workers, scheduler=scheduler, progress=progress)
-    evaluate_study(spec, store, progress=progress)  # metrics.parquet, rewritten every time
+    # metrics.parquet, rewritten every time: on the study's local cluster (its workers share
+    # this disk), in this process with a running scheduler's
+    run_tasks(tasks(spec), store, workers=workers, scheduler=scheduler, progress=progress,
+              then=lambda client: evaluate_study(spec, store, progress=progress, client=client))
     soil_curves(spec, store)                        # soil_curves.parquet, likewise
     result = Study(store.folder)
     from ..report.study_report import write_study_report

@@ -356,9 +356,33 @@ class _Evaluator:
         return out
 
 
-def evaluate_study(spec: StudySpec, store: Store, progress: bool = True) -> pd.DataFrame:
+def _condition_rows(spec: StudySpec, store: Store, runs: list) -> list[dict]:
+    """The rows of ``runs`` (the runs of one condition, which share a reference), in order."""
+    ev = _Evaluator(spec, store)
+    return [row for run in runs for row in ev.rows(run)]
+
+
+def _conditions(runs: list) -> list[list]:
+    """``runs`` cut where the condition (test, speed, load, tyre) changes: a condition's runs
+    are adjacent in a spec's runs and read the same reference."""
+    groups: list[list] = []
+    for run in runs:
+        if groups and (groups[-1][0].test, groups[-1][0].speed, groups[-1][0].load,
+                       groups[-1][0].tyre) == (run.test, run.speed, run.load, run.tyre):
+            groups[-1].append(run)
+        else:
+            groups.append([run])
+    return groups
+
+
+def evaluate_study(spec: StudySpec, store: Store, progress: bool = True,
+                   client=None) -> pd.DataFrame:
     """The metrics of every compared run of ``spec`` in ``store`` (module notes); the runs of
     soil tests are evaluated by :func:`tyrelab.study.soil.soil_curves` instead.
+
+    With a Dask ``client`` whose workers share this process's disk (the study's local
+    cluster), each condition's runs are evaluated on a worker, the longest conditions
+    first; the rows are the same, in the same order, as in this process alone.
 
     Returns
     -------
@@ -367,11 +391,31 @@ def evaluate_study(spec: StudySpec, store: Store, progress: bool = True) -> pd.D
         atomically to ``<store folder>/metrics.parquet``.
     """
     from tqdm import tqdm
-    ev = _Evaluator(spec, store)
     runs = [r for r in spec.runs() if r.slip is None]  # soil tests: tyrelab.study.soil
     rows = []
-    for run in tqdm(runs, unit="run", desc="evaluate", disable=not progress):
-        rows.extend(ev.rows(run))
+    bar = tqdm(total=len(runs), unit="run", desc="evaluate", disable=not progress)
+    with bar:
+        if client is None:
+            ev = _Evaluator(spec, store)
+            for run in runs:
+                rows.extend(ev.rows(run))
+                bar.update(1)
+        else:
+            from distributed import as_completed
+
+            from . import expected_cost
+            from .runner import _completed
+            groups = _conditions(runs)
+            futures = [client.submit(_condition_rows, spec, store, g, pure=False,
+                                     priority=sum(expected_cost(r) for r in g)) for g in groups]
+            size = {f.key: len(g) for f, g in zip(futures, groups)}
+            for done in _completed(as_completed(futures)):
+                bar.update(size[done.key])
+            for f, group in zip(futures, groups):
+                try:
+                    rows.extend(f.result())
+                except Exception:  # the worker died: this condition is evaluated here
+                    rows.extend(_condition_rows(spec, store, group))
     df = pd.DataFrame(rows).reindex(columns=COLUMNS)
     for col in (*METRICS, *SEGMENT_COLUMNS, "shift_s", "speed_kmh"):
         df[col] = df[col].astype(float)

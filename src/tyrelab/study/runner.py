@@ -83,8 +83,11 @@ def _minutes(seconds: float) -> str:
 
 def run_tasks(tasks: list[dict], store: Store, workers: int | None = None,
               scheduler: str | None = None, progress: bool = True,
-              connect_timeout: float = 30.0) -> dict:
-    """Compute every task whose run is not finished in ``store``.
+              connect_timeout: float = 30.0, then=None) -> dict:
+    """Compute every task whose run is not finished in ``store``; then, with ``then``, call
+    ``then(client)`` on the same cluster before it closes (the study's evaluation: the
+    client of a local cluster, None for a running scheduler, whose workers may not share
+    this process's disk).
 
     Parameters
     ----------
@@ -108,6 +111,11 @@ def run_tasks(tasks: list[dict], store: Store, workers: int | None = None,
     todo = [t for t in tasks if not store.is_finished(t["key"])]
     counts = {"computed": 0, "skipped": len(tasks) - len(todo), "failed": 0}
     if not todo:
+        if then is not None:
+            if scheduler:
+                then(None)
+            else:
+                _on_cluster(then, workers)
         return counts
     from distributed import as_completed
     from tqdm import tqdm
@@ -147,6 +155,10 @@ def run_tasks(tasks: list[dict], store: Store, workers: int | None = None,
             bar.set_postfix_str(f"about {_minutes(left)} left, {counts['failed']} failed", refresh=False)
             bar.update(1)
             future.release()
+        bar.close()
+        store.write_index()
+        if then is not None:
+            then(client if cluster is not None else None)
     except KeyboardInterrupt:
         interrupted = True
         for f in futures:
@@ -157,6 +169,19 @@ def run_tasks(tasks: list[dict], store: Store, workers: int | None = None,
         _close(client, cluster, CLOSE_TIMEOUT if interrupted else None)
         store.write_index()
     return counts
+
+
+def _on_cluster(then, workers: int | None) -> None:
+    """``then(client)`` on a local cluster of its own, closed after (stopped: promptly)."""
+    client, cluster = _client(None, workers)
+    interrupted = False
+    try:
+        then(client)
+    except KeyboardInterrupt:
+        interrupted = True
+        raise
+    finally:
+        _close(client, cluster, CLOSE_TIMEOUT if interrupted else None)
 
 
 def _completed(finished, poll: float = 0.2):
