@@ -17,8 +17,8 @@ import json
 from pathlib import Path
 
 
-from ..limits import model_cost
 from .evaluate import evaluate_study
+from .records import expected_cost
 from .results import Study
 from .soil import soil_curves
 from .spec import RunSpec, StudySpec, builtin_spec, example_spec, load_spec
@@ -38,18 +38,6 @@ def run_record(run: RunSpec) -> dict:
             "rig": run.rig, "left_wheel": run.left_contact or run.model.contact
             if run.rig in ("trailer", "drop") else "", "dt": run.dt,
             "terrain": run.terrain or "", "slip": run.slip}
-
-
-#: length assumed for a road run to its end (the thesis tracks are 100 m)
-_TRACK_LENGTH = 100.0
-
-
-def expected_cost(run: RunSpec) -> float:
-    """A rough estimate of a run's wall time [s]: simulated time x the model's cost."""
-    simulated = run.duration if run.duration is not None else _TRACK_LENGTH / run.speed
-    # the model's cost per simulated second (the registry's, limits.model_cost) orders the runs
-    from ..tyre.registry import contact_model
-    return simulated * model_cost(contact_model(run.model.contact))
 
 
 def tasks(spec: StudySpec) -> list[dict]:

@@ -403,7 +403,7 @@ def evaluate_study(spec: StudySpec, store: Store, progress: bool = True,
         else:
             from distributed import as_completed
 
-            from . import expected_cost
+            from .records import expected_cost
             from .runner import _completed
             groups = _conditions(runs)
             futures = [client.submit(_condition_rows, spec, store, g, pure=False,

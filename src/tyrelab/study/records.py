@@ -10,6 +10,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from ..limits import model_cost
 from ..rig.registry import rig_named
 from .keys import run_key, tyre_digest
 
@@ -243,3 +244,15 @@ class StudySpec:
         """:func:`run_key` of every run (each tyre's digest computed once)."""
         digests = {tyre: tyre_digest(tyre) for tyre in self.tyres}
         return {run: run_key(run, digests[run.tyre]) for run in self.runs()}
+
+
+#: length assumed for a road run to its end (the thesis tracks are 100 m)
+_TRACK_LENGTH = 100.0
+
+
+def expected_cost(run: RunSpec) -> float:
+    """A rough estimate of a run's wall time [s]: simulated time x the model's cost."""
+    simulated = run.duration if run.duration is not None else _TRACK_LENGTH / run.speed
+    # the model's cost per simulated second (the registry's, limits.model_cost) orders the runs
+    from ..tyre.registry import contact_model
+    return simulated * model_cost(contact_model(run.model.contact))
