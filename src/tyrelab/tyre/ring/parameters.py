@@ -51,7 +51,8 @@ from importlib import resources
 import numpy as np
 
 from ...errors import InputError
-from ..tir import TirFile, _units_factor, read_tir
+from ..tir import TirFile, read_tir
+from ..tir_units import units_factor
 
 SECTION = "FLEXIBLE_RING"
 #: built-in tyres with an identified ring parameter file
@@ -143,7 +144,7 @@ class RingParameters:
             if not isinstance(raw, (int, float)) or not math.isfinite(raw):
                 raise InputError(f"expected a finite number, found '{raw}'", source=tir.source,
                                  field=key)
-            values[name] = float(raw) * _units_factor(units, dim, tir.source, None)
+            values[name] = float(raw) * units_factor(units, dim, tir.source, None)
         p = cls(**values)
         p.validate(tir.source)
         return p
@@ -170,7 +171,7 @@ class RingParameters:
         """Write the parameters into ``tir``'s [FLEXIBLE_RING] section, in the file's
         [UNITS] (SI without them), so :meth:`from_tir` reads back the same values."""
         for name, (key, dim) in KEYS.items():
-            factor = _units_factor(tir.units, dim, tir.source, None)
+            factor = units_factor(tir.units, dim, tir.source, None)
             tir.set(SECTION, key, float(getattr(self, name)) / factor)
         return tir
 

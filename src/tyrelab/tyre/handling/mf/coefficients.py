@@ -38,7 +38,8 @@ from pathlib import Path
 
 import numpy as np
 
-from ...tir import KEY_DIMENSIONS, TirFile, _units_factor, read_tir
+from ...tir import TirFile, read_tir
+from ...tir_units import KEY_DIMENSIONS, units_factor
 from ....errors import InputError
 
 #: (name, MFeval readTIR default). Order defines the packed vector (and
@@ -237,7 +238,7 @@ def pack(tir: TirFile, version: str | None = None) -> tuple[np.ndarray, str]:
             continue
         value = tir.number(section, name)
         if name in _EXTRA_DIMENSIONS and name not in KEY_DIMENSIONS:
-            value *= _units_factor(units, _EXTRA_DIMENSIONS[name], tir.source,
+            value *= units_factor(units, _EXTRA_DIMENSIONS[name], tir.source,
                                    tir.sections[section].lines.get(name))
         if not math.isfinite(value):
             raise InputError(f"{name} must be a finite number, found {raw!r}", source=tir.source,
