@@ -49,6 +49,7 @@ from pathlib import Path
 from ..errors import InputError
 from ..measure.units import is_known_unit, si_unit, to_si
 from . import lab_files as lf
+from .lab_columns import QUANTITIES
 
 MANIFEST = "campaign.toml"
 #: kind -> reader and the manifest keys it takes beyond file/kind/use/note
@@ -141,9 +142,9 @@ class _Manifest:
         if not isinstance(value, dict) or not all(isinstance(v, str) for v in value.values()):
             self.fail(keys, "expected an inline table of strings, like { deflection = \"defl_mm\" }")
         for q in value:
-            if q not in lf.QUANTITIES:
+            if q not in QUANTITIES:
                 self.fail(keys + (q,), f"unknown quantity '{q}'; expected one of "
-                                       f"{', '.join(lf.QUANTITIES)}")
+                                       f"{', '.join(QUANTITIES)}")
         return dict(value)
 
 

@@ -40,23 +40,8 @@ import pandas as pd
 
 from ..errors import InputError
 from ..measure.columns import _number, _table
-from ..measure.units import is_known_unit, si_unit, to_si
+from .lab_columns import check_finite, check_rows, read_test_columns
 
-#: quantity -> (its SI unit, names it goes by in a file header, lower case)
-QUANTITIES = {
-    "deflection": ("m", ("deflection", "defl", "rho", "pen", "deflect", "penetration")),
-    "load": ("N", ("load", "force", "fz", "fzw")),
-    "time": ("s", ("time", "t", "runtime")),
-    "displacement": ("m", ("displacement", "z", "z_wc", "height", "position")),
-    "length": ("m", ("length", "contact_length")),
-    "width": ("m", ("width", "contact_width")),
-    "y": ("m", ("y", "lateral", "offset")),
-    "radius": ("m", ("radius", "r")),
-    "drop": ("m", ("drop", "depth")),
-}
-#: TYDEX channel of each quantity when the manifest names none
-TYDEX_CHANNELS = {"deflection": ("DEFLECT",), "load": ("FZW", "FZ"), "time": ("RUNTIME",),
-                  "displacement": ("Z_WC",)}
 USES = ("fit", "held_out")
 
 
@@ -168,137 +153,18 @@ class DynamicCleat(LabTest):
     load_case: str | float = "LC1"
 
 
-# --- columns ---------------------------------------------------------------
-
-def _tokens(header: str) -> list[str]:
-    text = re.sub(r"[\[\]()]", " ", header)
-    return [t for t in re.split(r"[\s_]+", text.strip()) if t]
-
-
-def _unit_in(header: str, quantity: str) -> str | None:
-    """The unit a header names for ``quantity`` (``load_N_300kPa`` -> ``N``), if any."""
-    want = QUANTITIES[quantity][0]
-    for tok in _tokens(header)[1:]:
-        if is_known_unit(tok) and si_unit(tok) == want:
-            return tok
-    return None
-
-
-def _find(header: list[str], quantity: str, source=None, line=None) -> str | None:
-    """The one header that names ``quantity`` (None if none; an error if several do)."""
-    names = QUANTITIES[quantity][1]
-    found = []
-    for h in header:
-        low = h.strip().lower()
-        toks = _tokens(low)
-        if low in names or (toks and toks[0] in names and (len(toks) == 1 or _unit_in(h, quantity))) \
-                or (len(toks) > 2 and "_".join(toks[:2]) in names):
-            found.append(h)
-    if len(found) > 1:
-        raise InputError(f"columns {', '.join(found)} could each be the {quantity}: name one in the "
-                         f"manifest's columns (campaign.toml)", source=source, line=line, field=quantity)
-    return found[0] if found else None
-
-
-def read_columns(path, required, optional=(), columns=None, units=None) -> tuple[dict, np.ndarray]:
-    """Columns of a CSV file in SI: ``({quantity: array}, line of each row)``.
-
-    ``columns`` maps a quantity to its header (else found by name), ``units`` a quantity to the
-    unit its column is written in (else the header's, else SI). A cell that is not a finite
-    number is an error naming its line; an empty cell is NaN.
-    """
-    path = Path(path)
-    columns, units = dict(columns or {}), dict(units or {})
-    header, header_line, rows = _table(path, ",")
-    if not rows:
-        raise InputError("no data rows below the header", source=str(path), line=header_line)
-    out, found = {}, {}
-    for q in (*required, *optional):
-        name = columns.get(q) or _find(header, q, str(path), header_line)
-        if name is None or name not in header:
-            if q in required or q in columns:
-                what = f"column '{name}'" if name else \
-                    f"a '{q}' column ({', '.join(QUANTITIES[q][1][:3])} ..., unit after '_')"
-                raise InputError(f"{what} is not in the header ({', '.join(header)})",
-                                 source=str(path), line=header_line, field=q)
-            continue
-        found[q] = name
-    lines = np.array([ln for ln, _ in rows], int)
-    for q, name in found.items():
-        i = header.index(name)
-        raw = np.empty(len(rows))
-        for r, (ln, row) in enumerate(rows):
-            if i >= len(row):
-                raise InputError(f"row has {len(row)} fields, the header {len(header)}",
-                                 source=str(path), line=ln)
-            raw[r] = _number(row[i], path, ln, name)
-        unit = units.get(q) or _unit_in(name, q) or QUANTITIES[q][0]
-        if si_unit(unit, source=str(path), line=header_line, field=name) != QUANTITIES[q][0]:
-            raise InputError(f"unit '{unit}' is not a unit of {q} ({QUANTITIES[q][0]})",
-                             source=str(path), line=header_line, field=name)
-        out[q] = to_si(raw, unit)
-    return out, lines
-
-
-def _tydex_columns(path, required, optional=(), columns=None):
-    from ..measure.io import read_run
-    run = read_run(path)
-    out = {}
-    for q in (*required, *optional):
-        names = [columns[q]] if columns and q in columns else TYDEX_CHANNELS.get(q, ())
-        name = next((n for n in names if n in run.columns), None)
-        if name is None:
-            if q in required:
-                raise InputError(f"no channel {' or '.join(names) or q} for the {q}; name it in the "
-                                 f"manifest's columns", source=str(path), field=q)
-            continue
-        out[q] = run[name].to_numpy(float)
-    # a record's line is not kept by the TYDEX reader: rows are named by their record number
-    return out, np.arange(1, len(run) + 1), run
-
-
-def _read(path, required, optional=(), columns=None, units=None):
-    path = Path(path)
-    if not path.is_file():
-        raise InputError("no such file", source=str(path))
-    if path.suffix.lower() in (".tdx", ".parquet"):
-        data, lines, _ = _tydex_columns(path, required, optional, columns)
-        return data, lines, "record"
-    if path.suffix.lower() != ".csv":
-        raise InputError(f"expected a .csv or .tdx file, got '{path.suffix}'", source=str(path))
-    data, lines = read_columns(path, required, optional, columns, units)
-    return data, lines, "line"
-
-
-def _check(path, lines, kind, values, ok, message, field_name):
-    """Raise naming the first row whose value fails ``ok``."""
-    bad = np.flatnonzero(~ok)
-    if bad.size:
-        k = int(bad[0])
-        where = {"line": lines[k]} if kind == "line" else {}
-        text = message.format(value=values[k]) + ("" if kind == "line" else f" (record {lines[k]})")
-        raise InputError(text, source=str(path), field=field_name, **where)
-
-
-def _finite(path, lines, kind, data, names):
-    for q in names:
-        if q in data:
-            _check(path, lines, kind, data[q], np.isfinite(data[q]),
-                   "missing value (every row needs a " + q + ")", q)
-
-
 # --- readers, one per kind ---------------------------------------------------
 
 def read_load_deflection(path, columns=None, units=None, step=0.005, use="fit",
                          note="", pressure=None) -> LoadDeflection:
     """A plate press: a table or a raw loop (:class:`LoadDeflection`)."""
-    data, lines, kind = _read(path, ("deflection", "load"), ("time",), columns, units)
-    _finite(path, lines, kind, data, ("deflection", "load", "time"))
+    data, lines, kind = read_test_columns(path, ("deflection", "load"), ("time",), columns, units)
+    check_finite(path, lines, kind, data, ("deflection", "load", "time"))
     d, f = data["deflection"], data["load"]
     if d.size < 3:
         raise InputError(f"{d.size} rows; a load-deflection test needs at least 3", source=str(path))
     floor = -0.05 * float(np.max(np.abs(d)))
-    _check(path, lines, kind, d, d >= floor, "deflection {value:g} m is negative beyond noise "
+    check_rows(path, lines, kind, d, d >= floor, "deflection {value:g} m is negative beyond noise "
            "(deflection is counted from first touch, positive in compression)", "deflection")
     if not np.max(d) > 0:
         raise InputError("the deflection never rises above zero", source=str(path), field="deflection")
@@ -308,13 +174,13 @@ def read_load_deflection(path, columns=None, units=None, step=0.005, use="fit",
 
 def read_drop_trace(path, columns=None, units=None, positive="up", **options) -> DropTrace:
     """A drop-test trace (:class:`DropTrace`); ``options`` are its other fields."""
-    data, lines, kind = _read(path, ("time", "displacement"), (), columns, units)
-    _finite(path, lines, kind, data, ("time", "displacement"))
+    data, lines, kind = read_test_columns(path, ("time", "displacement"), (), columns, units)
+    check_finite(path, lines, kind, data, ("time", "displacement"))
     t, z = data["time"], data["displacement"]
     if t.size < 50:
         raise InputError(f"{t.size} samples; a drop-test trace needs at least 50", source=str(path))
     ok = np.r_[True, np.diff(t) > 0]
-    _check(path, lines, kind, t, ok, "time {value:g} s does not increase", "time")
+    check_rows(path, lines, kind, t, ok, "time {value:g} s does not increase", "time")
     if positive not in ("up", "down"):
         raise InputError(f"positive must be 'up' or 'down', got '{positive}'", field="positive")
     z = z if positive == "up" else -z
@@ -323,7 +189,7 @@ def read_drop_trace(path, columns=None, units=None, positive="up", **options) ->
 
 def read_patch_points(path, columns=None, units=None, use="fit", note="") -> PatchPoints:
     """Contact-patch sizes (:class:`PatchPoints`)."""
-    data, lines, kind = _read(path, (), ("deflection", "load", "length", "width"), columns, units)
+    data, lines, kind = read_test_columns(path, (), ("deflection", "load", "length", "width"), columns, units)
     if "deflection" not in data and "load" not in data:
         raise InputError("a contact-patch file needs a 'deflection' or a 'load' column",
                          source=str(path), field="deflection")
@@ -335,12 +201,13 @@ def read_patch_points(path, columns=None, units=None, use="fit", note="") -> Pat
             v = data[q]
             other = data.get("load" if q == "deflection" else "deflection")
             given = np.isfinite(v) | (other is not None and np.isfinite(other))
-            _check(path, lines, kind, v, given, "row gives neither deflection nor load", q)
-            _check(path, lines, kind, v, ~np.isfinite(v) | (v > 0), f"{q} {{value:g}} must be positive", q)
+            check_rows(path, lines, kind, v, given, "row gives neither deflection nor load", q)
+            check_rows(path, lines, kind, v, ~np.isfinite(v) | (v > 0),
+                       f"{q} {{value:g}} must be positive", q)
     for q in ("length", "width"):
         if q in data:
             v = data[q]
-            _check(path, lines, kind, v, ~np.isfinite(v) | (v > 0), f"{q} {{value:g}} m must be positive",
+            check_rows(path, lines, kind, v, ~np.isfinite(v) | (v > 0), f"{q} {{value:g}} m must be positive",
                    q)
     return PatchPoints(str(path), use, note, data.get("deflection"), data.get("load"), data.get("length"),
                        data.get("width"), lines)
@@ -348,16 +215,16 @@ def read_patch_points(path, columns=None, units=None, use="fit", note="") -> Pat
 
 def read_carcass_profile(path, columns=None, units=None, use="fit", note="") -> CarcassProfile:
     """Contour points (:class:`CarcassProfile`): ``y`` and ``radius``, or ``y`` and ``drop``."""
-    data, lines, kind = _read(path, ("y",), ("radius", "drop"), columns, units)
+    data, lines, kind = read_test_columns(path, ("y",), ("radius", "drop"), columns, units)
     if "radius" not in data and "drop" not in data:
         raise InputError("a carcass profile needs a 'radius' column (from the spin axis) or a 'drop' "
                          "column (below the crown)", source=str(path), field="radius")
-    _finite(path, lines, kind, data, ("y", "radius", "drop"))
+    check_finite(path, lines, kind, data, ("y", "radius", "drop"))
     if "radius" in data:
-        _check(path, lines, kind, data["radius"], data["radius"] > 0, "radius {value:g} m must be "
+        check_rows(path, lines, kind, data["radius"], data["radius"] > 0, "radius {value:g} m must be "
                "positive", "radius")
     if "drop" in data:
-        _check(path, lines, kind, data["drop"], data["drop"] >= 0, "drop {value:g} m below the crown "
+        check_rows(path, lines, kind, data["drop"], data["drop"] >= 0, "drop {value:g} m below the crown "
                "must not be negative", "drop")
     if data["y"].size < 3:
         raise InputError("a carcass profile needs at least 3 points", source=str(path))
@@ -409,10 +276,10 @@ def read_modal(path, use="fit", note="") -> ModalResults:
 def read_static_cleat(path, cleat, direction="lateral", columns=None, units=None, use="held_out",
                       note="") -> StaticCleat:
     """A static cleat press (:class:`StaticCleat`); ``cleat`` (width, height) [m]."""
-    data, lines, kind = _read(path, ("deflection", "load"), (), columns, units)
-    _finite(path, lines, kind, data, ("deflection", "load"))
+    data, lines, kind = read_test_columns(path, ("deflection", "load"), (), columns, units)
+    check_finite(path, lines, kind, data, ("deflection", "load"))
     d = data["deflection"]
-    _check(path, lines, kind, d, d >= 0, "deflection {value:g} m is negative", "deflection")
+    check_rows(path, lines, kind, d, d >= 0, "deflection {value:g} m is negative", "deflection")
     return StaticCleat(str(path), use, note, d, data["load"], tuple(cleat), direction)
 
 
