@@ -10,7 +10,8 @@ import pytest
 
 from tyrelab.errors import InputError
 from tyrelab.validate import thesis as thesis_module
-from tyrelab.validate.tables import rank_agreement, summary_table
+from tyrelab.validate.rank_agreement import rank_agreement
+from tyrelab.validate.tables import summary_table
 from tyrelab.validate.thesis import (TABLE_5_15_COLUMNS, TABLE_5_15_EXCEPTIONS, rules_on_thesis,
                                      thesis_metrics, thesis_repeatability, thesis_table_5_15)
 

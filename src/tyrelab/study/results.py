@@ -31,7 +31,8 @@ import pandas as pd
 
 from ..errors import InputError
 from ..validate.compare import METRICS, THESIS_CLEAT, THESIS_TRACK
-from ..validate.tables import DEFAULT_LIMITS, RankAgreement, rank_agreement, summary_table
+from ..validate.rank_agreement import RankAgreement, rank_agreement
+from ..validate.tables import DEFAULT_LIMITS, summary_table
 from .evaluate import METRICS_FILE, REPEATABILITY, evaluate_study
 from .soil import SOIL_FILE, empty_table, soil_curves
 from .spec import StudySpec, parse_spec
@@ -188,7 +189,7 @@ class Study:
     @property
     def rank_agreement(self) -> RankAgreement:
         """Spearman's ρ between our ranking of the models and the thesis's, per run
-        (test, speed, load case) and the mean (:func:`~tyrelab.validate.tables.rank_agreement`);
+        (test, speed, load case) and the mean (:func:`~tyrelab.validate.rank_agreement.rank_agreement`);
         the reference model's own rows are left out. With several tyres, the first."""
         from ..validate.thesis import thesis_metrics
         ours = self._model_rows().rename(columns={"load": "load_case"})

@@ -6,7 +6,7 @@ Three tables, copied or transcribed from the thesis into ``validate/data``
 
 * :func:`thesis_metrics` - the metrics of each model on each run (Tables 5-2
   to 5-5, 5-7 to 5-14), in the long form :func:`.tables.summary_table` and
-  :func:`.tables.rank_agreement` take;
+  :func:`.rank_agreement.rank_agreement` take;
 * :func:`thesis_repeatability` - two measurements of one test compared with
   the same metrics (Tables 5-1 and 5-6), the measurement's own scatter;
 * :func:`thesis_table_5_15` - the thesis's summary verdicts (Table 5-15), in
