@@ -37,15 +37,12 @@ from typing import NamedTuple
 import numpy as np
 import pandas as pd
 
-from ..road.obstacles import Flat
 from ..tyre.library import load_tyre, modal_table
 from ..tyre.ring.modal import ring_modal
-from ..tyre.ring.model import RELAX_RATE, nominal_state, ring_params
 from ..tyre.ring.parameters import RingParameters
-from ..tyre.ring.static import block_positions, settle
-from ..tyre.static import PC
 from ..tyre.tir import TirFile, write_tir
 from .damping import ring_drop_test_damping
+from .ring_press import contact_half_length, contact_half_length_eq23, press_plate
 
 FIT_PRESSURES = (300e3, 550e3)
 HELD_OUT_PRESSURE = 100e3
@@ -83,66 +80,6 @@ START = dict(pressure_width=0.2681187, kr0=KR0_SHARE * 1.03e6,
              ky0=213316.4, kyp=0.71047, ei=10.0, tread_stiffness=35216987.0, ring_mass=153.0)
 #: floor of the load residual's reference, as a share of the largest load
 LOAD_FLOOR = 0.2
-
-
-def contact_half_length_eq23(tyre, deflection):
-    """Half contact length [m] of thesis eq. 2.3 with the tyre's PA1, PA2."""
-    pa1 = tyre.tir.number("CONTACT_PATCH", "PA1", required=True)
-    pa2 = tyre.tir.number("CONTACT_PATCH", "PA2", required=True)
-    r0 = tyre.unloaded_radius
-    q = np.asarray(deflection, float) / r0
-    return pa1 * r0 * (q + pa2 * np.sqrt(q))
-
-
-def press_plate(tyre, rp, deflections):
-    """Model plate loads [N] at increasing press ``deflections`` [m], and the
-    half contact length [m] at the last one (blocks in contact, plus half a
-    segment pitch at each end)."""
-    grid = Flat().grid()
-    params = ring_params(tyre, grid, parameters=rp, relax=RELAX_RATE)
-    state = nominal_state(params)
-    d = np.asarray(deflections, float)
-    res = settle(params, state, grid.surface(), tyre.unloaded_radius - d)
-    return res[:, PC.FZ], contact_half_length_of_state(params, state, tyre.unloaded_radius - d[-1])
-
-
-def contact_half_length_of_state(params, state, height):
-    """Half contact length [m] of a pressed state along the tread centre.
-
-    For the block columns nearest the centre line, the contact edges are
-    where the block tips' height over the plate crosses zero, interpolated
-    linearly between the last block in contact and the first one out
-    (smooth in the parameters, unlike counting blocks).
-    """
-    n, nb = params.n_segments, params.n_blocks
-    x, y, zt = block_positions(params, state)
-    x = x.reshape(n, nb)
-    gap = (zt + height).reshape(n, nb)  # tip height over the plate (rim centre at height)
-    y1 = np.abs(params.block_y[:nb])
-    cols = np.flatnonzero(np.isclose(y1, y1.min()))
-    halves = []
-    for j in cols:
-        g, xx = gap[:, j], x[:, j]
-        bottom = int(np.argmin(g))
-        if g[bottom] >= 0:
-            halves.append(0.0)
-            continue
-        edges = []
-        for step in (1, -1):
-            k = bottom
-            while g[(k + step) % n] < 0:
-                k = (k + step) % n
-            k2 = (k + step) % n
-            f = g[k] / (g[k] - g[k2])
-            edges.append(xx[k] + f * (xx[k2] - xx[k]))
-        halves.append(0.5 * abs(edges[0] - edges[1]))
-    return float(np.mean(halves))
-
-
-def contact_half_length(tyre, rp, deflection):
-    """Half contact length [m] of the model pressed to ``deflection`` on a plate."""
-    _, half = press_plate(tyre, rp, [deflection])
-    return float(half)
 
 
 #: with one pressure the pressure rates cannot be told from the constant parts:
