@@ -210,7 +210,7 @@ def _patch_points(campaign: Campaign, tir: TirFile, use: str) -> list[_PatchFile
 
 def fit_patch_step(campaign: Campaign, tir: TirFile) -> StepResult:
     """PA1, PA2 (eq. 2.3), PB1-PB3 (eq. 2.4) and the half-width table into ``tir``."""
-    from ..tyre.contact.cams import DEFAULTS
+    from ..tyre.contact.patch_laws import DEFAULTS
     from .patch import (contact_half_length, contact_half_width, contact_width_table, fit_contact_length,
                         fit_contact_width, width_from_table)
     r0 = _dimension(tir, "UNLOADED_RADIUS", "contact patch")

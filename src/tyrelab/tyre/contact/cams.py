@@ -13,10 +13,10 @@ lowest point at a distance s along the road; a cam at x rests at the height
 
 (Schmeitz's *basic function*: the road filtered by the cam). The contact
 patch dimensions follow eqs. 2.3 and 2.4 (or the MF-Swift forms, or a
-measured deflection-to-half-width table, as the thesis asks for in 4.4).
+measured deflection-to-half-width table, as the thesis asks for in 4.4):
+:mod:`.patch_laws`, which also reads the ``[CONTACT_PATCH]`` keys.
 
-Python reads the ``[CONTACT_PATCH]`` keys (:func:`patch_key`, :func:`length_law`,
-:func:`width_law`) and builds the cam tables and the road's block maxima once, into the
+Python builds the cam tables and the road's block maxima once, into the
 model's record (:class:`tyrelab.tyre.contact.enveloping.EnvelopingParams`);
 the compiled functions here take that record (``params``) and the terrain
 record (:mod:`tyrelab.road.terrain`, queried through that interface only) and
@@ -30,7 +30,6 @@ import math
 import numba as nb
 import numpy as np
 
-from ...errors import InputError
 from ...road.terrain import (terrain_height, terrain_line_height, terrain_lines, terrain_row,
                              terrain_row_height)
 from .shape import section_walk
@@ -322,102 +321,3 @@ def cam_height(params, road, x0, y0, fx, fy, zmax):
             break
         best, reach = _cam_side(params, road, x0, y0, d * fx, d * fy, zmax, best, reach)
     return best
-
-
-# --- the contact patch: property-file keys and the laws of eqs. 2.3 and 2.4 -------------
-
-#: values used when the property file has neither the ADAMS nor the MF-Swift key
-DEFAULTS = {"PA1": 0.15, "PA2": 7.06, "PAE": 0.72, "PBE": 1.0, "PCE": 2.0, "PLS": 0.9,
-            "N_WIDTH": 10, "N_LENGTH": 15}
-#: ADAMS key -> MF-Swift key for the same cam quantity
-SWIFT = {"PAE": "ELLIPS_LENGTH", "PBE": "ELLIPS_HEIGHT", "PCE": "ELLIPS_ORDER",
-         "PLS": "ELLIPS_SHIFT", "N_WIDTH": "ELLIPS_NWIDTH", "N_LENGTH": "ELLIPS_NLENGTH"}
-
-
-def patch_key(tir, name):
-    """The ADAMS key, else its MF-Swift twin, else the default."""
-    for k in (name, SWIFT.get(name)):
-        if k is not None and tir.has("CONTACT_PATCH", k):
-            return tir.number("CONTACT_PATCH", k)
-    return DEFAULTS[name]
-
-
-def length_law(tir):
-    """(mode, (c1, c2)) of the half-length law: 0 eq. 2.3 (PA1, PA2), 1 MF-Swift (Q_RA1, Q_RA2)."""
-    if tir.has("CONTACT_PATCH", "PA1") or tir.has("CONTACT_PATCH", "PA2"):
-        return 0, (tir.number("CONTACT_PATCH", "PA1", DEFAULTS["PA1"]),
-                   tir.number("CONTACT_PATCH", "PA2", DEFAULTS["PA2"]))
-    if tir.has("CONTACT_PATCH", "Q_RA1") or tir.has("CONTACT_PATCH", "Q_RA2"):
-        return 1, (tir.number("CONTACT_PATCH", "Q_RA1", 0.0), tir.number("CONTACT_PATCH", "Q_RA2", 0.0))
-    return 0, (DEFAULTS["PA1"], DEFAULTS["PA2"])
-
-
-def width_law(tir, width_table, b_max):
-    """(mode, (c1, c2, c3), table rows) of the half-width law."""
-    table = tir.table("CONTACT_WIDTH_CURVE")
-    if width_table and table is None:
-        raise InputError("width_table=True needs a [CONTACT_WIDTH_CURVE] table (deflection, "
-                         "half width)", source=tir.source, field="CONTACT_WIDTH_CURVE")
-    if table is not None and width_table is not False:
-        if table.shape[1] != 2 or np.any(np.diff(table[:, 0]) <= 0) or np.any(table[:, 1] < 0):
-            raise InputError("[CONTACT_WIDTH_CURVE] needs rows of increasing deflection and "
-                             "non-negative half width", source=tir.source, field="CONTACT_WIDTH_CURVE")
-        return 2, (0.0, 0.0, 0.0), table
-    if tir.has("CONTACT_PATCH", "PB1"):
-        return 0, tuple(tir.number("CONTACT_PATCH", k, 0.0) for k in ("PB1", "PB2", "PB3")), None
-    if tir.has("CONTACT_PATCH", "Q_RB1") or tir.has("CONTACT_PATCH", "Q_RB2"):
-        return 1, (tir.number("CONTACT_PATCH", "Q_RB1", 0.0),
-                   tir.number("CONTACT_PATCH", "Q_RB2", 0.0), 0.0), None
-    return 2, (0.0, 0.0, 0.0), np.array([[0.0, b_max]])  # no law: the whole tread
-
-
-@nb.njit(cache=True)
-def half_length(params, rho):
-    """Half contact length a [m] at deflection ``rho``: eq. 2.3 (``length_law`` 0) or
-    MF-Swift (1)."""
-    if rho <= 0.0:
-        return 0.0
-    r0 = params.unloaded_radius
-    c1 = params.length_c1
-    c2 = params.length_c2
-    x = rho / r0
-    if params.length_law == 0:
-        return c1 * r0 * (x + c2 * math.sqrt(x))  # eq. 2.3: PA1, PA2
-    return r0 * (c2 * x + c1 * math.sqrt(x))  # MF-Swift: Q_RA1, Q_RA2
-
-
-@nb.njit(cache=True)
-def half_width(params, rho):
-    """Half contact width b [m] at deflection ``rho``, at most ``params.max_half_width``.
-
-    ``width_law`` 0: eq. 2.4 (PB1-PB3); 1: MF-Swift (Q_RB1, Q_RB2); 2: the
-    table ``params.width_table`` of (deflection, half width) rows, linear,
-    clamped at its ends.
-    """
-    mode = params.width_law
-    if mode == 2:
-        table = params.width_table
-        rows = table.shape[0]
-        if rho <= table[0, 0]:
-            b = table[0, 1]
-        elif rho >= table[rows - 1, 0]:
-            b = table[rows - 1, 1]
-        else:
-            i = 0
-            while table[i + 1, 0] < rho:
-                i += 1
-            d0 = table[i, 0]
-            d1 = table[i + 1, 0]
-            f = (rho - d0) / (d1 - d0)
-            b = table[i, 1] * (1.0 - f) + table[i + 1, 1] * f
-    elif rho <= 0.0:
-        b = 0.0
-    else:
-        x = rho / params.unloaded_radius
-        w0 = params.width
-        c1, c2, c3 = params.width_c1, params.width_c2, params.width_c3
-        if mode == 0:
-            b = c1 * w0 * (x + c2 * math.sqrt(x) + c3 * x * math.sqrt(x))  # eq. 2.4
-        else:
-            b = w0 * (c2 * x + c1 * x ** (1.0 / 3.0))  # MF-Swift
-    return min(max(b, 0.0), params.max_half_width)

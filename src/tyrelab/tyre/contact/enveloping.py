@@ -86,7 +86,8 @@ from ...road.terrain import terrain_range, terrain_zmax
 from ..model import PO, TyreModel, contact_geometry_table, positions_table, wheel_positions
 from ..registry import ContactModel, register_contact
 from ..wheel import ContactGeometry, WheelPose
-from .cams import cam_tables, half_length, half_width, length_law, patch_key, width_law
+from .cams import cam_tables
+from .patch_laws import half_length, half_width, length_law, patch_key, width_law
 from .enveloping_params import (_DATA, _OTHER_OPTIONS, _USER_OPTIONS, BLOCK, CAM_LAYOUTS, FIT_STEPS,
                                 MIN_PATCH_DEFLECTION, EnvelopingParams)
 from .enveloping_plane import cam_plane

@@ -15,7 +15,8 @@ import numba as nb
 import numpy as np
 
 from ...road.terrain import terrain_height, terrain_lines, terrain_row
-from .cams import cam_height, cam_row, half_length, half_width, slope_support
+from .cams import cam_height, cam_row, slope_support
+from .patch_laws import half_length, half_width
 
 
 @nb.njit(cache=True, inline="always")
