@@ -39,3 +39,12 @@ class InputError(ValueError):
         if field is not None:
             where += f"{field}: "
         super().__init__(where + message)
+
+
+def named(known: dict, name: str, what: str, field: str):
+    """``known[name]``; an unknown name is an :class:`InputError` listing the known ones
+    ("unknown rig 'x', expected one of trailer, quarter-vehicle, ...") on ``field``: the
+    lookup of every registry (models, rigs, terrains)."""
+    if name not in known:
+        raise InputError(f"unknown {what} '{name}', expected one of {', '.join(known)}", field=field)
+    return known[name]

@@ -17,7 +17,7 @@ from dataclasses import dataclass, field
 from typing import Any, Callable
 
 from .. import plugins
-from ..errors import InputError
+from ..errors import InputError, named
 from .frames import G
 
 
@@ -127,10 +127,7 @@ def check_rig_options(rig: Rig, options: dict | None) -> dict:
 
 def rig_named(name: str) -> Rig:
     """The rig called ``name``; an unknown name lists the known ones."""
-    known = rigs()
-    if name not in known:
-        raise InputError(f"unknown rig '{name}', expected one of {', '.join(known)}", field="rig")
-    return known[name]
+    return named(rigs(), name, "rig", "rig")
 
 
 # --- the built-in rigs ------------------------------------------------------------------------

@@ -19,7 +19,8 @@ import numba as nb
 import numpy as np
 
 from .. import plugins
-from ..errors import InputError
+from ..errors import InputError, named
+
 
 #: modules that register the built-in kinds of ground
 BUILTIN_TERRAIN = ("tyrelab.road.grid", "tyrelab.road.soil.terrain")
@@ -165,11 +166,7 @@ def terrain_names() -> tuple[str, ...]:
 
 def terrain_kind(name: str) -> TerrainKind:
     """The kind of ground called ``name``; an unknown name lists the known ones."""
-    kinds = terrain_kinds()
-    if name not in kinds:
-        raise InputError(f"unknown terrain '{name}', expected one of {', '.join(kinds)}",
-                         field="terrain")
-    return kinds[name]
+    return named(terrain_kinds(), name, "terrain", "terrain")
 
 
 def resolve_terrain(value) -> tuple[TerrainKind, Any, str]:

@@ -22,7 +22,8 @@ from typing import Any, Callable
 import numpy as np
 
 from .. import plugins
-from ..errors import InputError
+from ..errors import InputError, named
+
 
 #: modules that register the built-in contact models (one line per model module)
 BUILTIN_CONTACT = (
@@ -200,11 +201,7 @@ def handling_models() -> dict[str, HandlingModel]:
 
 def contact_model(name: str) -> ContactModel:
     """The contact model called ``name``; an unknown name lists the known ones."""
-    models = contact_models()
-    if name not in models:
-        raise InputError(f"unknown model '{name}', expected one of {', '.join(models)}",
-                         field="model")
-    return models[name]
+    return named(contact_models(), name, "model", "model")
 
 
 def check_options(name: str, options: dict | None, field: str = "options") -> dict:
@@ -245,11 +242,7 @@ def _typed(owner: str, key: str, value, kind, field: str):
 
 def handling_model(name: str) -> HandlingModel:
     """The handling model called ``name``; an unknown name lists the known ones."""
-    models = handling_models()
-    if name not in models:
-        raise InputError(f"unknown handling model '{name}', expected one of {', '.join(models)}",
-                         field="handling")
-    return models[name]
+    return named(handling_models(), name, "handling model", "handling")
 
 
 def _by_record(registry, numba_type, what):
