@@ -44,7 +44,6 @@ def makespan(costs: list[float], workers: int) -> float:
 def main(folder: str) -> None:
     from tyrelab import study
     from tyrelab.report.study_report import write_study_report
-    from tyrelab.study.evaluate import evaluate_study
     from tyrelab.study.soil import soil_curves
     from tyrelab.study.store import Store
 
@@ -59,16 +58,14 @@ def main(folder: str) -> None:
     index = index.assign(priority=index["key"].map(priority))
     ordered = index.sort_values("priority", ascending=False)["wall_time_s"].tolist()
     from tyrelab.study import expected_cost
-    from tyrelab.study.evaluate import _condition_rows, _conditions
-    groups = _conditions([r for r in spec.runs() if r.slip is None])
-    conditions = []                         # (priority, evaluation time) of each condition
+    from tyrelab.study.evaluate import condition_rows, conditions
+    groups = conditions([r for r in spec.runs() if r.slip is None])
+    timed = []                              # (priority, evaluation time) of each condition
     for g in groups:
         t0 = time.perf_counter()
-        _condition_rows(spec, store, g)
-        conditions.append((sum(expected_cost(r) for r in g), time.perf_counter() - t0))
-    evaluation = [c for _, c in sorted(conditions, key=lambda pc: -pc[0])]
-    t0 = time.perf_counter()
-    evaluate_study(spec, store, progress=False)   # metrics.parquet, for the report below
+        condition_rows(spec, store, g)
+        timed.append((sum(expected_cost(r) for r in g), time.perf_counter() - t0))
+    evaluation = [c for _, c in sorted(timed, key=lambda pc: -pc[0])]
     serial = {}
     t0 = time.perf_counter()
     soil_curves(spec, store)

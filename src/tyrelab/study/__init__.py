@@ -27,8 +27,6 @@ from .store import Store
 
 #: the HTML report's name in a study folder
 REPORT = "report.html"
-#: a finished study with more runs than this is evaluated on a cluster of its own
-CLUSTER_EVALUATION_RUNS = 40
 
 
 def run_record(run: RunSpec) -> dict:
@@ -81,16 +79,9 @@ def run(spec: StudySpec | str | Path | None = None, workers: int | None = None,
     store = Store(output if output is not None else spec.output, storage=spec.store)
     _keep_spec(spec, store)
     # metrics.parquet, rewritten every time: on the study's local cluster (its workers share
-    # this disk), in this process with a running scheduler's; a small finished study is
-    # evaluated here rather than start a cluster for it
-    todo = tasks(spec)
-    on_cluster = (len(todo) > CLUSTER_EVALUATION_RUNS
-                  or not all(store.is_finished(t["key"]) for t in todo))
-    run_tasks(todo, store, workers=workers, scheduler=scheduler, progress=progress,
-              then=(lambda client: evaluate_study(spec, store, progress=progress, client=client))
-              if on_cluster else None)
-    if not on_cluster:
-        evaluate_study(spec, store, progress=progress)
+    # this disk), in this process with a running scheduler's or for a small finished study
+    run_tasks(tasks(spec), store, workers=workers, scheduler=scheduler, progress=progress,
+              then=lambda client: evaluate_study(spec, store, progress=progress, client=client))
     soil_curves(spec, store)                        # soil_curves.parquet, likewise
     result = Study(store.folder)
     from ..report.study_report import write_study_report

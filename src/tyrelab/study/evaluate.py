@@ -175,13 +175,13 @@ class _Evaluator:
         return out
 
 
-def _condition_rows(spec: StudySpec, store: Store, runs: list) -> list[dict]:
+def condition_rows(spec: StudySpec, store: Store, runs: list) -> list[dict]:
     """The rows of ``runs`` (the runs of one condition, which share a reference), in order."""
     ev = _Evaluator(spec, store)
     return [row for run in runs for row in ev.rows(run)]
 
 
-def _conditions(runs: list) -> list[list]:
+def conditions(runs: list) -> list[list]:
     """``runs`` cut where the condition (test, speed, load, tyre) changes: a condition's runs
     are adjacent in a spec's runs and read the same reference."""
     groups: list[list] = []
@@ -223,18 +223,18 @@ def evaluate_study(spec: StudySpec, store: Store, progress: bool = True,
             from distributed import as_completed
 
             from .records import expected_cost
-            from .runner import _completed
-            groups = _conditions(runs)
-            futures = [client.submit(_condition_rows, spec, store, g, pure=False,
+            from .runner import completed
+            groups = conditions(runs)
+            futures = [client.submit(condition_rows, spec, store, g, pure=False,
                                      priority=sum(expected_cost(r) for r in g)) for g in groups]
             size = {f.key: len(g) for f, g in zip(futures, groups)}
-            for done in _completed(as_completed(futures)):
+            for done in completed(as_completed(futures)):
                 bar.update(size[done.key])
             for f, group in zip(futures, groups):
                 try:
                     rows.extend(f.result())
                 except Exception:  # the worker died: this condition is evaluated here
-                    rows.extend(_condition_rows(spec, store, group))
+                    rows.extend(condition_rows(spec, store, group))
     df = pd.DataFrame(rows).reindex(columns=COLUMNS)
     for col in (*METRICS, *SEGMENT_COLUMNS, "shift_s", "speed_kmh"):
         df[col] = df[col].astype(float)

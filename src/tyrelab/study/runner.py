@@ -84,13 +84,19 @@ def _minutes(seconds: float) -> str:
     return f"{seconds / 60:.0f} min" if seconds >= 90 else f"{seconds:.0f} s"
 
 
+#: a finished study of at most this many tasks calls ``then`` (its evaluation) in this
+#: process: starting a cluster for it costs more than the work
+SMALL_STUDY = 40
+
+
 def run_tasks(tasks: list[dict], store: Store, workers: int | None = None,
               scheduler: str | None = None, progress: bool = True,
               connect_timeout: float = 30.0, then=None) -> dict:
     """Compute every task whose run is not finished in ``store``; then, with ``then``, call
     ``then(client)`` on the same cluster before it closes (the study's evaluation: the
     client of a local cluster, None for a running scheduler, whose workers may not share
-    this process's disk).
+    this process's disk). With every run finished already, a cluster is started for
+    ``then`` only when there are more than :data:`SMALL_STUDY` tasks (else None).
 
     Parameters
     ----------
@@ -115,7 +121,7 @@ def run_tasks(tasks: list[dict], store: Store, workers: int | None = None,
     counts = {"computed": 0, "skipped": len(tasks) - len(todo), "failed": 0}
     if not todo:
         if then is not None:
-            if scheduler:
+            if scheduler or len(tasks) <= SMALL_STUDY:
                 then(None)
             else:
                 _on_cluster(then, workers)
@@ -139,7 +145,7 @@ def run_tasks(tasks: list[dict], store: Store, workers: int | None = None,
         # computes again what the store lacks
         futures = {client.submit(execute, t, key=f"tyrelab-run-{t['key']}", pure=False,
                                  priority=t.get("cost", 0.0)): t for t in todo}
-        for future in _completed(as_completed(futures)):
+        for future in completed(as_completed(futures)):
             task = futures[future]
             key = task["key"]
             try:
@@ -159,7 +165,6 @@ def run_tasks(tasks: list[dict], store: Store, workers: int | None = None,
             bar.update(1)
             future.release()
         bar.close()
-        store.write_index()
         if then is not None:
             then(client if cluster is not None else None)
     except KeyboardInterrupt:
@@ -187,7 +192,7 @@ def _on_cluster(then, workers: int | None) -> None:
         _close(client, cluster, CLOSE_TIMEOUT if interrupted else None)
 
 
-def _completed(finished, poll: float = 0.2):
+def completed(finished, poll: float = 0.2):
     """The futures of ``finished`` (a distributed ``as_completed``) as they finish, checking
     between them for a stop a signal asked for (:func:`tyrelab.stop.check`): the exception the
     signal raised may have been swallowed by a callback of the client's (tyrelab.stop)."""

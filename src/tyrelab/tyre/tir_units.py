@@ -27,14 +27,12 @@ _TIME = {"second": 1.0, "sec": 1.0, "s": 1.0, "millisecond": 1e-3, "ms": 1e-3,
          "minute": 60.0, "min": 60.0, "hour": 3600.0, "h": 3600.0}
 _UNIT_TABLES = {"LENGTH": _LENGTH, "FORCE": _FORCE, "ANGLE": _ANGLE, "MASS": _MASS, "TIME": _TIME}
 
-#: physical dimension of known keys, as exponents of (LENGTH, FORCE, ANGLE, MASS, TIME)
-_L, _F, _A, _M, _T = (1, 0, 0, 0, 0), (0, 1, 0, 0, 0), (0, 0, 1, 0, 0), (0, 0, 0, 1, 0), (0, 0, 0, 0, 1)
-
 
 def _dim(L=0, F=0, A=0, M=0, T=0):
     return (L, F, A, M, T)
 
 
+#: physical dimension of known keys, as exponents of (LENGTH, FORCE, ANGLE, MASS, TIME)
 KEY_DIMENSIONS: dict[str, tuple[int, int, int, int, int]] = {
     # [DIMENSION]
     "UNLOADED_RADIUS": _dim(L=1), "WIDTH": _dim(L=1), "RIM_RADIUS": _dim(L=1), "RIM_WIDTH": _dim(L=1),

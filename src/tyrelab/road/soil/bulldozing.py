@@ -62,8 +62,7 @@ def _raise(bed, i, k, amount):
 def bulldoze(bed, i0, i1, k0, k1, pressed):
     """Move the soil pressed down in a step to the rut's edge and erode it (module docstring):
     ``pressed`` the sum of the plastic sinkage increments [m] of the nodes in contact in the
-    step (``sigma > 0`` marks them), all within rows ``i0..i1`` and columns ``k0..k1``.
-    Returns the volume raised, divided by the cell's area [m]."""
+    step (``sigma > 0`` marks them), all within rows ``i0..i1`` and columns ``k0..k1``."""
     soil = bed.soil
     nx, ny = bed.h0.shape
     a0, a1 = max(0, i0 - 1), min(nx - 1, i1 + 1)
@@ -74,13 +73,12 @@ def bulldoze(bed, i0, i1, k0, k1, pressed):
             if _borders_contact(bed, i, k):
                 edge += 1
     if edge == 0 or pressed <= 0.0:
-        return 0.0
+        return
     share = soil.flow_factor * pressed / edge
-    raised = 0.0
     for i in range(a0, a1 + 1):
         for k in range(b0, b1 + 1):
             if _borders_contact(bed, i, k):
-                raised += _raise(bed, i, k, share)
+                _raise(bed, i, k, share)
     # erosion to the angle of repose, over the nodes out of contact near the contact
     p = soil.erosion_propagations
     e0, e1 = max(0, i0 - 1 - p), min(nx - 1, i1 + 1 + p)
@@ -99,4 +97,3 @@ def bulldoze(bed, i0, i1, k0, k1, pressed):
                     if excess > 0.0:
                         moved = _raise(bed, m, n, 0.125 * excess)
                         _raise(bed, i, k, -moved)
-    return raised

@@ -20,7 +20,7 @@ import numpy as np
 
 from ..grid import RoadGrid
 from .params import Soil
-from .scm import SoilSurface, bed_record, soil_bed
+from .scm import bed_record, soil_bed
 
 #: the longest stretch of soil held at once [m] (a run's first chunk and its margins fit)
 PATCH_LENGTH = 30.0
@@ -31,8 +31,11 @@ class SoilPatch:
 
     ``soil`` laid over ``road``'s heights less ``level`` [m], from ``x_first`` [m] over
     ``n_run`` rows along x and ``ny`` across from ``y0``, nodes every ``spacing`` [m]; at
-    most ``rows`` of them held at once (all when ``rows >= n_run``). :meth:`surface` is the
-    compiled record of the part held now.
+    most ``rows`` of them held at once (all when ``rows >= n_run``). Every other method of
+    the terrain interface's Python side is the :class:`~tyrelab.road.soil.scm.SoilSurface`'s
+    of the part held now (``bed``): ``surface()`` its record, ``fresh_copy()`` a copy of its
+    state, ``row_maxima`` its bounds (a model that kept them for a whole run would read
+    them for that stretch only; no model on soil keeps them).
     """
 
     def __init__(self, soil: Soil, road, x_first: float, n_run: int, y0: float, ny: int,
@@ -82,24 +85,9 @@ class SoilPatch:
                               b.dy, base, h0, z, j, sigma)
         return self.bed
 
-    # the Python side of the terrain interface (tyrelab.road.terrain.Ground)
-    def surface(self) -> SoilSurface:
-        return self.bed
-
-    def fresh_copy(self) -> SoilSurface:
-        """The bed held now with its own copy of every node's state (a trial leaves no rut)."""
-        return self.bed.fresh_copy()
-
-    def sampling_step(self) -> float:
-        return self.bed.sampling_step()
-
-    def uniform_across(self) -> bool:
-        return False
-
-    def profile_breaks(self):
-        return None
-
-    def row_maxima(self, length: float):
-        """The bounds of the stretch held when asked (a model's build): a model that keeps them
-        for a whole run reads them only for that stretch (no model on soil keeps them)."""
-        return self.bed.row_maxima(length)
+    def __getattr__(self, name):
+        # the rest of the terrain interface's Python side (surface, fresh_copy, sampling_step,
+        # row_maxima, ...) is the bed's held now
+        if name == "bed":               # not set yet (a copy being built): no recursion
+            raise AttributeError(name)
+        return getattr(self.bed, name)

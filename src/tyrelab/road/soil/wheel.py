@@ -9,10 +9,10 @@ The wheel's surface above a node depends on the node's position along the wheel'
 heading and across it. When the wheel's axis lies along the grid's rows (no camber, no
 steer: ``a = (0, +-1, 0)``, every rig's wheel rolling straight) everything but the lateral
 position is the same for a whole row of nodes, so the surface point, its normal and its
-sliding velocity are found once per row (:func:`wheel_loads`); otherwise per node. The two
-give the same numbers bit for bit (the per-row values are the per-node formulas at the
-row's centre line, where the lateral offset enters only through terms it multiplies by
-zero).
+sliding velocity are found once per row (:func:`wheel_loads`); otherwise per node. The
+per-row values are the per-node formulas at the row's centre line, where the lateral
+offset enters only through terms it multiplies by zero (a wheel yawed by 1e-9 rad, which
+takes the per-node path, agrees to rounding: ``tests/test_soil_wheel_pass.py``).
 """
 
 from __future__ import annotations
@@ -203,7 +203,7 @@ def wheel_loads(bed, cx, cy, cz, ax, ay, az, vx, vy, vz, omega, radius, width, f
             d0y = bed.y0 + k * bed.dy - cy
             if along_rows:
                 p = row
-                lateral = d0y * ay + p.zr * az
+                lateral = d0y           # the axis is +-e_y: the offset along it is +-d0y
             else:
                 p = surface_point(w, d0x, d0y)
                 lateral = p.lateral
