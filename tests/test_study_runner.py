@@ -17,14 +17,14 @@ import pandas as pd
 import pytest
 
 import tyrelab
-from tyrelab.study.runner import run_tasks
+from tyrelab.study.runner import KernelWaves, run_tasks
 from tyrelab.study.store import Store
 
 
 def _task(key, model, road, speed_kmh):
     kwargs = dict(model=model, road=road, speed=speed_kmh / 3.6, load="LC1", duration=1.5)
     return {"key": key, "spec": {"model": model, "road": road, "speed_kmh": speed_kmh},
-            "simulate": kwargs}
+            "simulate": kwargs, "kernels": model}
 
 
 TASKS = [_task("a1", "point", "cleat:50x50", 12), _task("b2", "point", "step:30", 18),
@@ -192,3 +192,47 @@ def test_a_stop_asked_for_while_no_run_finishes_ends_the_wait(tmp_path):
         stop.clear()
     assert not store.is_finished("long")
     assert not list(store.runs.glob("*.json"))
+
+
+def _play(tasks, slots):
+    """A cluster of ``slots`` workers running what :class:`KernelWaves` releases, each task for
+    its ``cost`` [s], the highest cost first among those submitted (Dask's priority); returns
+    the (start, end, task) of every run and, per kind, how many runs started before the
+    first run of the kind ended (each such run compiles the kind's kernels cold)."""
+    import heapq
+    waves = KernelWaves(tasks, slots)
+    queued = list(waves.release())
+    running, log, now = [], [], 0.0
+    while queued or running:
+        queued.sort(key=lambda t: -t["cost"])
+        while queued and len(running) < slots:
+            task = queued.pop(0)
+            heapq.heappush(running, (now + task["cost"], task["key"], task))
+            log.append([now, None, task])
+        # no worker idles while a task waits for its kind's kernels
+        assert len(running) == slots or not waves.waiting
+        now, _, task = heapq.heappop(running)
+        next(e for e in log if e[2] is task)[1] = now
+        queued += waves.release(task)
+    cold = {}
+    for kind in {t["kernels"] for t in tasks}:
+        first_end = min(e[1] for e in log if e[2]["kernels"] == kind)
+        cold[kind] = sum(e[0] < first_end for e in log if e[2]["kernels"] == kind)
+    return log, cold
+
+
+def test_a_cold_cache_is_filled_once_per_kind_of_kernel():
+    """The thesis campaign's shape (6 kinds, the ring runs the longest) on 2 and 4 workers:
+    every kind's first run ends before another run of its kind starts, every run runs once,
+    and (asserted inside) no worker waits while runs do. With one kind and 3 workers the
+    workers are not left idle: all three start at once."""
+    costs = {"ring": 20.0, "ring-tp": 21.0, "enveloping": 3.0, "edge": 2.5, "volume": 1.7,
+             "point": 0.8}
+    tasks = [{"key": f"{kind}{i}", "kernels": kind, "cost": cost * (1 + 0.01 * i)}
+             for kind, cost in costs.items() for i in range(10)]
+    for slots in (2, 4):
+        log, cold = _play(tasks, slots)
+        assert sorted(e[2]["key"] for e in log) == sorted(t["key"] for t in tasks)
+        assert cold == {kind: 1 for kind in costs}, slots
+    log, cold = _play([t for t in tasks if t["kernels"] == "point"], 3)
+    assert [e[0] for e in log[:3]] == [0.0, 0.0, 0.0] and cold == {"point": 3}

@@ -20,6 +20,7 @@ Every obstacle starts at x = 5 m so a run can settle first.
 
 from __future__ import annotations
 
+import functools
 import re
 from pathlib import Path
 
@@ -41,6 +42,30 @@ def _tracks() -> dict:
             raise
         return {}
     return TRACKS
+
+
+@functools.lru_cache(maxsize=None)
+def built_track(name: str) -> Road:
+    """The built-in track ``name``, built once per process, its grid at its own spacing too.
+
+    The tracks are fixed, seeded roads, and a study runs each of them many times in one
+    worker: building the fatigue track took 0.4 s and the Belgian paving 0.2-0.4 s (its grid
+    0.15 s more) of every run on them, 75 % of a point-contact run over the 100 m fatigue
+    track. Nothing writes into a road's grid (a soil lays its bed from the road's heights,
+    as a copy), so every run may share it. Memory: about 32 MB per track held.
+    """
+    road = _tracks()[name]()
+    build_grid, default = road.grid, []
+
+    def grid(spacing=None):
+        if spacing is not None:
+            return build_grid(spacing)
+        if not default:
+            default.append(build_grid())
+        return default[0]
+
+    road.grid = grid  # the instance's, in front of the class's method
+    return road
 
 
 def road_names() -> list[str]:
@@ -122,9 +147,8 @@ def road_from_spec(spec: str | Road, force: bool = False) -> Road:
                                  "(A in m^2/(cycles/m), N the road exponent)", field="road")
             spec_ = (float(parts[0]), float(parts[1]))
         return RandomRoad(spec_, seed=seed, start=OBSTACLE_START, taper=2.0, force=force)
-    tracks = _tracks()
-    if text.lower() in tracks:
-        return tracks[text.lower()]()
+    if text.lower() in _tracks():
+        return built_track(text.lower())
     named = road_file(text)
     if named is not None:
         fmt, path_text, offset = named

@@ -18,7 +18,7 @@ from pathlib import Path
 
 
 from .evaluate import evaluate_study
-from .records import expected_cost
+from .records import expected_cost, kernel_kind
 from .results import Study
 from .soil import soil_curves
 from .spec import RunSpec, StudySpec, builtin_spec, example_spec, load_spec
@@ -48,7 +48,7 @@ def tasks(spec: StudySpec) -> list[dict]:
         if key not in seen:  # two labels with identical settings are one simulation
             seen.add(key)
             out.append({"key": key, "spec": run_record(run), "simulate": run.simulate_kwargs(),
-                        "cost": expected_cost(run)})
+                        "cost": expected_cost(run), "kernels": kernel_kind(run)})
     return out
 
 

@@ -256,3 +256,14 @@ def expected_cost(run: RunSpec) -> float:
     # the model's cost per simulated second (the registry's, limits.model_cost) orders the runs
     from ..tyre.registry import contact_model
     return simulated * model_cost(contact_model(run.model.contact))
+
+
+def kernel_kind(run: RunSpec) -> str:
+    """What compiled code a run needs, as a label: runs with equal labels share their kernels
+    (the rig's loop over the tyre's contact and handling models, the left wheel's and the
+    ground's types). Road, speed, load and pressure are values, not types: they share code.
+    Two labels for the same code only cost a second compile, never a wrong result
+    (:class:`tyrelab.study.runner.KernelWaves`)."""
+    return "|".join(str(part) for part in (run.tyre.file, run.model.contact, run.model.handling,
+                                           dict(run.model.options), run.rig, run.left_contact,
+                                           run.terrain))

@@ -143,10 +143,20 @@ def run_tasks(tasks: list[dict], store: Store, workers: int | None = None,
         # the longest runs first (Dask runs higher priorities first), so that no long run
         # starts last and leaves the other workers idle; pure=False: a rerun of a study
         # computes again what the store lacks
-        futures = {client.submit(execute, t, key=f"tyrelab-run-{t['key']}", pure=False,
-                                 priority=t.get("cost", 0.0)): t for t in todo}
-        for future in completed(as_completed(futures)):
+        waves = KernelWaves(todo, _slots(client, cluster))
+
+        def submit(batch):
+            return {client.submit(execute, t, key=f"tyrelab-run-{t['key']}", pure=False,
+                                  priority=t.get("cost", 0.0)): t for t in batch}
+
+        futures = submit(waves.release())
+        finished = as_completed(futures)
+        for future in completed(finished):
             task = futures[future]
+            more = submit(waves.release(task))
+            futures.update(more)
+            for f in more:
+                finished.add(f)
             key = task["key"]
             try:
                 status, result, wall = future.result()
@@ -177,6 +187,58 @@ def run_tasks(tasks: list[dict], store: Store, workers: int | None = None,
         _close(client, cluster, CLOSE_TIMEOUT if interrupted else None)
         store.write_index()
     return counts
+
+
+def _slots(client, cluster) -> int:
+    """How many runs the cluster computes at once (its workers' threads)."""
+    if cluster is not None:
+        return sum(w.nthreads for w in cluster.workers.values()) or 1
+    return sum(w["nthreads"] for w in client.scheduler_info()["workers"].values()) or 1
+
+
+class KernelWaves:
+    """When each task goes to the cluster, so that a cold compile cache is filled once per
+    kernel, not once per worker.
+
+    A run compiles its model's kernels at its first use in a worker process, or loads them
+    from the disk cache (:mod:`tyrelab.core.jit_cache`) if another process has saved them:
+    a ring on soil compiles for about 40 s, a trailer loop for 4-16 s. Submitted all at once,
+    the longest runs first, every worker of a fresh install started on the same model and
+    compiled the same kernels at the same time (the docs' example study on 2 workers compiled
+    the ring on soil twice, 50 s each). So the first run of each *kind* (``task["kernels"]``:
+    runs of one kind share their compiled code) goes first; the other runs of a kind wait
+    until one of its runs has finished (its kernels are then in the disk cache) -- unless a
+    worker would otherwise sit idle, when the costliest waiting run goes at once. With a warm
+    cache this only reorders runs while every worker is busy. Tasks without a kind never wait.
+    """
+
+    def __init__(self, tasks: list[dict], slots: int):
+        self.slots = slots
+        self.in_flight = 0
+        self.ready: list[dict] = []
+        self.waiting: list[dict] = []  # costliest first
+        self.compiled: set = set()
+        first = set()
+        for task in sorted(tasks, key=lambda t: -t.get("cost", 0.0)):
+            kind = task.get("kernels")
+            if kind is None or kind not in first:
+                first.add(kind)
+                self.ready.append(task)
+            else:
+                self.waiting.append(task)
+
+    def release(self, finished: dict | None = None) -> list[dict]:
+        """The tasks to submit now: at the start (``finished`` None), or after ``finished``."""
+        if finished is not None:
+            self.in_flight -= 1
+            self.compiled.add(finished.get("kernels"))
+        out, self.ready = self.ready, []
+        out += [t for t in self.waiting if t["kernels"] in self.compiled]
+        self.waiting = [t for t in self.waiting if t["kernels"] not in self.compiled]
+        while self.waiting and self.in_flight + len(out) < self.slots:
+            out.append(self.waiting.pop(0))
+        self.in_flight += len(out)
+        return out
 
 
 def _on_cluster(then, workers: int | None) -> None:
