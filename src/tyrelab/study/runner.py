@@ -14,8 +14,10 @@ thread each (numba kernels hold the GIL-free core for themselves), as many
 as cores by default; or a running scheduler (``tcp://HOST:8786``). Each
 worker compiles (or loads from the disk cache, :mod:`tyrelab.core.jit_cache`)
 a model's kernels at its first run of that model and keeps them for the
-rest. A run that raises is recorded with its error; a worker that dies is
-recorded the same way (Dask's ``KilledWorker``); the other runs go on.
+rest; :class:`KernelWaves` orders the submissions so that each kind of kernel is
+compiled by one worker while the others run other kinds. A run that raises
+is recorded with its error; a worker that dies is recorded the same way
+(Dask's ``KilledWorker``); the other runs go on.
 Ctrl-C cancels the runs in flight and stops the cluster; finished runs
 stay in the store. The simulations are deterministic, so the results do
 not depend on the number of workers or the order in which runs finish.
