@@ -229,7 +229,8 @@ def test_a_cold_cache_is_filled_once_per_kind_of_kernel():
     """The thesis campaign's shape (6 kinds, the ring runs the longest) on 2 and 4 workers:
     every kind's first run ends before another run of its kind starts, every run runs once,
     and (asserted inside) no worker waits while runs do. With one kind and 3 workers the
-    workers are not left idle: all three start at once."""
+    workers are not left idle: all three start at once; with as many slots as runs (a running
+    scheduler's) nothing waits."""
     costs = {"ring": 20.0, "ring-tp": 21.0, "enveloping": 3.0, "edge": 2.5, "volume": 1.7,
              "point": 0.8}
     tasks = [{"key": f"{kind}{i}", "kernels": kind, "cost": cost * (1 + 0.01 * i)}
@@ -240,3 +241,6 @@ def test_a_cold_cache_is_filled_once_per_kind_of_kernel():
         assert cold == {kind: 1 for kind in costs}, slots
     log, cold = _play([t for t in tasks if t["kernels"] == "point"], 3)
     assert [e[0] for e in log[:3]] == [0.0, 0.0, 0.0] and cold == {"point": 3}
+    # a running scheduler's workers may not share this disk: every run goes at once
+    log, _ = _play(tasks, len(tasks))
+    assert all(e[0] == 0.0 for e in log)

@@ -145,7 +145,7 @@ def run_tasks(tasks: list[dict], store: Store, workers: int | None = None,
         # the longest runs first (Dask runs higher priorities first), so that no long run
         # starts last and leaves the other workers idle; pure=False: a rerun of a study
         # computes again what the store lacks
-        waves = KernelWaves(todo, _slots(client, cluster))
+        waves = KernelWaves(todo, _slots(cluster, todo))
 
         def submit(batch):
             return {client.submit(execute, t, key=f"tyrelab-run-{t['key']}", pure=False,
@@ -191,11 +191,13 @@ def run_tasks(tasks: list[dict], store: Store, workers: int | None = None,
     return counts
 
 
-def _slots(client, cluster) -> int:
-    """How many runs the cluster computes at once (its workers' threads)."""
-    if cluster is not None:
-        return sum(w.nthreads for w in cluster.workers.values()) or 1
-    return sum(w["nthreads"] for w in client.scheduler_info()["workers"].values()) or 1
+def _slots(cluster, todo: list[dict]) -> int:
+    """How many runs :class:`KernelWaves` keeps in flight: the local cluster's worker threads;
+    with a running scheduler every run at once (its workers may sit on other machines,
+    whose compile caches are not this one's, and may join later)."""
+    if cluster is None:
+        return max(len(todo), 1)
+    return sum(w.nthreads for w in cluster.workers.values()) or 1
 
 
 class KernelWaves:
@@ -211,7 +213,8 @@ class KernelWaves:
     runs of one kind share their compiled code) goes first; the other runs of a kind wait
     until one of its runs has finished (its kernels are then in the disk cache) -- unless a
     worker would otherwise sit idle, when the costliest waiting run goes at once. With a warm
-    cache this only reorders runs while every worker is busy. Tasks without a kind never wait.
+    cache this only reorders runs while every worker is busy. Tasks without a kind never wait;
+    with ``slots`` as many as the tasks (a running scheduler, :func:`_slots`) none does.
     """
 
     def __init__(self, tasks: list[dict], slots: int):
