@@ -25,10 +25,6 @@ from tyrelab.errors import InputError
 from tyrelab.io_atomic import (atomic_output, atomic_write, atomic_write_text, check_output_path,
                                stale_temporaries)
 
-#: one worker runs this module (pytest-xdist's loadgroup): its module fixtures are costly and would
-#: otherwise run once on each worker that gets one of its tests
-pytestmark = pytest.mark.xdist_group("atomic_write")
-
 linux = pytest.mark.skipif(not Path("/proc/self/status").exists(), reason="needs Linux /proc")
 
 

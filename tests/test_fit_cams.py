@@ -10,10 +10,6 @@ from tyrelab.errors import InputError
 from tyrelab.fit.cams import (COLUMNS, cam_count_study, check_counts, recommend, summarise,
                               tir_lines)
 
-#: one worker runs this module (pytest-xdist's loadgroup): its module fixtures are costly and would
-#: otherwise run once on each worker that gets one of its tests
-pytestmark = pytest.mark.xdist_group("fit_cams")
-
 # a short run over the 50 mm cleat: the wheel meets it at about 1.4 s at 12 km/h
 SHORT = dict(roads=("cleat:50x50",), speeds=(12 / 3.6,), duration=2.5, repeat=1)
 

@@ -15,10 +15,6 @@ import pytest
 from chromium import INSTALL_HINT, find_chromium, parse, render_dom
 from tyrelab.report.study_report import write_study_report
 
-#: one worker runs this module (pytest-xdist's loadgroup): its module fixtures are costly and would
-#: otherwise run once on each worker that gets one of its tests
-pytestmark = pytest.mark.xdist_group("report_consistency")
-
 #: Table 5-2 (50 mm cleat, 12 km/h, LC1): m%RE, 80%RE, RMS of the disturbance, m%RE,
 #: RMS of the response, typed from the thesis
 T52 = {"FTire TP": (6, 10, 752, 10, 2256), "OPC lk": (37, 53, 4624, 35, 8410),

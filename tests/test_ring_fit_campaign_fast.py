@@ -51,10 +51,6 @@ from tyrelab.tyre.ring.modal import ring_modal
 from tyrelab.tyre.ring.parameters import RingParameters, ring_parameters
 from tyrelab.tyre.tir import read_tir, write_tir
 
-#: one worker runs this module (pytest-xdist's loadgroup): its module fixtures are costly and would
-#: otherwise run once on each worker that gets one of its tests
-pytestmark = pytest.mark.xdist_group("ring_fit_campaign_fast")
-
 #: fitted and held-out presses
 PRESSURES = {300e3: "fit", 550e3: "fit", 100e3: "held_out"}
 DEFLECTIONS = np.array([0.02, 0.04, 0.06, 0.08])

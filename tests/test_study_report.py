@@ -41,10 +41,6 @@ from tyrelab.validate.tables import COLOURS
 
 from chromium import find_chromium, parse, render_dom, INSTALL_HINT
 
-#: one worker runs this module (pytest-xdist's loadgroup): its module fixtures are costly and would
-#: otherwise run once on each worker that gets one of its tests
-pytestmark = pytest.mark.xdist_group("study_report")
-
 SPEED, LOAD = 18.0, "LC1"
 #: the model variants, in the spec's order
 MODELS = ["OPC lk", "OPC nlk", "3D VC nlk", "3D ENV nlk"]

@@ -20,10 +20,6 @@ import tyrelab
 from tyrelab.study.runner import KernelWaves, run_tasks
 from tyrelab.study.store import Store
 
-#: one worker runs this module (pytest-xdist's loadgroup): its module fixtures are costly and would
-#: otherwise run once on each worker that gets one of its tests
-pytestmark = pytest.mark.xdist_group("study_runner")
-
 
 def _task(key, model, road, speed_kmh):
     kwargs = dict(model=model, road=road, speed=speed_kmh / 3.6, load="LC1", duration=1.5)

@@ -22,10 +22,6 @@ from tyrelab.study.spec import parse_spec
 
 from chromium import INSTALL_HINT, find_chromium, parse, render_dom
 
-#: one worker runs this module (pytest-xdist's loadgroup): its module fixtures are costly and would
-#: otherwise run once on each worker that gets one of its tests
-pytestmark = pytest.mark.xdist_group("study_soil")
-
 LOAD, SPEED_KMH, SLIPS, DURATION = 23300.0, 3.6, (0.0, 0.2, 0.4), 2.0
 #: the soil test's model variants: label -> (contact, stiffness, handling)
 SOIL_MODELS = {"rigid wheel": ("rigid", None, None), "OPC lk": ("point", "linear", "none")}

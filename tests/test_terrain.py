@@ -37,10 +37,6 @@ from tyrelab.road.terrain import (TerrainKind, terrain_block_max, terrain_blocks
                                   terrain_names, terrain_penetration, terrain_range, terrain_row,
                                   terrain_row_height, terrain_zmax)
 
-#: one worker runs this module (pytest-xdist's loadgroup): its module fixtures are costly and would
-#: otherwise run once on each worker that gets one of its tests
-pytestmark = pytest.mark.xdist_group("terrain")
-
 R0 = 0.6715
 
 

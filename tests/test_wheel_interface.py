@@ -23,10 +23,6 @@ from tyrelab.tyre.library import load_tyre
 from tyrelab.tyre.model import TyreModel
 from tyrelab.tyre.registry import contact_models, handling_models
 
-#: one worker runs this module (pytest-xdist's loadgroup): its module fixtures are costly and would
-#: otherwise run once on each worker that gets one of its tests
-pytestmark = pytest.mark.xdist_group("wheel_interface")
-
 TOY_MODULE = '''
 """A toy contact model: a rigid disc touching the road straight below its centre."""
 from typing import NamedTuple
