@@ -126,3 +126,19 @@ def test_building_a_track_grid_stays_within_64_mb(name):
         tracemalloc.stop()
     assert grid.z.shape[1] == 401 and grid.dx <= 0.01 and grid.dy <= 0.01
     assert peak <= 64e6
+
+
+def test_a_track_is_built_once_and_runs_leave_it_as_built(roads):
+    """``road_from_spec`` builds each track once per process (``road.spec.built_track``: a
+    study runs each many times), which is only right while nothing writes into its grid:
+    a trailer run over the paving, on rigid ground and on a soil laid over it (the soil's
+    bed is written as the wheel passes), leaves the shared grid equal to a fresh build's."""
+    import tyrelab
+
+    shared = road_from_spec("belgian-paving")
+    assert road_from_spec("BELGIAN-PAVING") is shared and shared.grid() is shared.grid()
+    for terrain in (None, "sandy-loam"):  # 2 s at 18 km/h: over the first 5 m of blocks
+        tyrelab.simulate(model="point", road="belgian-paving", terrain=terrain, speed=5.0,
+                         duration=2.0, progress=False)
+    fresh = roads["belgian-paving"].grid()
+    assert np.array_equal(shared.grid().z, fresh.z) and shared.grid().x0 == fresh.x0
