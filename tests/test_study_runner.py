@@ -240,3 +240,19 @@ def test_a_cold_cache_is_filled_once_per_kind_of_kernel():
     # a running scheduler's workers may not share this disk: every run goes at once
     log, _ = _play(tasks, len(tasks))
     assert all(e[0] == 0.0 for e in log)
+
+
+def test_the_campaigns_runs_fall_into_one_kind_per_contact_model():
+    """``kernel_kind`` labels runs by the compiled code they need: in the thesis campaign (one
+    tyre, the trailer, a point left wheel, no soil) that is the contact model alone -- ring and
+    ring-tp apart, the stiffness law (a value, not a type) not -- whatever the road, speed or load."""
+    from tyrelab.study import tasks
+    from tyrelab.study.spec import builtin_spec
+
+    kinds = {}
+    for t in tasks(builtin_spec()):
+        kinds.setdefault(t["kernels"], set()).add(t["spec"]["contact"])
+    assert sorted(c for (c,) in kinds.values()) == sorted(
+        ["point", "volume", "enveloping", "enveloping-edge", "ring", "ring-tp"])
+    roads = {t["spec"]["road"] for t in tasks(builtin_spec()) if t["spec"]["contact"] == "ring"}
+    assert len(roads) > 3  # one kind spans every road it runs on

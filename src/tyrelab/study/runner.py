@@ -220,28 +220,26 @@ class KernelWaves:
     def __init__(self, tasks: list[dict], slots: int):
         self.slots = slots
         self.in_flight = 0
-        self.ready: list[dict] = []
-        self.waiting: list[dict] = []  # costliest first
-        self.compiled: set = set()
-        first = set()
-        for task in sorted(tasks, key=lambda t: -t.get("cost", 0.0)):
-            kind = task.get("kernels")
-            if kind is None or kind not in first:
-                first.add(kind)
-                self.ready.append(task)
-            else:
-                self.waiting.append(task)
+        self.waiting = sorted(tasks, key=lambda t: -t.get("cost", 0.0))  # costliest first
+        self.started: set = set()   # kinds with a run submitted
+        self.compiled: set = set()  # kinds with a run finished
 
     def release(self, finished: dict | None = None) -> list[dict]:
         """The tasks to submit now: at the start (``finished`` None), or after ``finished``."""
         if finished is not None:
             self.in_flight -= 1
             self.compiled.add(finished.get("kernels"))
-        out, self.ready = self.ready, []
-        out += [t for t in self.waiting if t["kernels"] in self.compiled]
-        self.waiting = [t for t in self.waiting if t["kernels"] not in self.compiled]
-        while self.waiting and self.in_flight + len(out) < self.slots:
-            out.append(self.waiting.pop(0))
+        out, held = [], []
+        for task in self.waiting:
+            kind = task.get("kernels")
+            if kind is None or kind in self.compiled or kind not in self.started:
+                self.started.add(kind)
+                out.append(task)
+            else:
+                held.append(task)
+        while held and self.in_flight + len(out) < self.slots:  # no worker idle
+            out.append(held.pop(0))
+        self.waiting = held
         self.in_flight += len(out)
         return out
 
