@@ -11,6 +11,12 @@
   runs whose speed differs by up to 0.03 % (after which the tread blocks meet
   the cleat's edges at another phase: FX, FY, MX scatter by up to 9-31 %
   between them, FZW by < 1 %), compared as ensembles.
+* On the Belgian paving the explicit reference's FX, FY and MX are not
+  converged at its own step (the same model at 10, 5 and 2.6 us moves away
+  from it by 2-5 %, docs/ring.md "Performance"), so there those channels are
+  judged against the model at a 2.6 us step (``tests/data/ring_fine``,
+  ``tools/ring_fine_reference.py``): the default step must be no further from
+  it than the explicit integrator was.
   The undamped free-spinning ring's energy test is in ``test_ring_model``.
 """
 
@@ -31,6 +37,7 @@ from tyrelab.tyre.ring.model import nominal_state, ring_params
 from tyrelab.tyre.ring.parameters import ring_parameters, stable_step
 
 EXPLICIT = Path(__file__).parent / "data" / "ring_explicit"
+FINE = Path(__file__).parent / "data" / "ring_fine"
 
 
 @pytest.fixture(scope="module")
@@ -113,12 +120,16 @@ def test_halving_the_step_changes_the_cleat_peak_by_less_than_half_a_percent(xzl
     assert full == pytest.approx(half, rel=0.005)
 
 
-def _ensemble():
-    with open(EXPLICIT / "ensemble.csv", newline="") as f:
+def _ensemble(folder):
+    with open(folder / "ensemble.csv", newline="") as f:
         return list(csv.DictReader(f))
 
 
-ENSEMBLE = _ensemble()
+ENSEMBLE = _ensemble(EXPLICIT)
+#: the ensembles at a 2.6 us step, where the explicit reference is not converged
+FINE_ENSEMBLE = _ensemble(FINE)
+#: the channels judged against the fine ensemble, by case
+FINE_CHANNELS = {"trailer-ring-paving-LC1": ("FX", "FY", "MX")}
 SPEED_CHANGES = sorted({float(r["speed_change"]) for r in ENSEMBLE})
 ROADS = {"cleat": ("cleat:50x50", 2.5), "oblique": ("cleat:50x50@45", 2.5),
          "paving": ("belgian-paving", 20.0 / (12 / 3.6))}
@@ -132,6 +143,15 @@ def _metrics(signal):
             for c in ("FZW", "FX", "FY", "MX")}
 
 
+def _values(rows, case, channel, what):
+    return np.array([float(r[what]) for r in rows if r["case"] == case and r["channel"] == channel])
+
+
+def _standard_error(a, b):
+    """Standard error of the difference of two ensembles' means."""
+    return math.sqrt(a.var(ddof=1) / a.size + b.var(ddof=1) / b.size)
+
+
 @pytest.mark.parametrize("case", [
     pytest.param(c, marks=() if c in FAST_CASES else pytest.mark.slow)
     for c in sorted({r["case"] for r in ENSEMBLE})])
@@ -139,6 +159,10 @@ def test_ring_agrees_with_the_explicit_integrator(case):
     """Ensembles of five runs each (the speed changed by 0, +-1e-4, +-3e-4): the
     means of peak and RMS agree within 1 % of the explicit mean or, where the
     runs scatter more, within three standard errors of the difference.
+
+    Where the explicit reference is not converged (:data:`FINE_CHANNELS`), the
+    default step's mean is no further from the fine ensemble's than the explicit
+    mean is, give or take three standard errors of the difference.
 
     MX on the perpendicular cleat is left out: it is zero by symmetry, and
     what both integrators give (RMS about 20 N m, 0.005 % of FZ x R0) is the
@@ -154,12 +178,19 @@ def test_ring_agrees_with_the_explicit_integrator(case):
         if channel == "MX" and road == "cleat":
             continue
         for k, what in ((0, "peak"), (1, "rms")):
-            old = np.array([float(r[what]) for r in ENSEMBLE
-                            if r["case"] == case and r["channel"] == channel])
+            old = _values(ENSEMBLE, case, channel, what)
             new = np.array([m[channel][k] for m in runs])
+            if channel in FINE_CHANNELS.get(case, ()):
+                fine = _values(FINE_ENSEMBLE, case, channel, what)
+                difference = new.mean() - fine.mean()
+                allowed = abs(old.mean() - fine.mean()) + 3.0 * _standard_error(fine, new)
+                assert abs(difference) <= allowed, (
+                    f"{channel} {what}: {difference / fine.mean():+.2%} of the fine step's "
+                    f"{fine.mean():.4g}, the explicit integrator "
+                    f"{(old.mean() - fine.mean()) / fine.mean():+.2%} (allowed {allowed / fine.mean():.2%})")
+                continue
             difference = new.mean() - old.mean()
-            standard_error = math.sqrt(old.var(ddof=1) / old.size + new.var(ddof=1) / new.size)
-            allowed = max(0.01 * old.mean(), 3.0 * standard_error)
+            allowed = max(0.01 * old.mean(), 3.0 * _standard_error(old, new))
             assert abs(difference) <= allowed, (
                 f"{channel} {what}: {difference / old.mean():+.2%} of {old.mean():.4g} "
                 f"(allowed {allowed / old.mean():.2%})")
