@@ -73,6 +73,29 @@ def test_short_ring_traces_are_the_start_of_the_full_ones():
             assert golden.relative_difference(full[channel][:n], short[channel]) <= 1e-9, (name, channel)
 
 
+def test_no_kernel_is_compiled_with_fastmath():
+    """The golden traces hold on any x86-64 only if no kernel lets LLVM fuse multiply-adds or
+    reassociate sums (numba's ``fastmath``): those results depend on the CPU's floating-point
+    features. (The cams' row search had it until 2026-11-26: 5 % faster, 4e-12 off.)"""
+    import importlib
+    import pkgutil
+
+    from numba.core.dispatcher import Dispatcher
+
+    import tyrelab
+
+    flagged, kernels = [], 0
+    for info in pkgutil.walk_packages(tyrelab.__path__, "tyrelab."):
+        module = importlib.import_module(info.name)
+        for name, obj in vars(module).items():
+            if isinstance(obj, Dispatcher) and obj.__module__ == info.name:
+                kernels += 1
+                if obj.targetoptions.get("fastmath"):
+                    flagged.append(f"{info.name}.{name}")
+    assert kernels > 100, kernels
+    assert flagged == []
+
+
 if __name__ == "__main__":
     if sys.argv[1:] != ["record"]:
         sys.exit("usage: python tests/test_golden.py record   (writes the short ring traces)")

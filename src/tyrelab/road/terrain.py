@@ -53,7 +53,7 @@ Every interface function is an ``@overload(..., inline="always")`` whose body
 calls the registered function: the caller's code is the registered function's
 code (a call where that function is a plain ``njit``, its body where it is
 ``inline="always"``), so the interface adds no run time and a query inlined
-into a ``fastmath`` kernel (the cams) keeps that kernel's flags, as before.
+into a kernel keeps that kernel's compile flags.
 :func:`terrain_row_height` is derived from the lattice (a plain inline
 function), so a terrain does not give it. numba's handling of inline overloads
 is tuned for these (:func:`_tune_inlining`, numba internals): each call is
