@@ -13,7 +13,7 @@
   between them, FZW by < 1 %), compared as ensembles.
 * On the Belgian paving the explicit reference's FX, FY and MX are not
   converged at its own step (the same model at 10, 5 and 2.6 us moves away
-  from it by 2-5 %, docs/ring.md "Performance"), so there those channels are
+  from it by 2-4 % in RMS, docs/ring.md "Performance"), so there those channels are
   judged against the model at a 2.6 us step (``tests/data/ring_fine``,
   ``tools/ring_fine_reference.py``): the default step must be no further from
   it than the explicit integrator was.

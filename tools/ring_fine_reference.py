@@ -11,7 +11,7 @@ FX, FY, MX per run. About 8 minutes on one core.
 
 Why a second reference: on the paving the tangential channels of the explicit
 reference are not converged at its own step: the same model at 10 and 5 us
-differs from it by up to 3 % in FX, FY and MX RMS, more than the 1 % the test
+differs from it by 2-3 % in FX, FY and MX RMS, more than the 1 % the test
 allows (docs/ring.md, "Performance"). Regenerate this file whenever the ring's
 physics changes, as the golden traces (``tools/golden.py``).
 """
