@@ -107,6 +107,15 @@ def test_a_step_above_the_stability_limit_is_refused(xzl):
         ring_params(xzl, dt_max=1.01 * limit)
 
 
+def test_the_cost_estimate_uses_the_rings_internal_step():
+    """``tyrelab.limits`` estimates a run's cost from the ring's default internal step; it
+    must be the step the ring takes (both were 1/6 ms, now 1/4 ms)."""
+    from tyrelab.limits import DYNAMIC_INTERNAL_STEP
+    from tyrelab.tyre.ring.model import ACCURATE_STEP
+
+    assert DYNAMIC_INTERNAL_STEP == ACCURATE_STEP
+
+
 def _cleat_peak(xzl, **options):
     from tyrelab.rig.trailer import Trailer
     model = TyreModel(xzl, "ring", options=options)

@@ -29,9 +29,9 @@ MAX_WALL_TIME = 600.0
 #: cost of a contact model that states none (``ContactModel.cost``, the registry), analytic /
 #: with its own dynamics [s per simulated s at 1 ms on one core]
 ANALYTIC_COST, DYNAMIC_COST = 0.015, 1.0
-#: internal step of the models with their own dynamics (the ring's, at 100 segments) [s]:
-#: below it their cost grows as 1/dt
-DYNAMIC_INTERNAL_STEP = 1.0 / 6000.0
+#: internal step of the models with their own dynamics (the ring's, at 100 segments:
+#: ``tyrelab.tyre.ring.model.ACCURATE_STEP``) [s]: below it their cost grows as 1/dt
+DYNAMIC_INTERNAL_STEP = 1.0 / 4000.0
 #: columns of a run's output array (the trailer has 31, the quarter vehicle 34), rounded up
 OUTPUT_CHANNELS = 36
 #: copies of the output table a run holds at once (array, table, file buffers)
