@@ -29,8 +29,12 @@ MAX_WALL_TIME = 600.0
 #: cost of a contact model that states none (``ContactModel.cost``, the registry), analytic /
 #: with its own dynamics [s per simulated s at 1 ms on one core]
 ANALYTIC_COST, DYNAMIC_COST = 0.015, 1.0
-#: internal step of the models with their own dynamics (the ring's, at 100 segments:
-#: ``tyrelab.tyre.ring.model.ACCURATE_STEP``) [s]: below it their cost grows as 1/dt
+#: the ring's largest default internal step [s] (``tyrelab.tyre.ring.model.ACCURATE_STEP``), set
+#: by accuracy where stability would allow more (docs/ring.md, "Performance": the cleat peak
+#: within 0.5 % of half the step; on the Belgian paving the tangential forces no further from
+#: a 96 times finer step than the explicit integrator was at 35.8 us). Kept here, below the
+#: models, because a run's cost estimate needs it too: a model with its own dynamics costs
+#: more only for rig steps below it
 DYNAMIC_INTERNAL_STEP = 1.0 / 4000.0
 #: columns of a run's output array (the trailer has 31, the quarter vehicle 34), rounded up
 OUTPUT_CHANNELS = 36
@@ -326,7 +330,8 @@ def run_wall_time(models, duration: float, dt: float) -> float:
 
     An analytic model costs the same per step, so its time grows as 1/dt; a model
     with its own dynamics advances in internal steps of about
-    :data:`DYNAMIC_INTERNAL_STEP`, so only a rig step below that costs more.
+    :data:`DYNAMIC_INTERNAL_STEP` (the ring's, at 100 segments), so only a rig step
+    below that costs more.
     """
     total = 0.0
     for m in models:

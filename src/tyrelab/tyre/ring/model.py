@@ -16,6 +16,7 @@ import math
 import numpy as np
 
 from ...errors import InputError
+from ...limits import DYNAMIC_INTERNAL_STEP
 from ..registry import ContactModel, register_contact
 from .kernel import ring_step
 from .parameters import ring_parameters, stable_step, tread_half_width
@@ -30,10 +31,8 @@ N_BLOCKS = 10
 #: relaxation damping rate [1/s] used to find static equilibria
 RELAX_RATE = 250.0
 #: largest default internal step [s], set by accuracy where stability would allow
-#: more (docs/ring.md, "Performance": the cleat peak within 0.5 % of half the step; on
-#: the Belgian paving the tangential forces no further from a 96 times finer step than
-#: the explicit integrator was at 35.8 us)
-ACCURATE_STEP = 1.0 / 4000.0
+#: more (:data:`tyrelab.limits.DYNAMIC_INTERNAL_STEP`, where it is set and why)
+ACCURATE_STEP = DYNAMIC_INTERNAL_STEP
 #: samples across a block's width in a static test on a road that varies across
 #: the wheel (a longitudinal cleat): one every ~10 mm
 STATIC_LATERAL_SAMPLES = 4
