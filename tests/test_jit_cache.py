@@ -44,6 +44,8 @@ print(json.dumps({
     "load": load,
     "hits": sum(sum(d.stats.cache_hits.values()) for d in ours),
     "misses": sum(sum(d.stats.cache_misses.values()) for d in ours),
+    "compiled": sorted(f"{d.py_func.__qualname__}{sig}" for d in ours
+                       for sig, n in d.stats.cache_misses.items() if n),
 }))
 """
 
@@ -229,6 +231,8 @@ def test_edits_with_the_user_cache(tmp_path):
 
 
 def test_two_processes_compile_into_one_cache_at_once(tmp_path):
+    """Started together on a cold cache, two processes compile each kernel once between them
+    (the second waits on the first's compile lock and loads its code), and agree."""
     src = copy_package(tmp_path)
     env = environment(tmp_path, src, tmp_path / "numba-cache")
     procs = [subprocess.Popen([sys.executable, "-c", RUN], env=env, cwd=tmp_path, text=True,
@@ -236,8 +240,11 @@ def test_two_processes_compile_into_one_cache_at_once(tmp_path):
     outputs = [p.communicate(timeout=300) for p in procs]
     for proc, (_, stderr) in zip(procs, outputs):
         assert proc.returncode == 0, stderr
-    loads = [result(stdout, src)["load"] for stdout, _ in outputs]
-    assert loads[0] == loads[1] > 0.0
+    got = [result(stdout, src) for stdout, _ in outputs]
+    assert got[0]["load"] == got[1]["load"] > 0.0
+    compiled = [set(g["compiled"]) for g in got]
+    assert compiled[0] | compiled[1]                # a cold cache: something was compiled ...
+    assert not compiled[0] & compiled[1]            # ... and no signature by both processes
     assert not list((tmp_path / "numba-cache").rglob("*.tmp.*"))  # every write was renamed into place
 
 
@@ -270,14 +277,34 @@ try:
     road_height(1, 2, 3)  # a typing error inside a compile of ours
 except numba.TypingError:
     pass
+
+
+def free(path):  # another open file description of the lock: takes it unless it is held
+    import fcntl, os
+    fd = os.open(path, os.O_RDWR)
+    try:
+        fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        return True
+    except OSError:
+        return False
+    finally:
+        os.close(fd)
+
+
+from pathlib import Path
+from tyrelab.core.jit_cache import cache_dir
+locks = sorted(Path(cache_dir()).rglob("*.lock"))
 print(json.dumps({"nested": len(seen), "paused": not any(seen), "after_run": after_run,
-                  "after_error": gc.isenabled()}))
+                  "after_error": gc.isenabled(), "locks": len(locks),
+                  "free": [free(p) for p in locks],
+                  "failed": sum("road_height" in p.name for p in locks)}))
 """
 
 
 def test_collector_paused_while_compiling_and_resumed(tmp_path):
     """The cyclic collector is off during a compile of the package's kernels and on again
-    afterwards, also when the compile fails (a user's process must keep its collector)."""
+    afterwards, also when the compile fails (a user's process must keep its collector); the
+    failed compile's lock is not held after it (a waiting process would wait in vain)."""
     env = dict(os.environ, HOME=str(tmp_path), NUMBA_CACHE_DIR=str(tmp_path / "cache"))
     env.pop("XDG_CACHE_HOME", None)
     out = subprocess.run([sys.executable, "-c", GC_RUN], capture_output=True, text=True, env=env,
@@ -286,6 +313,9 @@ def test_collector_paused_while_compiling_and_resumed(tmp_path):
     assert got["nested"] > 5  # the probe saw the kernels' nested compiles
     assert got["paused"]
     assert got["after_run"] and got["after_error"]
+    # every compile took its signature's lock and gave it back, the failed one too
+    assert got["locks"] > 5 and got["failed"] >= 2     # road_height: the run's and the failure's
+    assert all(got["free"])
 
 
 def test_the_numba_range_pinned_is_the_range_tested_and_installed():

@@ -34,12 +34,35 @@ SETTLE_DAMPING = 1.0
 
 
 @nb.njit(cache=True)
-def _vertical_force(wheel, x, y, z):
-    """The ground's vertical force on the wheel standing still with its centre at (x, y, z)
-    (dt = 0: the shear does not grow; the nodes' plastic sinkage does -- call on a copy of
-    the ground to leave no rut)."""
-    pose = WheelPose(x, y, z, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0)
-    return wheel_step(wheel, pose, 0.0).fz
+def _stand(wheel, x, y, z, mass, damping, dt, n_max, still):
+    """``(z, fz)``: the wheel standing still at (x, y) on its ground, its centre at ``z``.
+
+    ``n_max`` = 0: the ground's vertical force [N] at ``z`` (dt = 0: the shear does not grow;
+    the nodes' plastic sinkage does -- call on a copy of the ground to leave no rut).
+    Else: the centre free vertically under a dead weight of ``mass`` [kg], damped by
+    ``damping`` [N s/m], stepped by ``dt`` [s] until it moves slower than ``still`` [m/s] (at
+    most ``n_max`` steps); the centre height [m] and the force there.
+
+    One kernel for both, not two: each kernel that steps the wheel compiles the whole model
+    again (the ring on soil: 20-50 s cold), and a settling needs both."""
+    if n_max == 0:
+        return z, wheel_step(wheel, WheelPose(x, y, z, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0), 0.0).fz
+    vz = 0.0
+    fz = 0.0
+    for _ in range(n_max):
+        f = wheel_step(wheel, WheelPose(x, y, z, 0.0, 1.0, 0.0, 0.0, 0.0, vz, 0.0), dt)
+        fz = f.fz
+        vz += dt * (fz - mass * G - damping * vz) / mass
+        z += dt * vz
+        if abs(vz) < still and abs(fz - mass * G) < 1e-3 * mass * G:
+            break
+    return z, fz
+
+
+def _vertical_force(wheel, x: float, y: float, z: float) -> float:
+    """The ground's vertical force [N] on the wheel standing still with its centre at
+    (x, y, z) (:func:`_stand` with no step)."""
+    return _stand(wheel, float(x), float(y), float(z), 0.0, 0.0, 0.0, 0, 0.0)[1]
 
 
 def _fresh(wheel, ground):
@@ -47,21 +70,6 @@ def _fresh(wheel, ground):
     ground without state (no ``fresh_copy``) as it is."""
     copy = getattr(ground, "fresh_copy", None)
     return wheel._replace(road=copy().surface()) if copy else wheel
-
-
-@nb.njit(cache=True)
-def _settle_steps(wheel, mass, x, y, z, damping, dt, n_max, still):
-    """The wheel at rest under a dead weight of ``mass`` [kg], its centre free vertically and
-    damped by ``damping`` [N s/m], stepped until it moves slower than ``still`` [m/s] (at most
-    ``n_max`` steps); returns the centre height [m]."""
-    vz = 0.0
-    for _ in range(n_max):
-        f = wheel_step(wheel, WheelPose(x, y, z, 0.0, 1.0, 0.0, 0.0, 0.0, vz, 0.0), dt)
-        vz += dt * (f.fz - mass * G - damping * vz) / mass
-        z += dt * vz
-        if abs(vz) < still and abs(f.fz - mass * G) < 1e-3 * mass * G:
-            break
-    return z
 
 
 @nb.njit(cache=True)
@@ -97,8 +105,9 @@ def settle(wheel, ground, load: float, x: float, radius: float, y: float = 0.0,
     if dynamic:
         mass = load / G
         stiffness = load / (radius / 20.0)
-        z0 = _settle_steps(wheel, mass, x, y, z0, SETTLE_DAMPING * 2.0 * np.sqrt(stiffness * mass),
-                           dt, int(SETTLE_TIME / dt), SETTLE_SPEED)
+        z0 = _stand(wheel, float(x), float(y), z0, mass,
+                    SETTLE_DAMPING * 2.0 * np.sqrt(stiffness * mass), float(dt),
+                    int(SETTLE_TIME / dt), SETTLE_SPEED)[0]
     return z0
 
 

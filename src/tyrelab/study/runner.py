@@ -212,9 +212,11 @@ class KernelWaves:
     the ring on soil twice, 50 s each). So the first run of each *kind* (``task["kernels"]``:
     runs of one kind share their compiled code) goes first; the other runs of a kind wait
     until one of its runs has finished (its kernels are then in the disk cache) -- unless a
-    worker would otherwise sit idle, when the costliest waiting run goes at once. With a warm
-    cache this only reorders runs while every worker is busy. Tasks without a kind never wait;
-    with ``slots`` as many as the tasks (a running scheduler, :func:`_slots`) none does.
+    worker would otherwise sit idle, when the costliest waiting run goes at once (it then waits
+    on the kernel's compile lock, :mod:`tyrelab.core.jit_cache`, and loads the code instead of
+    compiling it a second time). With a warm cache this only reorders runs while every worker
+    is busy. Tasks without a kind never wait; with ``slots`` as many as the tasks (a running
+    scheduler, :func:`_slots`) none does.
     """
 
     def __init__(self, tasks: list[dict], slots: int):
