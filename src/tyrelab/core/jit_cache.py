@@ -60,6 +60,7 @@ collector runs again as soon as the outermost compile ends.
 
 from __future__ import annotations
 
+import errno
 import gc
 import hashlib
 from importlib import metadata
@@ -241,7 +242,7 @@ class _CompileLock:
     """An exclusive ``flock`` on ``path`` (created), taken by polling so that a signal's
     handler runs while a process waits; after :data:`LOCK_PATIENCE` seconds the waiter goes
     on without it (it then compiles for itself, as without a lock). Where ``fcntl`` does
-    not exist (Windows) it locks nothing."""
+    not exist (Windows) or the file system cannot lock, it locks nothing."""
 
     def __init__(self, path: str):
         self.path = path
@@ -261,8 +262,11 @@ class _CompileLock:
                 fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
                 self.fd = fd
                 return
-            except OSError:
-                if time.monotonic() > deadline:
+            except OSError as exc:
+                # held by another process: wait; no locking on this file system (ENOLCK on
+                # some network mounts): go on without it, as without the lock
+                if exc.errno not in (errno.EAGAIN, errno.EWOULDBLOCK, errno.EACCES) \
+                        or time.monotonic() > deadline:
                     os.close(fd)
                     return
                 time.sleep(pause)
