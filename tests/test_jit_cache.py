@@ -212,6 +212,33 @@ def test_a_file_system_that_cannot_lock_does_not_stall_a_compile(tmp_path, monke
     assert lock.fd is None and len(calls) > 3     # held elsewhere: retried until the patience ends
 
 
+def test_a_signature_this_process_compiles_already_takes_no_second_lock(tmp_path, monkeypatch):
+    """A miss of a signature this process holds the lock of (a recursive kernel typing itself)
+    returns at once: a second flock on the same file would wait for this very process."""
+    import fcntl
+
+    from numba import types
+    from numba.core.registry import cpu_target
+
+    from tyrelab.road.grid import road_height
+
+    monkeypatch.setattr(jit_cache, "_folder", tmp_path)
+    monkeypatch.setattr(jit_cache, "LOCK_PATIENCE", 0.05)  # a wrong wait ends, and fails below
+    tries = []
+    real = fcntl.flock
+    monkeypatch.setattr(fcntl, "flock", lambda fd, op: (tries.append(op), real(fd, op))[1])
+    cache = jit_cache._KernelCache(road_height.py_func)
+    sig = (types.float32, types.float32, types.float32)     # never compiled: a miss
+    try:
+        assert cache.load_overload(sig, cpu_target.target_context) is None
+        assert sig in cache._held and len(tries) == 1       # the miss took the lock ...
+        assert cache.load_overload(sig, cpu_target.target_context) is None
+        assert len(tries) == 1                              # ... the second miss did not wait
+    finally:
+        cache.release()
+    assert not cache._held
+
+
 # -- end to end, in fresh interpreters ----------------------------------------------------------
 
 def kernel_edit_reaches_the_compiled_code(tmp_path, src, numba_cache_dir, first):

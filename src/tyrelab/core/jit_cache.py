@@ -47,7 +47,7 @@ signature's compile lock (:class:`_CompileLock`, an ``flock`` on a file beside t
 and looks in the cache again once it holds it, so the process that waited loads what the
 first one saved instead of compiling the same code beside it (on a cold cache, a
 study's workers, the test suite's and the docs' processes all asked for the ring on soil
-at once, 40-55 s each, up to four times). The lock is released when the code is saved,
+at once: four compiles of it, 11-57 s each). The lock is released when the code is saved,
 when the compile fails, or when its process ends.
 
 While numba compiles a kernel of the package, Python's cyclic garbage collector
@@ -279,7 +279,7 @@ class _CompileLock:
 
 
 #: a process waits at most this long [s] for another to compile a kernel (the longest cold
-#: compile measured, the ring on soil, took 55 s beside three others on 2 cores)
+#: compile measured, the ring on soil, took 57 s beside three others on 2 cores)
 LOCK_PATIENCE = 600.0
 
 
@@ -299,8 +299,8 @@ class _KernelCache(caching.FunctionCache):
         """The cached code for ``sig``; on a miss, None once this process holds the
         signature's compile lock (another process's compile of it saved and loaded first)."""
         cres = super().load_overload(sig, target_context)
-        if cres is not None or not self._enabled:
-            return cres
+        if cres is not None or not self._enabled or sig in self._held:
+            return cres  # (held: this process compiles it already, e.g. a recursive kernel)
         key = repr(self._index_key(sig, target_context.codegen()))
         digest = hashlib.sha256(key.encode()).hexdigest()[:16]
         lock = _CompileLock(os.path.join(self._cache_path,
@@ -375,8 +375,11 @@ class _FailedCompileUnlocks(event.Listener):
         # event); numba 0.68's Event.is_failed answers the opposite of its name, so not asked
         dispatcher = ev.data["dispatcher"]
         cache = getattr(dispatcher, "_cache", None)
-        if isinstance(cache, _KernelCache) and tuple(ev.data["args"]) not in dispatcher.overloads:
-            cache.release()
+        args = tuple(ev.data["args"])
+        if isinstance(cache, _KernelCache) and args not in dispatcher.overloads:
+            # the failed signature's lock (a signature given with its return type is held
+            # under another key: then every lock of the function)
+            cache.release(args if args in cache._held else None)
 
 
 def configure() -> Path | None:
