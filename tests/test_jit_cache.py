@@ -206,10 +206,17 @@ def test_a_file_system_that_cannot_lock_does_not_stall_a_compile(tmp_path, monke
     lock.acquire()
     assert lock.fd is None and len(calls) == 1    # one try, no wait
 
-    monkeypatch.setattr(fcntl, "flock", lambda fd, op: flock(fd, op, errno.EWOULDBLOCK))
-    monkeypatch.setattr(jit_cache, "LOCK_PATIENCE", 0.05)
+    # held by another process for three tries, then free: waited for, then taken
+    def held_three_times(fd, op):
+        if len(calls) < 4:
+            flock(fd, op, errno.EWOULDBLOCK)
+        calls.append(op)
+
+    monkeypatch.setattr(fcntl, "flock", held_three_times)
     lock.acquire()
-    assert lock.fd is None and len(calls) > 3     # held elsewhere: retried until the patience ends
+    assert lock.fd is not None and len(calls) == 5
+    lock.release()
+    assert lock.fd is None
 
 
 def test_a_signature_this_process_compiles_already_takes_no_second_lock(tmp_path, monkeypatch):

@@ -242,9 +242,9 @@ def exact_max(t, x0, x1):
 @nb.njit
 def zmax(t, x0, x1):
     # the bound a grid of this plane gives inside it (tyrelab.road.grid.local_zmax: the
-    # highest node of the node spacings that [x0, x1] touches), looser than the exact
-    # one, so that the ring decides alike on the toy and on its grid where its blocks
-    # sample their strips
+    # highest node of the ~4 cm blocks that [x0, x1] touches, here one 5 cm node spacing
+    # each), looser than the exact one, so that the ring decides alike on the toy and on
+    # its grid where its blocks sample their strips
     i0 = np.floor((x0 - t.x_lo) / t.spacing)
     i1 = np.floor((x1 - t.x_lo) / t.spacing) + 1.0
     return exact_max(t, t.x_lo + i0 * t.spacing, t.x_lo + i1 * t.spacing)
