@@ -182,3 +182,44 @@ def test_normal_fit_errors_eq_5_4():
     assert res["ks_meas"] < 0.03          # a normal sample is close to its fit
     u = normal_fit_errors(rng.uniform(0, 1, 5000), rng.uniform(0, 1, 5000))
     assert u["ks_pred"] > 0.05             # a uniform sample is not
+
+
+def test_rainflow_from_the_reversals_counts_what_rainflow_counts_from_every_sample():
+    """cycles() hands rainflow only the signal's reversal values (its own search is a Python
+    loop over every sample); the cycles must be exactly those rainflow finds in the whole
+    signal (the library run directly is the reference): plateaus, repeated first and last
+    values, monotone and constant signals, two and three samples, and a long rough one."""
+    import rainflow
+
+    def direct(y):
+        rows = [(r, m, c) for r, m, c, _, _ in rainflow.extract_cycles(np.asarray(y, float))]
+        return np.array(rows, dtype=float).reshape(-1, 3)
+
+    rng = np.random.default_rng(7)
+    signals = [[1, 1, 1], [1, 2], [2, 2], [0, 1, 2, 3], [3, 3, 2, 2, 1], [1, 1, 2, 1],
+               [0, 2, 1, 1], [0, 2, 0, 0], [5, 5, 5, 4, 5, 5], [0, 3, 1, 4, -2, 2, 0]]
+    for n in range(2, 40):
+        signals.append(rng.integers(0, 3, n))                       # many plateaus and ties
+        signals.append(np.cumsum(rng.integers(-1, 2, n)))           # steps of -1, 0, +1
+        signals.append(np.round(rng.standard_normal(n), 1))
+    signals.append(np.round(30e3 + 4e3 * np.cumsum(rng.standard_normal(20000)) / 50, 0))
+    for y in signals:
+        expected = direct(y)
+        got = cycles(y)
+        assert got.shape == expected.shape and np.array_equal(got, expected), y
+
+
+def test_ks_distance_is_scipys_statistic():
+    """The KS distance to the fitted normal, computed without scipy's p-value, is the
+    statistic scipy.stats.kstest returns, to the last bit (ties, skewed and tiny samples)."""
+    from scipy import stats
+
+    from tyrelab.validate.distributions import ks_distance
+
+    rng = np.random.default_rng(3)
+    samples = [rng.standard_normal(5000), rng.exponential(2.0, 3000), rng.integers(0, 5, 400),
+               np.array([1.0, 2.0]), 30e3 + 4e3 * rng.standard_normal(126000)]
+    for x in samples:
+        x = np.asarray(x, dtype=float)
+        mu, sigma = fit_normal(x)
+        assert ks_distance(x, mu, sigma) == stats.kstest(x, "norm", args=(mu, sigma)).statistic

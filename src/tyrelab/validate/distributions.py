@@ -46,6 +46,29 @@ def fit_normal(x) -> tuple[float, float]:
     return float(np.mean(x)), float(np.std(x))
 
 
+def ks_distance(x, mu: float, sigma: float) -> float:
+    """Kolmogorov-Smirnov distance ``D = sup |F_n(x) - Phi((x - mu) / sigma)|`` of the samples'
+    empirical distribution from a normal one (``sigma > 0``).
+
+    Over the sorted samples ``x_(1) <= ... <= x_(n)``, ``D = max(D+, D-)`` with
+    ``D+ = max_i (i/n - Phi_i)`` and ``D- = max_i (Phi_i - (i-1)/n)``: the statistic of
+    :func:`scipy.stats.kstest`, computed as it computes it, without the p-value, which
+    scipy evaluates exactly for large n (28 ms for a 100 m track at 1 kHz: half of a
+    study's evaluation) and which no table here reports.
+    """
+    xs = np.sort(np.asarray(x, dtype=float).ravel())
+    n = xs.size
+    cdf = stats.norm.cdf(xs, mu, sigma)
+    d_plus = np.max(np.arange(1.0, n + 1) / n - cdf)
+    d_minus = np.max(cdf - np.arange(0.0, n) / n)
+    return float(max(d_plus, d_minus))
+
+
+def _ks(x, mu: float, sigma: float) -> float:
+    """KS distance to the fitted normal; a constant signal (no spread) is 1, not normal at all."""
+    return 1.0 if sigma == 0.0 else ks_distance(x, mu, sigma)
+
+
 def normality(x) -> dict:
     """How normal the samples are: KS distance to the fitted normal, skew, excess kurtosis.
 
@@ -56,8 +79,7 @@ def normality(x) -> dict:
     mu, sigma = fit_normal(x)
     if sigma == 0.0:
         return {"ks": 1.0, "skew": 0.0, "kurtosis": 0.0}
-    ks = stats.kstest(x, "norm", args=(mu, sigma)).statistic
-    return {"ks": float(ks), "skew": float(stats.skew(x)),
+    return {"ks": ks_distance(x, mu, sigma), "skew": float(stats.skew(x)),
             "kurtosis": float(stats.kurtosis(x))}
 
 
@@ -80,7 +102,7 @@ def normal_fit_errors(p, m, floor_fraction: float = FLOOR_FRACTION) -> dict:
     return {"mean_error_pct": percent_error(mu_p, mu_m, floor),
             "std_error_pct": percent_error(s_p, s_m, floor),
             "mu_pred": mu_p, "sigma_pred": s_p, "mu_meas": mu_m, "sigma_meas": s_m,
-            "ks_pred": normality(p)["ks"], "ks_meas": normality(m)["ks"]}
+            "ks_pred": _ks(p, mu_p, s_p), "ks_meas": _ks(m, mu_m, s_m)}
 
 
 def histogram_density(x, bins=40, range_=None):

@@ -45,9 +45,36 @@ def _series(y, what="signal") -> np.ndarray:
     return y
 
 
+def reversal_values(y: np.ndarray) -> np.ndarray:
+    """The values of the reversal points :func:`rainflow.reversals` finds in ``y`` (three or
+    more samples), found with array operations: the first and the last sample, and every
+    sample where the signal turns, a repeated value counting once (a plateau is one point).
+
+    The counting needs only these values, and the series of them has itself exactly these
+    reversals (between two turns the signal is monotone, each turn changes direction, so
+    the values strictly alternate), so rainflow counts the same cycles from them. Its own
+    search is a Python loop over every sample: 5 of the 21 s a study's evaluation took on
+    the built-in campaign's 200 runs.
+    """
+    keep = np.empty(y.size, dtype=bool)
+    keep[0] = True
+    np.not_equal(y[1:], y[:-1], out=keep[1:])
+    distinct = y[keep]
+    step = np.diff(distinct)
+    turns = step[:-1] * step[1:] < 0.0   # rainflow's own test, on the same differences
+    return np.concatenate((y[:1], distinct[1:-1][turns], y[-1:]))
+
+
 def cycles(y) -> np.ndarray:
     """Rainflow cycles of ``y`` [1]: array of rows (range, mean, count)."""
     y = _series(y)
+    if y.size >= 3:
+        points = reversal_values(y)
+        if points.size == 2:
+            # rainflow takes a two-point series as one point; a repeated first value makes
+            # it see both ends, as it sees them in y
+            points = np.concatenate((points[:1], points))
+        y = points
     rows = [(rng, mean, count) for rng, mean, count, _, _ in rainflow.extract_cycles(y)]
     return np.array(rows, dtype=float).reshape(-1, 3)
 
