@@ -14,21 +14,13 @@ cache, so its record type never enters the package's cache index.
 
 from __future__ import annotations
 
-import hashlib
-import json
 import math
-import os
-import shutil
-import subprocess
-import sys
-import tempfile
-from pathlib import Path
 
 import numba as nb
 import numpy as np
 import pytest
+from kept_cache import kept_home, run_driver
 
-from tyrelab.core import jit_cache
 from tyrelab.errors import InputError
 from tyrelab.road.grid import RoadGrid, RoadSurface, local_zmax, road_height
 from tyrelab.road.terrain import (TerrainKind, terrain_block_max, terrain_blocks, terrain_contact,
@@ -387,30 +379,11 @@ json.dump(res, sys.stdout)
 
 
 @pytest.fixture(scope="module")
-def toy(tmp_path_factory):
-    """The driver's results. The toy module and its compile cache live in a folder named by
-    the digest of the toy, the driver and the package's kernels, kept between runs like
-    numba's own cache (the toy's code then compiles once, not in every run: 28 s); the
-    cache starts as a copy of this process's (the grid's code is compiled once per suite)."""
-    key = hashlib.sha256((TOY_MODULE + DRIVER + jit_cache.kernel_digest()).encode()).hexdigest()[:16]
-    home = Path(tempfile.gettempdir()) / f"tyrelab-toy-terrain-{key}"
-    if not home.exists():
-        build = Path(tempfile.mkdtemp(prefix="tyrelab-toy-terrain-"))
-        (build / "toy_terrain.py").write_text(TOY_MODULE)
-        ours = jit_cache.cache_dir()
-        if ours is not None:
-            shutil.copytree(ours, build / "cache" / f"tyrelab-{jit_cache.kernel_digest()[:16]}")
-        try:
-            build.rename(home)            # atomic: a concurrent run keeps the first one's
-        except OSError:
-            shutil.rmtree(build, ignore_errors=True)
-    env = dict(os.environ)
-    env["PYTHONPATH"] = os.pathsep.join([str(home), env.get("PYTHONPATH", "")])
-    env["NUMBA_CACHE_DIR"] = str(home / "cache")
-    out = subprocess.run([sys.executable, "-c", DRIVER], env=env, capture_output=True, text=True,
-                         timeout=1200)
-    assert out.returncode == 0, out.stderr[-3000:]
-    return json.loads(out.stdout)
+def toy():
+    """The driver's results; the toy module and its compile cache are kept between runs
+    (``tests/kept_cache.py``: the toy's code compiles once, not in every run: 28 s)."""
+    return run_driver(kept_home("tyrelab-toy-terrain", "toy_terrain.py", TOY_MODULE, DRIVER),
+                      DRIVER, timeout=1200)
 
 
 FX, FY, FZ, MX, MY, MZ, PX, PY, PZ, NX, NY, NZ, DEFL, DEFL_RATE, FXW, FYW, FZW = range(17)

@@ -11,12 +11,8 @@ package's cache index.
 
 from __future__ import annotations
 
-import json
-import os
-import subprocess
-import sys
-
 import pytest
+from kept_cache import kept_home, run_driver
 
 from tyrelab.errors import InputError
 from tyrelab.tyre.library import load_tyre
@@ -87,16 +83,11 @@ json.dump(res, sys.stdout)
 
 
 @pytest.fixture(scope="module")
-def toy_results(tmp_path_factory):
-    tmp = tmp_path_factory.mktemp("toy")
-    (tmp / "toy_contact.py").write_text(TOY_MODULE)
-    env = dict(os.environ)
-    env["PYTHONPATH"] = os.pathsep.join([str(tmp), env.get("PYTHONPATH", "")])
-    env["NUMBA_CACHE_DIR"] = str(tmp / "cache")
-    out = subprocess.run([sys.executable, "-c", DRIVER], env=env, capture_output=True,
-                         text=True, timeout=600)
-    assert out.returncode == 0, out.stderr[-3000:]
-    return json.loads(out.stdout)
+def toy_results():
+    """The driver's results; the toy module and its compile cache are kept between runs
+    (``tests/kept_cache.py``: the rig loops over the toy compile once, not in every run)."""
+    return run_driver(kept_home("tyrelab-toy-model", "toy_contact.py", TOY_MODULE, DRIVER),
+                      DRIVER, timeout=600)
 
 
 def test_toy_model_press_is_its_vertical_law(toy_results):
