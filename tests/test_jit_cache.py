@@ -21,6 +21,7 @@ from numba.core.caching import NullCache
 
 import tyrelab
 from tyrelab.core import jit_cache
+from tyrelab.core.cache_folders import IN_USE
 
 PACKAGE = Path(tyrelab.__file__).resolve().parent
 #: the spline branch of ``static_load`` (the built-in tyre uses the load-deflection table)
@@ -89,7 +90,10 @@ def run(tmp_path: Path, src: Path, numba_cache_dir: Path | None) -> dict:
 
 
 def files(folder: Path) -> dict:
-    return {p: (p.stat().st_mtime_ns, p.stat().st_size) for p in folder.rglob("*") if p.is_file()}
+    """The cache's files and their (time, size); not the folder's in-use mark, whose time
+    every process sets (tyrelab.core.cache_folders)."""
+    return {p: (p.stat().st_mtime_ns, p.stat().st_size) for p in folder.rglob("*")
+            if p.is_file() and p.name != IN_USE}
 
 
 # -- unit level: the digest and the choice of cache ---------------------------------------------
@@ -356,7 +360,8 @@ def free(path):  # another open file description of the lock: takes it unless it
 
 from pathlib import Path
 from tyrelab.core.jit_cache import cache_dir
-locks = sorted(Path(cache_dir()).rglob("*.lock"))
+from tyrelab.core.cache_folders import IN_USE
+locks = sorted(p for p in Path(cache_dir()).rglob("*.lock") if p.name != IN_USE)  # compile locks
 print(json.dumps({"nested": len(seen), "paused": not any(seen), "after_run": after_run,
                   "after_error": gc.isenabled(), "locks": len(locks),
                   "free": [free(p) for p in locks],

@@ -15,9 +15,10 @@ A kernel edit gives a new folder and a fresh compile; an edit of plain Python
 (cli, report, validate, ...) changes nothing and costs nothing. The folder is
 ``$NUMBA_CACHE_DIR/tyrelab-<digest16>`` when numba's cache dir is set, else
 ``$XDG_CACHE_HOME/tyrelab/numba/<digest16>`` (``~/.cache/...``); if neither can
-be written, tyrelab compiles in memory. Nothing is ever deleted, since another
-process may be loading those files: old digest folders stay until removed by
-hand, which is safe whenever no tyrelab process runs.
+be written, tyrelab compiles in memory. A folder is deleted only when it was last
+used more than 30 days ago and no process holds it (:mod:`tyrelab.core.cache_folders`:
+each process holds its own folder with a shared lock), since another process may be
+loading its files.
 
 How numba is pointed there. numba chooses a cache *locator* once per function,
 when it is decorated: ``Dispatcher.enable_caching`` builds a ``FunctionCache``
@@ -80,6 +81,8 @@ import numba
 from numba.core import caching
 from numba.core import event
 from numba.core.dispatcher import Dispatcher
+
+from . import cache_folders
 
 _PACKAGE = Path(__file__).resolve().parents[1]
 _folder: Path | None = None  # chosen by configure()
@@ -389,6 +392,10 @@ def configure() -> Path | None:
     """
     global _folder
     _folder = cache_dir()
+    if _folder is not None:
+        # this process's folder in use; the old digests' folders long unused, removed
+        cache_folders.claim(_folder)
+        cache_folders.prune_unused(_folder)
     if not numba_is_tested():
         import warnings
         lo, hi = TESTED_NUMBA
