@@ -29,14 +29,15 @@ def kept_home(prefix: str, module_file: str, module_text: str, driver: str) -> P
     """The folder ``<tmp>/<prefix>-<digest>`` holding ``module_file`` (its text
     ``module_text``) and the compile cache ``cache/``; made atomically on first use (two
     runs at once: the first one's is kept)."""
-    key = hashlib.sha256((module_text + driver + jit_cache.kernel_digest()).encode()).hexdigest()[:16]
+    kernels = jit_cache.kernel_digest()
+    key = hashlib.sha256((module_text + driver + kernels).encode()).hexdigest()[:16]
     home = Path(tempfile.gettempdir()) / f"{prefix}-{key}"
     if not home.exists():
         build = Path(tempfile.mkdtemp(prefix=f"{prefix}-"))
         (build / module_file).write_text(module_text)
         ours = jit_cache.cache_dir()
         if ours is not None:
-            shutil.copytree(ours, build / "cache" / f"tyrelab-{jit_cache.kernel_digest()[:16]}")
+            shutil.copytree(ours, build / "cache" / f"tyrelab-{kernels[:16]}")
         try:
             build.rename(home)            # atomic: a concurrent run keeps the first one's
         except OSError:

@@ -33,9 +33,10 @@ except ImportError:  # Windows
 IN_USE = "in-use.lock"
 #: a digest folder unused for this long [s] is removed (when no process holds it)
 MAX_AGE = 30 * 86400.0
-#: names of the digest folders: ``<digest16>`` in tyrelab's own cache folder,
-#: ``tyrelab-<digest16>`` in numba's cache folder (NUMBA_CACHE_DIR), beside other packages'
-_NAMES = {False: re.compile(r"[0-9a-f]{16}"), True: re.compile(r"tyrelab-[0-9a-f]{16}")}
+#: the digest folders' prefix in numba's cache folder (NUMBA_CACHE_DIR), beside other
+#: packages' caches; in tyrelab's own cache folder a digest folder is the digest alone
+#: (:func:`tyrelab.core.jit_cache.cache_dir`)
+PREFIX = "tyrelab-"
 
 _claimed: list[int] = []  # descriptors of the folders this process holds (kept open)
 
@@ -79,7 +80,8 @@ def prune_unused(current: Path, max_age: float = MAX_AGE, now: float | None = No
     if fcntl is None:
         return []
     now = time.time() if now is None else now
-    pattern = _NAMES[current.name.startswith("tyrelab-")]
+    prefix = PREFIX if current.name.startswith(PREFIX) else ""
+    pattern = re.compile(re.escape(prefix) + "[0-9a-f]{16}")   # the siblings of its layout
     removed = []
     try:
         siblings = sorted(current.parent.iterdir())

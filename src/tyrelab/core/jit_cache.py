@@ -194,7 +194,7 @@ def cache_dir() -> Path | None:
     digest = kernel_digest()[:16]
     try:
         if numba.config.CACHE_DIR:
-            folder = Path(numba.config.CACHE_DIR) / f"tyrelab-{digest}"
+            folder = Path(numba.config.CACHE_DIR) / f"{cache_folders.PREFIX}{digest}"
         else:
             base = os.environ.get("XDG_CACHE_HOME") or Path.home() / ".cache"
             folder = Path(base) / "tyrelab" / "numba" / digest

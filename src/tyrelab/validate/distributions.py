@@ -78,8 +78,8 @@ def normality(x) -> dict:
     x = _samples(x)
     mu, sigma = fit_normal(x)
     if sigma == 0.0:
-        return {"ks": 1.0, "skew": 0.0, "kurtosis": 0.0}
-    return {"ks": ks_distance(x, mu, sigma), "skew": float(stats.skew(x)),
+        return {"ks": _ks(x, mu, sigma), "skew": 0.0, "kurtosis": 0.0}
+    return {"ks": _ks(x, mu, sigma), "skew": float(stats.skew(x)),
             "kurtosis": float(stats.kurtosis(x))}
 
 
