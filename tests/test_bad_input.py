@@ -4,18 +4,18 @@ Issue 16's classes: output paths, non-finite and absurd numbers in property
 files, damaged roads, sizes that cannot fit, edge values, physically
 impossible runs, property-file physics, internal errors. Most cases run the
 command in-process (``main(argv)``: the same code, without 1-2 s of start-up
-per case); a few run it as a real process to see what a shell sees.
+per case); a few run it as a real process to see what a shell sees (forked off a server that
+has imported tyrelab: ``tests/cli_process.py``).
 """
 
 from __future__ import annotations
 
-import subprocess
-import sys
 from pathlib import Path
 
 import numpy as np
 import pytest
 
+from cli_process import run_tyrelab
 from tyrelab.cli.main import main
 from tyrelab.signal import make_signal, read_signal, write_signal
 
@@ -330,8 +330,7 @@ def test_python_api_refuses_the_same(tmp_path):
     (["modal", "--segments", "1000000"], 2, "out of range"),
 ])
 def test_a_real_process_shows_one_line(tmp_path, argv, code, words):
-    r = subprocess.run([sys.executable, "-m", "tyrelab.cli.main", *argv], capture_output=True, text=True,
-                       cwd=tmp_path, timeout=120)
+    r = run_tyrelab(*argv, cwd=tmp_path, timeout=120)
     lines = [ln for ln in r.stderr.splitlines() if ln.strip()]
     assert r.returncode == code and len(lines) == 1 and words in lines[0], r.stderr
     assert "Traceback" not in r.stderr

@@ -1,24 +1,17 @@
 """The command line: results for good input, one clear line for bad input."""
 
-import subprocess
-import sys
-
 import numpy as np
 import pytest
 
+from cli_process import run_tyrelab
 from tyrelab.signal import read_signal
 
 G = 9.80665
 
 
-def tyrelab(*args, cwd=None):
-    return subprocess.run([sys.executable, "-m", "tyrelab.cli.main", *args], capture_output=True,
-                          text=True, cwd=cwd, timeout=300)
-
-
 def test_simulate_writes_the_signal_table(tmp_path):
     out = tmp_path / "run.parquet"
-    r = tyrelab("simulate", "--tyre", "xzl-16.00R20", "--model", "point", "--road", "cleat:50x50",
+    r = run_tyrelab("simulate", "--tyre", "xzl-16.00R20", "--model", "point", "--road", "cleat:50x50",
                 "--speed", "12", "--load", "LC1", "-o", str(out))
     assert r.returncode == 0, r.stderr
     run = read_signal(out)
@@ -35,12 +28,12 @@ def test_simulate_writes_the_signal_table(tmp_path):
 
 def test_csv_output_and_plot(tmp_path):
     out = tmp_path / "run.csv"
-    r = tyrelab("simulate", "--road", "step:50", "--duration", "2", "-o", str(out))
+    r = run_tyrelab("simulate", "--road", "step:50", "--duration", "2", "-o", str(out))
     assert r.returncode == 0, r.stderr
     run = read_signal(out)
     assert len(run) == 2000
     png = tmp_path / "fig.png"
-    r = tyrelab("plot", str(out), str(out), "--x", "distance", "-o", str(png))
+    r = run_tyrelab("plot", str(out), str(out), "--x", "distance", "-o", str(png))
     assert r.returncode == 0, r.stderr
     assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
 
@@ -58,7 +51,7 @@ def test_csv_output_and_plot(tmp_path):
     (["static", "--test", "cleat:51"], "unknown static test"),
 ])
 def test_bad_input_is_one_clear_line(tmp_path, args, words):
-    r = tyrelab(*args, cwd=tmp_path)
+    r = run_tyrelab(*args, cwd=tmp_path)
     assert r.returncode != 0
     assert "Traceback" not in r.stderr
     lines = [ln for ln in r.stderr.splitlines() if ln.strip()]
@@ -71,7 +64,7 @@ def test_bad_input_is_one_clear_line(tmp_path, args, words):
 def test_malformed_tir_names_file_and_line(tmp_path):
     bad = tmp_path / "bad.tir"
     bad.write_text("[UNITS]\nLENGTH = 'meter'\n[DIMENSION]\nUNLOADED_RADIUS = 0.5x\n")
-    r = tyrelab("simulate", "--tyre", str(bad), "-o", str(tmp_path / "run.parquet"))
+    r = run_tyrelab("simulate", "--tyre", str(bad), "-o", str(tmp_path / "run.parquet"))
     assert r.returncode == 2
     assert "Traceback" not in r.stderr
     assert f"{bad}, line 4: UNLOADED_RADIUS: expected a number" in r.stderr
@@ -81,7 +74,7 @@ def test_malformed_tir_names_file_and_line(tmp_path):
 def test_missing_key_is_named(tmp_path):
     bad = tmp_path / "nokey.tir"
     bad.write_text("[DIMENSION]\nWIDTH = 0.3\n[VERTICAL]\nVERTICAL_STIFFNESS = 1e5\n")
-    r = tyrelab("simulate", "--tyre", str(bad), "-o", str(tmp_path / "run.parquet"))
+    r = run_tyrelab("simulate", "--tyre", str(bad), "-o", str(tmp_path / "run.parquet"))
     assert r.returncode == 2 and "UNLOADED_RADIUS" in r.stderr and "Traceback" not in r.stderr
 
 

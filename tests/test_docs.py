@@ -40,11 +40,12 @@ import re
 import shutil
 import subprocess
 import sys
-import sysconfig
 import time
 from pathlib import Path
 
 import pytest
+
+from cli_process import CONSOLE_SCRIPT, SERVER_SETUP
 
 ROOT = Path(__file__).resolve().parents[1]
 #: pages whose commands are run: the README and every documentation page
@@ -75,18 +76,6 @@ SHORTEN = {
         "tests/test_fit_ring_campaign.py covers it, tests/test_fit_campaign.py runs fit all"),
 }
 
-#: what a fork server runs before forking the steps off it: the import every step starts with
-#: (nothing more: a module that a step uses without importing it must be missing, as for a
-#: user), and numba's typing and target contexts, which a process builds at its first kernel
-#: call whether the kernel comes from the cache or not (0.15 s a step). No kernel runs.
-SERVER_SETUP = """\
-import tyrelab
-from numba.core.registry import cpu_target
-cpu_target.typing_context.refresh()
-cpu_target.target_context.refresh()
-"""
-#: the ``tyrelab`` command a step runs (the console script pip installed with this Python)
-CONSOLE_SCRIPT = Path(sysconfig.get_path("scripts")) / "tyrelab"
 #: a word bash passes on as it is: no quote, expansion, glob, redirection, operator or comment
 PLAIN_WORD = re.compile(r"[\w\-./:@=,+%]+", re.ASCII)
 

@@ -1,6 +1,7 @@
 """The examples gallery (``examples/*.py``) runs, writes what it says, and prints physics that holds.
 
-Each script runs as a user would run it: ``python examples/NAME.py`` in a
+Each script runs as a user would run it: ``python examples/NAME.py`` (a fresh
+process, forked off a server that has imported tyrelab: ``tests/cli_process.py``) in a
 fresh temporary folder holding a copy of ``examples/`` (its ``data/`` is the
 shipped example data), writing into that folder. What it prints is read back
 and checked against a physical fact, so an example that still runs but shows
@@ -13,12 +14,13 @@ from __future__ import annotations
 import os
 import re
 import shutil
-import subprocess
 import sys
 from pathlib import Path
 
 import numpy as np
 import pytest
+
+from cli_process import python_file
 
 ROOT = Path(__file__).resolve().parents[1]
 EXAMPLES = ROOT / "examples"
@@ -41,8 +43,7 @@ def workdir(tmp_path):
 
 def run_example(workdir: Path, script: str) -> str:
     """Run ``python examples/<script>`` in ``workdir``; return its standard output."""
-    proc = subprocess.run([sys.executable, f"examples/{script}"], cwd=workdir, env=_env(),
-                          capture_output=True, text=True, timeout=TIMEOUT)
+    proc = python_file(f"examples/{script}", cwd=workdir, env=_env(), timeout=TIMEOUT)
     assert proc.returncode == 0, f"{script} failed ({proc.returncode}):\n{proc.stdout}\n{proc.stderr[-3000:]}"
     return proc.stdout
 
@@ -251,8 +252,7 @@ def test_make_data_rebuilds_the_shipped_example_data(tmp_path):
     from tyrelab.measure import read_run
     from tyrelab.road.spec import road_from_spec
 
-    proc = subprocess.run([sys.executable, str(EXAMPLES / "data" / "make_data.py"), str(tmp_path)],
-                          env=_env(), capture_output=True, text=True, timeout=TIMEOUT)
+    proc = python_file(EXAMPLES / "data" / "make_data.py", tmp_path, env=_env(), timeout=TIMEOUT)
     assert proc.returncode == 0, proc.stderr[-3000:]
     shipped = EXAMPLES / "data"
     assert (tmp_path / "my.tir").read_bytes() == (shipped / "my.tir").read_bytes()

@@ -8,13 +8,12 @@ test files with mistakes are refused in one line naming file, line and key.
 
 import copy
 import shutil
-import subprocess
-import sys
 from pathlib import Path
 
 import numpy as np
 import pytest
 
+from cli_process import run_tyrelab
 from tyrelab.errors import InputError
 from tyrelab.fit.campaign import read_campaign, read_test
 from tyrelab.fit.workflow import STEPS, fit_campaign
@@ -22,11 +21,6 @@ from tyrelab.tyre.tir import read_tir, write_tir
 
 EXAMPLE = Path(__file__).resolve().parents[1] / "examples" / "xzl_campaign"
 TABLE_3_2_300 = np.array([0, 3496, 9445, 15559, 21968, 29011, 37581, 45717, 54191.0])
-
-
-def tyrelab(*args, cwd=None):
-    return subprocess.run([sys.executable, "-m", "tyrelab.cli.main", *args], capture_output=True,
-                          text=True, cwd=cwd, timeout=300)
 
 
 @pytest.fixture(scope="module")
@@ -85,7 +79,7 @@ def test_report_has_every_figure(fitted, tmp_path):
 
 def test_cli_fit_all_then_update_one_step(tmp_path):
     out = tmp_path / "xzl.tir"
-    r = tyrelab("fit", "all", str(EXAMPLE), "-o", str(out), "--skip", "ring")
+    r = run_tyrelab("fit", "all", str(EXAMPLE), "-o", str(out), "--skip", "ring")
     assert r.returncode == 0, r.stderr
     assert (tmp_path / "xzl_fit.html").is_file()
     assert "ring: skipped on request" in r.stdout and not read_tir(out).has("FLEXIBLE_RING")
@@ -93,7 +87,7 @@ def test_cli_fit_all_then_update_one_step(tmp_path):
     shape = read_tir(out).table("SHAPE")
     # a steeper curve, fitted into the existing file: its other sections stay
     (tmp_path / "press.csv").write_text("deflection_mm,load_kN\n0,0\n10,5\n20,11\n30,18\n")
-    r = tyrelab("fit", "vertical", str(tmp_path / "press.csv"), "-o", str(out), "--no-report")
+    r = run_tyrelab("fit", "vertical", str(tmp_path / "press.csv"), "-o", str(out), "--no-report")
     assert r.returncode == 0, r.stderr
     tir = read_tir(out)
     assert tir.table("DEFLECTION_LOAD_CURVE")[:, 1] == pytest.approx([0, 5e3, 11e3, 18e3])
@@ -103,7 +97,7 @@ def test_cli_fit_all_then_update_one_step(tmp_path):
 
 def test_cli_into_a_builtin_keeps_its_units(tmp_path):
     out = tmp_path / "shape.tir"
-    r = tyrelab("fit", "shape", str(EXAMPLE), "--into", "xzl-16.00R20", "-o", str(out), "--no-report")
+    r = run_tyrelab("fit", "shape", str(EXAMPLE), "--into", "xzl-16.00R20", "-o", str(out), "--no-report")
     assert r.returncode == 0, r.stderr
     text = out.read_text()
     assert "LENGTH = 'mm'" in text
@@ -143,7 +137,7 @@ def test_cli_bad_input_is_one_line(tmp_path, args, words):
     (tmp_path / "press.csv").write_text("deflection_mm,load_N\n0,0\n10,5000\n20,11000\n")
     (tmp_path / "bad.csv").write_text("deflection_mm,load_N\n0,0\n10,x\n")
     (tmp_path / "fp.png").write_bytes(b"")
-    r = tyrelab(*[a.replace("{tmp}", str(tmp_path)) for a in args])
+    r = run_tyrelab(*[a.replace("{tmp}", str(tmp_path)) for a in args])
     assert r.returncode == 2, r.stderr
     lines = r.stderr.strip().splitlines()
     assert len(lines) == 1 and words in lines[0], r.stderr

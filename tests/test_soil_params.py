@@ -6,6 +6,7 @@ import math
 
 import pytest
 
+from cli_process import run_tyrelab
 from tyrelab.errors import InputError
 from tyrelab.road.soil import load_soil, read_soil, soil_names
 
@@ -83,14 +84,9 @@ def test_the_library_reads_and_names_its_sources():
 def test_soil_curve_command_writes_the_steady_table(tmp_path):
     """tyrelab soil curve: one run per slip, the table's pull rising with slip and its load the
     dead weight; a slip outside [0, 0.99] or an unknown soil is one line, exit 2, nothing written."""
-    import subprocess
-    import sys
-
     import pandas as pd
-    cmd = [sys.executable, "-m", "tyrelab.cli.main", "soil", "curve", "--terrain", "lete-sand",
-           "--duration", "1", "--load", "20000"]
-    done = subprocess.run(cmd + ["--slips", "0.05,0.3", "-o", str(tmp_path / "c.csv")],
-                          capture_output=True, text=True, timeout=600)
+    cmd = ["soil", "curve", "--terrain", "lete-sand", "--duration", "1", "--load", "20000"]
+    done = run_tyrelab(*cmd, "--slips", "0.05,0.3", "-o", tmp_path / "c.csv", timeout=600)
     assert done.returncode == 0, done.stderr
     curve = pd.read_csv(tmp_path / "c.csv")
     assert list(curve["slip"]) == [0.05, 0.3]
@@ -98,6 +94,6 @@ def test_soil_curve_command_writes_the_steady_table(tmp_path):
     assert curve["FZ"].to_numpy() == pytest.approx(20000.0, rel=2e-3)
     for bad in (["--slips", "0,1.5"], ["--slips", "0.2", "--terrain", "quicksand"]):
         out = tmp_path / "bad.csv"
-        done = subprocess.run(cmd + bad + ["-o", str(out)], capture_output=True, text=True, timeout=600)
+        done = run_tyrelab(*cmd, *bad, "-o", out, timeout=600)
         assert done.returncode == 2 and len(done.stderr.strip().splitlines()) == 1, done.stderr
         assert not out.exists()
