@@ -9,6 +9,10 @@ the folder is named by the digest of the toy module, the driver and the package'
 (:func:`tyrelab.core.jit_cache.kernel_digest`), so an edit of any of them starts a new one,
 and its cache starts as a copy of this process's (the package's own code then loads instead
 of compiling). The driver itself runs every time: only compiled code is kept.
+
+Each edit leaves the previous folder (30-60 MB) behind: the test process claims its folder
+while it runs and removes the folders of its prefix that no process holds and none has used
+for :data:`KEPT_FOR` (:mod:`tyrelab.core.cache_folders`, as the package's compile cache does).
 """
 
 from __future__ import annotations
@@ -22,7 +26,10 @@ import sys
 import tempfile
 from pathlib import Path
 
-from tyrelab.core import jit_cache
+from tyrelab.core import cache_folders, jit_cache
+
+#: a toy's folder unused for this long is removed [s]: an edit starts a new one
+KEPT_FOR = 86400.0
 
 
 def kept_home(prefix: str, module_file: str, module_text: str, driver: str) -> Path:
@@ -42,6 +49,8 @@ def kept_home(prefix: str, module_file: str, module_text: str, driver: str) -> P
             build.rename(home)            # atomic: a concurrent run keeps the first one's
         except OSError:
             shutil.rmtree(build, ignore_errors=True)
+    cache_folders.claim(home)
+    cache_folders.prune_unused(home, max_age=KEPT_FOR)
     return home
 
 

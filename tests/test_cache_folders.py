@@ -61,6 +61,19 @@ def test_numba_cache_dir_siblings_are_other_packages_folders(tmp_path):
     assert bare.exists() and theirs.exists()
 
 
+def test_a_tests_own_prefix_is_its_layout(tmp_path):
+    """The kept toy caches of the tests (tests/kept_cache.py): <prefix>-<digest> in the temporary
+    folder, beside the other toy's and tyrelab's own layouts, which stay."""
+    current = _folder(tmp_path, "tyrelab-toy-model-0123456789abcdef", 0)
+    ours = _folder(tmp_path, "tyrelab-toy-model-1111111111111111", 2)
+    young = _folder(tmp_path, "tyrelab-toy-model-2222222222222222", 0.5)
+    other_toy = _folder(tmp_path, "tyrelab-toy-terrain-1111111111111111", 2)
+    package = _folder(tmp_path, "tyrelab-1111111111111111", 40)
+    assert prune_unused(current, max_age=DAY) == [ours]
+    assert young.exists() and other_toy.exists() and package.exists()
+    assert prune_unused(tmp_path / "no-digest", max_age=0.0) == []   # no layout: nothing goes
+
+
 def test_a_folder_used_after_it_was_looked_at_is_kept(tmp_path, monkeypatch):
     """A process that claimed and left the folder between the pruner's look and its lock has
     used it: its lock file's time is newer than the one the pruner judged by."""

@@ -38,6 +38,9 @@ MAX_AGE = 30 * 86400.0
 #: (:func:`tyrelab.core.jit_cache.cache_dir`)
 PREFIX = "tyrelab-"
 
+#: a digest folder's name: a prefix, then the digest's first 16 hexadecimal digits
+DIGEST_NAME = re.compile(r"(.*?)[0-9a-f]{16}")
+
 _claimed: list[int] = []  # descriptors of the folders this process holds (kept open)
 
 
@@ -75,13 +78,18 @@ def last_use(folder: Path) -> float:
 
 
 def prune_unused(current: Path, max_age: float = MAX_AGE, now: float | None = None) -> list[Path]:
-    """Delete the digest folders beside ``current`` that were last used more than ``max_age``
-    seconds before ``now`` and that no process holds; returns the ones deleted."""
+    """Delete the digest folders beside ``current`` (its name's prefix, then 16 hexadecimal
+    digits) that were last used more than ``max_age`` seconds before ``now`` and that no
+    process holds; returns the ones deleted."""
     if fcntl is None:
         return []
     now = time.time() if now is None else now
-    prefix = PREFIX if current.name.startswith(PREFIX) else ""
-    pattern = re.compile(re.escape(prefix) + "[0-9a-f]{16}")   # the siblings of its layout
+    # the siblings of its layout: the same name before the 16-digit digest ("" in tyrelab's
+    # own folder, PREFIX under NUMBA_CACHE_DIR, a test's own prefix for its toy caches)
+    layout = DIGEST_NAME.fullmatch(current.name)
+    if layout is None:
+        return []
+    pattern = re.compile(re.escape(layout.group(1)) + "[0-9a-f]{16}")
     removed = []
     try:
         siblings = sorted(current.parent.iterdir())
