@@ -35,7 +35,15 @@ def test_patch_damping_comes_back_from_one_cleat_run(xzl):
     assert fit.patch == pytest.approx(1.6, rel=0.01)
     assert fit.structure == 1.0
     assert (fit.table["rms_before_pct"] > 0.5).all()          # the start was visibly off
-    assert (fit.table["rms_after_pct"] < 0.05).all()           # and the held-out runs follow
+    fitted = fit.table["set"] == "fit"
+    assert (fit.table["rms_after_pct"][fitted] < 0.05).all()  # the fitted run is matched
+    # and the held-out runs follow: ten times closer than from the start. Not closer than
+    # that: over the 76.3 mm cleat at 12 km/h the ring's FZW jumps by up to 0.19 % of its
+    # peak (2.4 kN at one instant) between damping factors 3e-4 apart near the truth, at the
+    # internal steps of 1/4 and 1/3 ms alike (an event under the tyre that flips), so a
+    # bound below that tests where in its 1 % tolerance the search happened to stop
+    held = fit.table[~fitted]
+    assert (held["rms_after_pct"] < 0.1 * held["rms_before_pct"]).all()
 
 
 @pytest.mark.slow

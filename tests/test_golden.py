@@ -15,7 +15,8 @@ reaches the cleats and the step at about 1.4 s, its force peaks at 1.75-1.82 s;
 and the paving at LC3. The short files (``*-2s.npz``) were recorded from the code of the commit
 that added them, which is the frozen reference behaviour (every ring file recorded again on
 2026-11-26 when the ring's internal step went from 1/6 to 1/4 ms, docs/ring.md "Why
-1/4 ms": FZW peaks within 0.42 %, RMS within 0.05 %): they are a regression
+1/4 ms": FZW peaks within 0.42 %, RMS within 0.05 %; and on 2026-11-27, from 1/4 to 1/3 ms,
+"Why 1/3 ms": FZW peaks within 0.46 %, RMS within 0.08 %): they are a regression
 guard, not a physical check (the ring's physics is tested in test_ring_rig,
 test_ring_model and test_ring_integrator). They are also the first 2 s of the
 full-length files recorded before them (checked below), so they guard what those

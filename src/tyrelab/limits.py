@@ -30,12 +30,13 @@ MAX_WALL_TIME = 600.0
 #: with its own dynamics [s per simulated s at 1 ms on one core]
 ANALYTIC_COST, DYNAMIC_COST = 0.015, 1.0
 #: the ring's largest default internal step [s] (``tyrelab.tyre.ring.model.ACCURATE_STEP``), set
-#: by accuracy where stability would allow more (docs/ring.md, "Performance": the cleat peak
-#: within 0.5 % of half the step; on the Belgian paving the tangential forces no further from
-#: a 96 times finer step than the explicit integrator was at 35.8 us). Kept here, below the
+#: by accuracy where stability would allow a little more (400 us at 100 segments; docs/ring.md,
+#: "Performance", "Why 1/3 ms": the cleat peak within 0.5 % of half the step; on the Belgian
+#: paving the tangential forces no further from a 128 times finer step than the explicit
+#: integrator was at 35.8 us; three internal steps per 1 ms rig step). Kept here, below the
 #: models, because a run's cost estimate needs it too: a model with its own dynamics costs
 #: more only for rig steps below it
-DYNAMIC_INTERNAL_STEP = 1.0 / 4000.0
+DYNAMIC_INTERNAL_STEP = 1.0 / 3000.0
 #: columns of a run's output array (the trailer has 31, the quarter vehicle 34), rounded up
 OUTPUT_CHANNELS = 36
 #: copies of the output table a run holds at once (array, table, file buffers)
