@@ -66,10 +66,16 @@ class WheelStepper:
         Where the wheel's state was started (:meth:`TyreModel.equilibrium`):
         its ``deflection`` puts the wheel centre at ``R0 - deflection`` above
         a level road, its ``spin`` is the free-rolling spin.
+    ground : optional
+        The Python ground whose record the wheel holds. One that holds only a
+        stretch of itself at a time and moves with the wheel (the soil's active
+        patch, :meth:`~tyrelab.road.soil.patch.SoilPatch.follow`) is moved on
+        before each step to cover it, with the rigs' margins
+        (:data:`~tyrelab.rig.soil_ground.KEEP_BEHIND`, ``KEEP_AHEAD``).
     """
 
     def __init__(self, model: TyreModel, wheel, max_step: float, frame: str = "C-axis",
-                 start_time: float = 0.0, equilibrium=None):
+                 start_time: float = 0.0, equilibrium=None, ground=None):
         if frame not in FRAMES:
             raise InputError(f"unknown frame '{frame}', expected one of {', '.join(FRAMES)}",
                              field="frame")
@@ -86,6 +92,8 @@ class WheelStepper:
         self._frame = FRAMES[frame]
         self._time = float(start_time)
         self.equilibrium = equilibrium
+        self._follow = getattr(ground, "follow", None)
+        self._held = getattr(ground, "held", None)
 
     @property
     def time(self) -> float:
@@ -124,10 +132,36 @@ class WheelStepper:
             raise InputError(f"the wheel's state is at t = {self._time!r} s, the step starts at "
                              f"{time!r} s: step on from where the wheel is", field="time")
         centre = _checked(centre)
+        if self._follow is not None:
+            self._move_ground(centre, dt)
         n = self.sub_steps(dt)
         loads = advance(self.wheel, centre, n, dt / n, self._frame)
         self._time = time + dt
         return loads
+
+    def _move_ground(self, centre: WheelCentre, dt: float) -> None:
+        """Move a ground that follows the wheel (the soil's patch) on once this step would take
+        the wheel's front to within :data:`~tyrelab.rig.soil_ground.KEEP_AHEAD` of the end it
+        holds: from ``KEEP_BEHIND`` behind the centre to half its held length beyond that
+        (forward along x only, as the rigs drive it: the soil behind is forgotten). Moved
+        that far ahead, it moves on once every half patch, as the rigs' chunks move it,
+        not at every step: each move lays the bed's origin again, to the rounding of its
+        position."""
+        from ..rig.soil_ground import KEEP_AHEAD, KEEP_BEHIND
+
+        radius = self.model.tyre.unloaded_radius
+        start, end = self._held()
+        if centre.x - radius < start:
+            raise InputError(f"the wheel centre at x = {centre.x:.6g} m is back over soil the "
+                             f"bed has left behind (it holds it from x = {start:.6g} m): on "
+                             "soil a wheel steps forward along x, as the rigs drive it",
+                             field="centre")
+        ahead = centre.x + max(centre.vx, 0.0) * dt + radius + KEEP_AHEAD
+        if ahead <= end:
+            return
+        record = self._follow(centre.x - KEEP_BEHIND, ahead + 0.5 * (end - start))
+        if record is not None:
+            self.wheel = self.wheel._replace(road=record)
 
     def loads(self, centre: WheelCentre) -> CentreLoads:
         """The loads of the present state at ``centre``, leaving the state as it is.
@@ -196,9 +230,11 @@ def wheel_stepper(tyre="xzl-16.00R20", model: str | TyreModel = "point", road="f
     road : str, Road, RoadGrid or ground
         A road name or file (:func:`tyrelab.road.spec.road_from_spec`), a road,
         its grid, or any ground of the terrain interface (an object with
-        ``surface()``, :mod:`tyrelab.road.terrain`). Positions are in its own
-        frame: unlike the rigs, the stepper does not level a road whose start
-        is not at height zero.
+        ``surface()``, :mod:`tyrelab.road.terrain`), such as a soil laid over
+        a road (:func:`tyrelab.road.soil.terrain.lay_soil`: its active patch
+        moves on with the wheel, which then steps forward along x). Positions
+        are in its own frame: unlike the rigs, the stepper does not level a
+        road whose start is not at height zero.
     pressure, stiffness, handling, options
         As :func:`tyrelab.api.make_tyre_model`.
     load : str or float
@@ -244,4 +280,4 @@ def wheel_stepper(tyre="xzl-16.00R20", model: str | TyreModel = "point", road="f
     max_step = limits.check_number(max_step, "max_step", 0.0, limits.MAX_DT, "s", low_open=True,
                                    what="internal step")
     wheel = tm.wheel(ground, load, state=None if eq is None else eq.state)
-    return WheelStepper(tm, wheel, max_step, frame, start_time, eq)
+    return WheelStepper(tm, wheel, max_step, frame, start_time, eq, ground=ground)
