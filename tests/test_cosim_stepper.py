@@ -164,7 +164,7 @@ def test_the_soils_moving_patch_follows_a_stepped_wheel(monkeypatch):
     changes a load by 3e-11 N at the next step (measured), and the soil's plastic threshold
     (a node yields only above its largest pressure so far) turns that into a few newtons where
     a node falls on the other side. A patch left where it was, the loads are 73-91 % off. A
-    wheel stepped back over soil the patch has left is refused in one line."""
+    wheel stepped back behind the soil the patch holds is refused in one line."""
     from tyrelab.road.soil import load_soil, patch
     from tyrelab.road.soil.terrain import lay_soil
     from tyrelab.road.spec import road_from_spec
@@ -184,7 +184,7 @@ def test_the_soils_moving_patch_follows_a_stepped_wheel(monkeypatch):
         assert np.sqrt(np.mean(b ** 2)) == pytest.approx(np.sqrt(np.mean(a ** 2)), rel=1e-5), name
         np.testing.assert_allclose(b, a, rtol=0, atol=0.01 * np.ptp(a), err_msg=name)
     back = WheelCentre(2.0, 0.0, 0.6, 0.0, 0.0, 0.0, 0.0)
-    with pytest.raises(InputError, match="back over soil"):
+    with pytest.raises(InputError, match="reaches behind the soil the bed holds"):
         stepper.step(stepper.time, back, 1e-3)
 
 

@@ -30,6 +30,7 @@ from .kernel import WheelCentre
 from .manifest import build_stepper, read_manifest
 from .variables import INPUTS, OUTPUT_FRAMES, OUTPUTS, PARAMETERS, UNITS
 
+
 def leave_objects_to_the_exit():
     """Collect nothing more once the interpreter is ending (registered with :mod:`atexit`).
 
@@ -37,7 +38,7 @@ def leave_objects_to_the_exit():
     binary end the interpreter, in that binary's own thread, when the FMU is unloaded at the
     host's exit. The final garbage collection of that shutdown cleared scipy's ``_uarray``
     objects and freed memory twice: the host died of SIGSEGV after its last step in about one
-    run in five (``tests/test_cosim_fmu.py``; 0 in 90 with this, 4 in 20 without, 2026-11-27).
+    run in five (``tests/test_cosim_fmu.py``; 0 in 110 with this, 4 in 20 without, 2026-11-27).
     Frozen, the objects are left to the operating system, as any process's exit leaves
     them; Python does not promise finalizers of objects alive at exit either."""
     gc.freeze()

@@ -152,9 +152,9 @@ class WheelStepper:
         radius = self.model.tyre.unloaded_radius
         start, end = self._held()
         if centre.x - radius < start:
-            raise InputError(f"the wheel centre at x = {centre.x:.6g} m is back over soil the "
-                             f"bed has left behind (it holds it from x = {start:.6g} m): on "
-                             "soil a wheel steps forward along x, as the rigs drive it",
+            raise InputError(f"the wheel at x = {centre.x:.6g} m reaches behind the soil the "
+                             f"bed holds (from x = {start:.6g} m): on soil a wheel steps forward "
+                             "along x from where the soil starts, as the rigs drive it",
                              field="centre")
         ahead = centre.x + max(centre.vx, 0.0) * dt + radius + KEEP_AHEAD
         if ahead <= end:
