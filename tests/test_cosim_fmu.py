@@ -220,6 +220,47 @@ def test_the_fmu_in_a_quarter_car_reproduces_the_quarter_vehicle_rig(fmus, case)
     assert np.abs(body - rig["Z_BODY"].to_numpy()).max() < 0.01 * travel
 
 
+def test_the_fmu_on_soil_is_the_stepper_on_soil(tmp_path, monkeypatch):
+    """Exported with a soil file (``--terrain``), the FMU carries the file and lays the soil
+    over its road from the wheel's start x (its active patch, held 3 m at a time here, moved
+    on as the wheel drives): FMPy stepping it 8 m along gets the stepping API's loads on the
+    same soil laid the same way, sample by sample to round-off, after the soil file is gone.
+    The FMU publishes its initial loads at initialisation (``WheelStepper.loads``): that look
+    must leave the soil and the wheel's last deflection as they were (it did not: 13.4 kN
+    instead of 21.5 kN at the first step)."""
+    from tyrelab.cosim.manifest import TERRAIN_RUN
+    from tyrelab.rig.soil_ground import lay_terrain
+    from tyrelab.road.soil import patch
+
+    monkeypatch.setattr(patch, "PATCH_LENGTH", 3.0)
+    soil = ROOT / "src" / "tyrelab" / "road" / "soil" / "data"
+    source = tmp_path / "my_soil.toml"
+    shutil.copyfile(soil / "sandy-loam.toml", source)
+    path = export_fmu(tmp_path / "soil.fmu", model="point", road="flat", terrain=str(source),
+                      load=LC1, frame="road")
+    source.unlink()                                          # the FMU carries its own copy
+    model = make_tyre_model("xzl-16.00R20", "point")
+    z, v, x0 = model.tyre.unloaded_radius - 0.04, 4.0, 1.0
+    start = {"X_WC": x0, "Z_WC": z, "VX_WC": v, "ROTSPEED": v / z}
+    wheel = FmuWheel(path, {"INITIAL_LOAD": LC1}, 1, start)
+    ground, _ = lay_terrain(model, soil / "sandy-loam.toml", road_from_spec("flat"), x0,
+                            x0 + TERRAIN_RUN)
+    stepper = wheel_stepper(model=model, road=ground, load=LC1, speed=v, frame="road")
+    got, want = [], []
+    try:
+        for k in range(2000):
+            centre = WheelCentre(x0 + v * k * DT, 0.0, z, v, 0.0, 0.0, v / z)
+            got.append(wheel.step(k * DT, centre, DT, ["FZ", "FX"]))
+            loads = stepper.step(k * DT, centre, DT)
+            want.append((loads.fz, loads.fx))
+    finally:
+        wheel.close()
+    got, want = np.array(got), np.array(want)
+    assert ground.held()[0] > 5.0                            # the patch moved on
+    assert want[:, 0].min() > 1e3                            # pressed into the soil throughout
+    np.testing.assert_allclose(got, want, rtol=0, atol=1e-9 * np.abs(want).max())
+
+
 def test_many_instances_in_one_process(fmus):
     """pythonfmu's binary (0.6.5-0.7.0) releases a reference to the slave script's namespace
     that it does not own at each instance (tyrelab.cosim.slave.FINDCLASS_DECREF): without the
@@ -299,6 +340,8 @@ def test_the_export_command(tmp_path, capsys):
         (["--road", "cleat:zz"], "cannot read sizes"),
         (["--pressure", "5000"], "pressure"),
         (["--load", "1e9"], "onto its rim"),
+        (["--terrain", "quicksand"], "unknown terrain"),
+        (["--terrain", str(tmp_path / "missing.toml")], "no such soil file"),
         (["--option", f"pattern={PATTERN}", "--model", "ring-tp"], "cannot travel"),
         (["-o", str(tmp_path / "no" / "x.fmu")], "does not exist"),
         (["-o", str(tmp_path / "x.zip")], "must end in .fmu"),

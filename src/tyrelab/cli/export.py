@@ -10,7 +10,7 @@ from ._common import (add_options, bounded_float, input_files, load_value, model
 OPTIONS = {"tyre": "--tyre", "model": "--model", "road": "--road", "pressure": "--pressure",
            "stiffness": "--stiffness", "handling": "--handling", "options": "--option",
            "load": "--load", "frame": "--frame", "internal_step": "--internal-step",
-           "output": "-o"}
+           "terrain": "--terrain", "output": "-o"}
 
 
 def register(sub):
@@ -33,6 +33,10 @@ def register(sub):
     fmu.add_argument("--road", default="flat",
                      help="road: flat, cleat:WxH[@ANGLE], bump:H, step:H, pothole:DxL[xW], a track name "
                           f"or FILE{'|'.join(road_suffixes())}[@V] (sizes in mm; default flat)")
+    fmu.add_argument("--terrain", default=None, metavar="SOIL",
+                     help="a soil over the road (a built-in soil or FILE.toml, copied into the FMU), "
+                          "laid from the wheel's start x at initialisation forward; the wheel then "
+                          "drives forward along x")
     fmu.add_argument("--pressure", type=pressure_kpa(), default=None, metavar="KPA",
                      help="inflation pressure in kPa (built-in tyres; default 300): the PRESSURE "
                           "parameter's default")
@@ -59,14 +63,15 @@ def run_fmu(args) -> int:
     from ..cosim.fmu import export_fmu
     from ..errors import InputError
 
-    out = output_path(args.output, (".fmu",), inputs=input_files(args.tyre, args.road))
+    out = output_path(args.output, (".fmu",), inputs=input_files(args.tyre, args.road, args.terrain))
     try:
         path = export_fmu(out, tyre=args.tyre, model=args.model, road=args.road,
                           pressure=args.pressure, stiffness=args.stiffness, handling=args.handling,
                           options=model_options(args.option), load=args.load, frame=args.frame,
-                          internal_step=args.internal_step)
+                          internal_step=args.internal_step, terrain=args.terrain)
     except InputError as exc:
         raise renamed(exc, OPTIONS) from None
-    print(f"{path}: FMI 2.0 co-simulation FMU, model {args.model} on {args.road} "
+    ground = args.road if args.terrain is None else f"{args.terrain} over {args.road}"
+    print(f"{path}: FMI 2.0 co-simulation FMU, model {args.model} on {ground} "
           "(needs a Python with tyrelab installed in the host)")
     return 0

@@ -41,10 +41,10 @@ hold_namespace(globals(), "{version}")  # see tyrelab.cosim.slave.FINDCLASS_DECR
 '''
 
 
-def _inputs(tyre, road) -> list[Path]:
+def _inputs(tyre, road, terrain=None) -> list[Path]:
     """The files the export reads (the output must not be one of them)."""
     from ..road.formats import road_file
-    out = []
+    out = [Path(str(terrain))] if isinstance(terrain, (str, Path)) and Path(str(terrain)).is_file() else []
     if isinstance(tyre, (str, Path)) and Path(str(tyre)).suffix.lower() in (".tir", ".json"):
         out.append(Path(str(tyre)))
     named = road_file(road) if isinstance(road, str) else None
@@ -56,7 +56,7 @@ def _inputs(tyre, road) -> list[Path]:
 def export_fmu(path, tyre=DEFAULT_TYRE, model: str = "point", road: str = "flat", *,
                pressure: float | None = None, stiffness: str | None = None,
                handling: str | None = None, options: dict | None = None, load=0.0,
-               frame: str = "C-axis", internal_step: float = 0.0) -> Path:
+               frame: str = "C-axis", internal_step: float = 0.0, terrain=None) -> Path:
     """Write an FMI 2.0 co-simulation FMU of a tyre model on a road; returns its path.
 
     Parameters
@@ -80,6 +80,11 @@ def export_fmu(path, tyre=DEFAULT_TYRE, model: str = "point", road: str = "flat"
         Default of ``OUTPUT_FRAME``: the frame of ``FX`` ... ``MZ``.
     internal_step : float
         Default of ``INTERNAL_STEP`` [s]; 0: the model's stable step.
+    terrain : str, optional
+        A soil laid over the road (``--terrain``: a built-in soil's name or a soil
+        ``.toml`` file, copied into the FMU), from the wheel's start x at initialisation
+        forward; its active patch moves on with the wheel, which then drives forward
+        along x (docs/cosimulation.md).
 
     Raises
     ------
@@ -90,7 +95,7 @@ def export_fmu(path, tyre=DEFAULT_TYRE, model: str = "point", road: str = "flat"
     from .. import limits
     from ..io_atomic import atomic_write, check_output_path
 
-    out = check_output_path(path, (".fmu",), field="output", inputs=_inputs(tyre, road))
+    out = check_output_path(path, (".fmu",), field="output", inputs=_inputs(tyre, road, terrain))
     tm = make_tyre_model(tyre, model, pressure, stiffness, handling, options)
     if frame not in OUTPUT_FRAMES:
         raise InputError(f"unknown frame '{frame}', expected one of {', '.join(OUTPUT_FRAMES)}",
@@ -105,14 +110,19 @@ def export_fmu(path, tyre=DEFAULT_TYRE, model: str = "point", road: str = "flat"
                                         what="internal step")
     if not isinstance(road, str):
         raise InputError("give the road by its name or file to put it in an FMU", field="road")
-    tm.contact_params(rigid_ground(tm, road))  # the model builds on this road
+    if terrain is None:
+        tm.contact_params(rigid_ground(tm, road))  # the model builds on this road
+    else:  # the model runs on this ground (a short stretch is laid to check it)
+        from ..rig.soil_ground import lay_terrain
+        from ..road.spec import road_from_spec
+        tm.contact_params(lay_terrain(tm, terrain, road_from_spec(road), 0.0, 1.0)[0])
     from pythonfmu import FmuBuilder
     from pythonfmu import __version__ as pythonfmu_version
 
     with tempfile.TemporaryDirectory(prefix="tyrelab-fmu-") as tmp:
         folder = Path(tmp) / DATA
         folder.mkdir()
-        write_data(folder, tm, tyre, road, load, frame, internal_step)
+        write_data(folder, tm, tyre, road, load, frame, internal_step, terrain)
         script = Path(tmp) / SCRIPT_NAME
         script.write_text(SCRIPT.format(version=pythonfmu_version), encoding="utf-8")
         try:

@@ -8,12 +8,14 @@ export; :func:`read_manifest` and :func:`build_stepper` turn it back into a
   file in the folder, the built-in name it came from, the pressure it
   describes, the stiffness mode), the contact and handling models and their
   options, the road (a name, or its file in the folder and the lateral offset),
-  and the defaults of the FMU's parameters;
+  the terrain laid over it when there is one (a soil's name, or its file in the
+  folder), and the defaults of the FMU's parameters;
 * ``tyre/`` -- the tyre: a ``.tir`` or Chrono ``.json`` file as the user gave it,
   or a built-in tyre written at the export's pressure (with the ring's
   ``[FLEXIBLE_RING]`` section when the ring needs it and the tyre's own file
   has none);
-* ``road/`` -- the road file, when the road is one.
+* ``road/`` -- the road file, when the road is one;
+* ``terrain/`` -- the soil file, when the terrain is one.
 
 Names, not code: the models themselves are the installed tyrelab's.
 """
@@ -32,10 +34,15 @@ from ..road.formats import road_file
 from ..tyre.model import TyreModel
 from .stepper import WheelStepper, wheel_stepper
 
-#: the folder inside the FMU's resources, and its manifest's name and format version
+#: the folder inside the FMU's resources, and its manifest's name and format versions: 2 has
+#: a terrain (written only then, so that an FMU without one still opens in a tyrelab that
+#: reads format 1 only)
 DATA = "tyrelab_data"
 MANIFEST = "manifest.json"
 FORMAT = 1
+FORMAT_TERRAIN = 2
+#: how far ahead of the wheel's start x a terrain is laid [m] (only its active patch is held)
+TERRAIN_RUN = 10000.0
 #: option values a manifest can carry (JSON scalars)
 SCALARS = (bool, int, float, str)
 
@@ -101,14 +108,29 @@ def _road_record(folder: Path, road) -> dict:
     return {"file": f"road/{source.name}", "offset": offset}
 
 
+def _terrain_record(folder: Path, terrain) -> dict:
+    """Copy a soil file into ``folder/terrain``; the terrain's manifest entry (a name or the
+    file)."""
+    if not isinstance(terrain, (str, Path)):
+        raise InputError("give the terrain by its name or file to put it in an FMU (a Soil object "
+                         "cannot travel inside one)", field="terrain")
+    source = Path(str(terrain))
+    if not source.is_file():
+        return {"spec": str(terrain)}
+    (folder / "terrain").mkdir()
+    shutil.copyfile(source, folder / "terrain" / source.name)
+    return {"file": f"terrain/{source.name}"}
+
+
 def write_data(folder, tm: TyreModel, tyre, road: str, load: float, frame: str,
-               internal_step: float) -> dict:
+               internal_step: float, terrain=None) -> dict:
     """Write the tyre, the road and ``manifest.json`` into ``folder`` (it must exist, empty).
 
     ``tm`` the checked model (:func:`tyrelab.api.make_tyre_model`) of ``tyre``
     (the name or file the user gave); ``road`` a road name or file
     ``FILE[@V]``; ``load`` [N], ``frame`` and ``internal_step`` [s] the
-    defaults of the parameters INITIAL_LOAD, OUTPUT_FRAME and INTERNAL_STEP.
+    defaults of the parameters INITIAL_LOAD, OUTPUT_FRAME and INTERNAL_STEP;
+    ``terrain`` a soil's name or file laid over the road (checked by the caller), or None.
     Returns the manifest.
     """
     folder = Path(folder)
@@ -131,6 +153,9 @@ def write_data(folder, tm: TyreModel, tyre, road: str, load: float, frame: str,
         "internal_step": float(internal_step),
         "z_start": float(z_start),
     }
+    if terrain is not None:
+        manifest["format"] = FORMAT_TERRAIN
+        manifest["terrain"] = _terrain_record(folder, terrain)
     (folder / MANIFEST).write_text(json.dumps(manifest, indent=1) + "\n", encoding="utf-8")
     return manifest
 
@@ -141,9 +166,9 @@ def read_manifest(resources) -> dict:
     if not path.is_file():
         raise InputError("no tyrelab manifest in the FMU's resources", source=str(path))
     manifest = json.loads(path.read_text(encoding="utf-8"))
-    if manifest.get("format") != FORMAT:
-        raise InputError(f"manifest format {manifest.get('format')!r}; this tyrelab reads format "
-                         f"{FORMAT}", source=str(path))
+    if manifest.get("format") not in (FORMAT, FORMAT_TERRAIN):
+        raise InputError(f"manifest format {manifest.get('format')!r}; this tyrelab reads formats "
+                         f"{FORMAT} and {FORMAT_TERRAIN}", source=str(path))
     return manifest
 
 
@@ -165,15 +190,28 @@ def road_spec(resources, manifest: dict) -> str:
     return f"{path}@{road['offset']}" if road["offset"] else str(path)
 
 
+def terrain_spec(resources, manifest: dict):
+    """The terrain of a manifest as ``--terrain`` takes it (a name or a file), or None."""
+    terrain = manifest.get("terrain")
+    if terrain is None:
+        return None
+    if "spec" in terrain:
+        return terrain["spec"]
+    return str(Path(_path(resources)) / DATA / terrain["file"])
+
+
 def build_stepper(resources, manifest: dict, pressure: float, load: float, max_step: float,
-                  frame: str, speed: float, start_time: float) -> WheelStepper:
+                  frame: str, speed: float, start_time: float,
+                  x_start: float = 0.0) -> WheelStepper:
     """The wheel an FMU instance steps, from its manifest and its parameters.
 
     ``pressure`` [Pa]: 0 or the tyre file's own takes the file in the FMU; another
     pressure takes the built-in tyre at that pressure from the installed tyrelab
     (a tyre file describes one pressure only: an InputError). ``load`` [N] and
     ``speed`` [m/s] the equilibrium the state starts in; ``max_step`` [s], 0
-    for the model's stable step.
+    for the model's stable step. A terrain is laid over the road from the wheel's
+    start ``x_start`` [m] forward (:data:`TERRAIN_RUN`; the stepper moves its active
+    patch with the wheel).
     """
     from ..api import make_tyre_model
 
@@ -188,6 +226,12 @@ def build_stepper(resources, manifest: dict, pressure: float, load: float, max_s
         source, at = str(path), pressure
     tm = make_tyre_model(source, manifest["model"], at, tyre["stiffness"], manifest["handling"],
                          manifest["options"])
-    return wheel_stepper(model=tm, road=road_spec(resources, manifest), load=load,
+    road = road_spec(resources, manifest)
+    terrain = terrain_spec(resources, manifest)
+    if terrain is not None:
+        from ..rig.soil_ground import lay_terrain
+        from ..road.spec import road_from_spec
+        road, _ = lay_terrain(tm, terrain, road_from_spec(road), x_start, x_start + TERRAIN_RUN)
+    return wheel_stepper(model=tm, road=road, load=load,
                          speed=max(speed, 0.0), max_step=max_step if max_step > 0 else None,
                          frame=frame, start_time=start_time)

@@ -73,6 +73,9 @@ class TyrelabWheel(Fmi2Slave):
         self.author = "tyrelab"
         self.version = manifest["tyrelab"]
         road = manifest["road"].get("spec") or manifest["road"]["file"]
+        terrain = manifest.get("terrain")
+        if terrain is not None:  # soil laid over the road from the wheel's start x
+            road += f" under {terrain.get('spec') or terrain['file']} (from the wheel's start x)"
         self.description = (f"tyrelab {manifest['tyrelab']}: tyre {tyre['file']} "
                             f"({_kpa(tyre['pressure'])}), contact model {manifest['model']}, "
                             f"handling {manifest['handling']}, road {road}. SI units; road frame "
@@ -114,7 +117,8 @@ class TyrelabWheel(Fmi2Slave):
         speed = centre.vx * math.cos(centre.yaw) + centre.vy * math.sin(centre.yaw)
         self._stepper = build_stepper(self.resources, self._manifest, float(self.PRESSURE),
                                       float(self.INITIAL_LOAD), float(self.INTERNAL_STEP),
-                                      OUTPUT_FRAMES[frame], speed, self._start_time)
+                                      OUTPUT_FRAMES[frame], speed, self._start_time,
+                                      x_start=centre.x)
         self._publish(self._stepper.loads(centre))
 
     def do_step(self, current_time, step_size):

@@ -92,6 +92,7 @@ class WheelStepper:
         self._frame = FRAMES[frame]
         self._time = float(start_time)
         self.equilibrium = equilibrium
+        self._ground = ground
         self._follow = getattr(ground, "follow", None)
         self._held = getattr(ground, "held", None)
 
@@ -168,9 +169,17 @@ class WheelStepper:
 
         A step of length 0 on a copy of the state: for the analytic models the
         loads of the vertical law and the handling model at this pose, for the
-        ring the foundation's reaction on the rim.
+        ring the foundation's reaction on the rim. On a ground with a state of
+        its own (the soil's rut) the look presses a copy of it and of the contact
+        model's record (a wheel on soil keeps its last deflection there), so it
+        leaves no rut and no trace.
         """
+        from ..rig.soil_ground import on_fresh_ground
+
         wheel = self.wheel._replace(state=copy.deepcopy(self.wheel.state))
+        if getattr(self._ground, "fresh_copy", None) is not None:
+            wheel = on_fresh_ground(wheel._replace(contact=copy.deepcopy(wheel.contact)),
+                                    self._ground)
         return advance(wheel, _checked(centre), 1, 0.0, self._frame)
 
 

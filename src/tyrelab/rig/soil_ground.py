@@ -65,9 +65,9 @@ def _vertical_force(wheel, x: float, y: float, z: float) -> float:
     return _stand(wheel, float(x), float(y), float(z), 0.0, 0.0, 0.0, 0, 0.0)[1]
 
 
-def _fresh(wheel, ground):
-    """The wheel on a copy of its ground's state (an equilibrium trial leaves no rut); a
-    ground without state (no ``fresh_copy``) as it is."""
+def on_fresh_ground(wheel, ground):
+    """The wheel on a copy of its ground's state (an equilibrium trial, or a look at the loads,
+    leaves no rut); a ground without state (no ``fresh_copy``) as it is."""
     copy = getattr(ground, "fresh_copy", None)
     return wheel._replace(road=copy().surface()) if copy else wheel
 
@@ -91,12 +91,12 @@ def settle(wheel, ground, load: float, x: float, radius: float, y: float = 0.0,
     # the force falls as the wheel rises; the lowest trial keeps the centre off the ground (a
     # contact point at the centre has no direction)
     lo, hi = top + BURIED * radius, top + radius
-    if _vertical_force(_fresh(wheel, ground), x, y, lo) < load:
+    if _vertical_force(on_fresh_ground(wheel, ground), x, y, lo) < load:
         raise InputError(f"the ground does not carry {load:.6g} N under this wheel even sunk to "
                          "its axle; a lighter load or a stiffer ground", field="load")
     while hi - lo > SETTLE_TOLERANCE:
         mid = 0.5 * (lo + hi)
-        if _vertical_force(_fresh(wheel, ground), x, y, mid) > load:
+        if _vertical_force(on_fresh_ground(wheel, ground), x, y, mid) > load:
             lo = mid
         else:
             hi = mid
@@ -111,12 +111,12 @@ def settle(wheel, ground, load: float, x: float, radius: float, y: float = 0.0,
     return z0
 
 
-def terrain_wheel(model, terrain, road, x0: float, x1: float, load: float,
-                  level_at: float | None = None, dt: float = 1e-3, **lay_options):
-    """``(wheel, ground, z0, meta)``: ``model``'s :class:`~tyrelab.tyre.wheel.Wheel` on the
-    ground ``terrain`` names, laid over ``road`` from ``x0`` to ``x1`` [m] (``lay_options``:
-    the soil bed's ``spacing``, ``width``), settled under ``load`` [N] at ``x0`` (``z0`` its
-    centre height [m]); ``meta`` names the ground for the run's metadata."""
+def lay_terrain(model, terrain, road, x0: float, x1: float, level_at: float | None = None,
+                **lay_options):
+    """``(ground, meta)``: the ground ``terrain`` names (``--terrain``: a soil's name or file)
+    laid over ``road`` from ``x0`` to ``x1`` [m] (``lay_options``: the soil bed's ``spacing``,
+    ``width``), once ``model`` is known to run on it; ``meta`` names the ground for a run's
+    metadata."""
     from ..road.terrain import resolve_terrain
     kind, description, label = resolve_terrain(terrain)
     if not runs_on(model.contact_model, kind):
@@ -124,11 +124,20 @@ def terrain_wheel(model, terrain, road, x0: float, x1: float, load: float,
         takers = [n for n, m in contact_models().items() if runs_on(m, kind)]
         raise InputError(f"the '{model.contact}' model does not run on {kind.name}; models that "
                          f"do: {', '.join(takers) or 'none'}", field="model")
-    ground = kind.lay(description, road, x0, x1, level_at, **lay_options)
+    return kind.lay(description, road, x0, x1, level_at, **lay_options), {kind.name: label}
+
+
+def terrain_wheel(model, terrain, road, x0: float, x1: float, load: float,
+                  level_at: float | None = None, dt: float = 1e-3, **lay_options):
+    """``(wheel, ground, z0, meta)``: ``model``'s :class:`~tyrelab.tyre.wheel.Wheel` on the
+    ground ``terrain`` names, laid over ``road`` from ``x0`` to ``x1`` [m]
+    (:func:`lay_terrain`), settled under ``load`` [N] at ``x0`` (``z0`` its centre height
+    [m]); ``meta`` names the ground for the run's metadata."""
+    ground, meta = lay_terrain(model, terrain, road, x0, x1, level_at, **lay_options)
     wheel = model.wheel(ground, load)
     z0 = settle(wheel, ground, load, x0, model.tyre.unloaded_radius,
                 dynamic=model.contact_model.has_state, dt=dt)
-    return wheel, ground, z0, {kind.name: label}
+    return wheel, ground, z0, meta
 
 
 #: a rig keeps this much of its ground behind its wheel's centre [m] (where a moving ground,
