@@ -44,7 +44,9 @@ hold_namespace(globals(), "{version}")  # see tyrelab.cosim.slave.FINDCLASS_DECR
 def _inputs(tyre, road, terrain=None) -> list[Path]:
     """The files the export reads (the output must not be one of them)."""
     from ..road.formats import road_file
-    out = [Path(str(terrain))] if isinstance(terrain, (str, Path)) and Path(str(terrain)).is_file() else []
+    out = []
+    if isinstance(terrain, (str, Path)) and str(terrain).lower().endswith(".toml"):
+        out.append(Path(str(terrain)))
     if isinstance(tyre, (str, Path)) and Path(str(tyre)).suffix.lower() in (".tir", ".json"):
         out.append(Path(str(tyre)))
     named = road_file(road) if isinstance(road, str) else None

@@ -115,7 +115,7 @@ def _terrain_record(folder: Path, terrain) -> dict:
         raise InputError("give the terrain by its name or file to put it in an FMU (a Soil object "
                          "cannot travel inside one)", field="terrain")
     source = Path(str(terrain))
-    if not source.is_file():
+    if source.suffix.lower() != ".toml":  # a name (a file is FILE.toml, as --terrain reads it)
         return {"spec": str(terrain)}
     (folder / "terrain").mkdir()
     shutil.copyfile(source, folder / "terrain" / source.name)
