@@ -24,7 +24,7 @@ from pathlib import Path
 from ..api import make_tyre_model
 from ..errors import InputError
 from ..tyre.library import DEFAULT_TYRE
-from .manifest import DATA, write_data
+from .manifest import DATA, terrain_file, write_data
 from .stepper import rigid_ground
 from .variables import OUTPUT_FRAMES
 
@@ -44,9 +44,8 @@ hold_namespace(globals(), "{version}")  # see tyrelab.cosim.slave.FINDCLASS_DECR
 def _inputs(tyre, road, terrain=None) -> list[Path]:
     """The files the export reads (the output must not be one of them)."""
     from ..road.formats import road_file
-    out = []
-    if isinstance(terrain, (str, Path)) and str(terrain).lower().endswith(".toml"):
-        out.append(Path(str(terrain)))
+    soil = terrain_file(terrain)
+    out = [] if soil is None else [soil]
     if isinstance(tyre, (str, Path)) and Path(str(tyre)).suffix.lower() in (".tir", ".json"):
         out.append(Path(str(tyre)))
     named = road_file(road) if isinstance(road, str) else None

@@ -108,14 +108,22 @@ def _road_record(folder: Path, road) -> dict:
     return {"file": f"road/{source.name}", "offset": offset}
 
 
+def terrain_file(terrain) -> Path | None:
+    """The soil file a terrain names (``FILE.toml``, as ``--terrain`` reads it), None for a
+    name."""
+    if isinstance(terrain, (str, Path)) and str(terrain).lower().endswith(".toml"):
+        return Path(str(terrain))
+    return None
+
+
 def _terrain_record(folder: Path, terrain) -> dict:
     """Copy a soil file into ``folder/terrain``; the terrain's manifest entry (a name or the
     file)."""
     if not isinstance(terrain, (str, Path)):
         raise InputError("give the terrain by its name or file to put it in an FMU (a Soil object "
                          "cannot travel inside one)", field="terrain")
-    source = Path(str(terrain))
-    if source.suffix.lower() != ".toml":  # a name (a file is FILE.toml, as --terrain reads it)
+    source = terrain_file(terrain)
+    if source is None:
         return {"spec": str(terrain)}
     (folder / "terrain").mkdir()
     shutil.copyfile(source, folder / "terrain" / source.name)

@@ -29,6 +29,7 @@ import math
 
 from ..api import make_tyre_model
 from ..errors import InputError
+from ..rig.soil_ground import KEEP_AHEAD, KEEP_BEHIND, on_fresh_ground
 from ..tyre.model import TyreModel
 from .kernel import C_AXIS_FRAME, ROAD_FRAME, CentreLoads, WheelCentre, advance
 
@@ -148,8 +149,6 @@ class WheelStepper:
         that far ahead, it moves on once every half patch, as the rigs' chunks move it,
         not at every step: each move lays the bed's origin again, to the rounding of its
         position."""
-        from ..rig.soil_ground import KEEP_AHEAD, KEEP_BEHIND
-
         radius = self.model.tyre.unloaded_radius
         start, end = self._held()
         if centre.x - radius < start:
@@ -174,8 +173,6 @@ class WheelStepper:
         model's record (a wheel on soil keeps its last deflection there), so it
         leaves no rut and no trace.
         """
-        from ..rig.soil_ground import on_fresh_ground
-
         wheel = self.wheel._replace(state=copy.deepcopy(self.wheel.state))
         if getattr(self._ground, "fresh_copy", None) is not None:
             wheel = on_fresh_ground(wheel._replace(contact=copy.deepcopy(wheel.contact)),

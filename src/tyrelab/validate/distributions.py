@@ -77,10 +77,10 @@ def normality(x) -> dict:
     """
     x = _samples(x)
     mu, sigma = fit_normal(x)
+    ks = _ks(x, mu, sigma)
     if sigma == 0.0:
-        return {"ks": _ks(x, mu, sigma), "skew": 0.0, "kurtosis": 0.0}
-    return {"ks": _ks(x, mu, sigma), "skew": float(stats.skew(x)),
-            "kurtosis": float(stats.kurtosis(x))}
+        return {"ks": ks, "skew": 0.0, "kurtosis": 0.0}
+    return {"ks": ks, "skew": float(stats.skew(x)), "kurtosis": float(stats.kurtosis(x))}
 
 
 def normal_fit_errors(p, m, floor_fraction: float = FLOOR_FRACTION) -> dict:
