@@ -318,6 +318,6 @@ register_contact(ContactModel("enveloping", EnvelopingParams, enveloping_params,
                               geometry=enveloping_contact,
                               summary="3D enveloping contact (tandem elliptical cams), "
                                       "thesis 2.3.3",
-                              options={**_USER_OPTIONS, "cam_layout": str}, cost=0.015,
+                              options={**_USER_OPTIONS, "cam_layout": str}, cost=0.022,
                               parameterization=_DATA, fit_steps=FIT_STEPS, terrains=("rigid", "soil")))
 

@@ -43,6 +43,6 @@ register_contact(ContactModel("enveloping-edge", EnvelopingParams, edge_params,
                               summary="3D enveloping contact with the road evaluated on the "
                                       "patch's edges only, as the thesis describes its ADAMS "
                                       "model (5.4)",
-                              options=_USER_OPTIONS, cost=0.015,
+                              options=_USER_OPTIONS, cost=0.022,
                               parameterization=_DATA + " (the cams on the patch's edges only)",
                               fit_steps=FIT_STEPS, terrains=("rigid", "soil")))

@@ -227,6 +227,6 @@ def point_geometry(tyre, road, x, y=0.0, z=None, axis=(0.0, 1.0, 0.0)):
 
 
 register_contact(ContactModel("point", PointParams, point_params, geometry=point_contact,
-                              summary="one-point (roller) contact, thesis 2.3.1", cost=0.002,
+                              summary="one-point (roller) contact, thesis 2.3.1", cost=0.003,
                               parameterization="load-deflection curve (static press on a flat plate)",
                               terrains=("rigid", "soil"), fit_steps=("vertical", "damping")))

@@ -306,6 +306,6 @@ def volume_geometry(tyre, road, x, y=0.0, z=None, axis=(0.0, 1.0, 0.0), discs=No
 
 register_contact(ContactModel("volume", VolumeParams, volume_params, geometry=volume_contact,
                               summary="3D equivalent volume contact, thesis 2.3.2",
-                              options={"discs": int, "step": float}, cost=0.015,
+                              options={"discs": int, "step": float}, cost=0.017,
                               parameterization="load-deflection curve + carcass cross-section shape",
                               terrains=("rigid", "soil"), fit_steps=("vertical", "damping", "shape")))

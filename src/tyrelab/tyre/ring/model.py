@@ -368,14 +368,14 @@ def _ring_tp_equilibrium(tyre, load, speed, params, **options):
 register_contact(ContactModel("ring", RingParams, _ring_build, step=ring_step,
                               initial_state=_ring_state, equilibrium=_ring_equilibrium,
                               static_options={"relax": RELAX_RATE},
-                              footprint=ring_footprint_of, options=_OPTION_TYPES, cost=0.2,
+                              footprint=ring_footprint_of, options=_OPTION_TYPES, cost=0.08,
                               terrains=("rigid", "soil"),
                               parameterization=_DATA, fit_steps=_FIT_STEPS,
                               summary="flexible ring (FTire class), evenly spaced tread blocks"))
 register_contact(ContactModel("ring-tp", RingParams, _ring_tp_build, step=ring_step,
                               initial_state=_ring_tp_state, equilibrium=_ring_tp_equilibrium,
                               static_options={"relax": RELAX_RATE}, footprint=ring_footprint_of,
-                              options=_OPTION_TYPES, cost=0.22, terrains=("rigid", "soil"),
+                              options=_OPTION_TYPES, cost=0.085, terrains=("rigid", "soil"),
                               parameterization=_DATA + " + tread pattern",
                               # no fit_steps: its pattern is a file the user gives, not fitted
                               summary="flexible ring with blocks on the tread pattern"))
