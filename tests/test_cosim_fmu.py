@@ -222,17 +222,17 @@ def test_the_fmu_in_a_quarter_car_reproduces_the_quarter_vehicle_rig(fmus, case)
 
 def test_the_fmu_on_soil_is_the_stepper_on_soil(tmp_path, monkeypatch):
     """Exported with a soil file (``--terrain``), the FMU carries the file and lays the soil
-    over its road from the wheel's start x (its active patch, held 3 m at a time here, moved
-    on as the wheel drives): FMPy stepping it 8 m along gets the stepping API's loads on the
-    same soil laid the same way, sample by sample to round-off, after the soil file is gone.
-    The FMU publishes its initial loads at initialisation (``WheelStepper.loads``): that look
-    must leave the soil and the wheel's last deflection as they were (it did not: 13.4 kN
+    over its road around the wheel's start, a window of it that follows the wheel (4 m square
+    here, moved as the wheel drives): FMPy stepping a vehicle's right wheel (y = -0.91 m, beyond
+    the rigs' 2 m strip once its width is counted) 8 m along gets the stepping API's loads on
+    the same soil laid the same way, sample by sample to round-off, after the soil file is
+    gone. The FMU publishes its initial loads at initialisation (``WheelStepper.loads``): that
+    look must leave the soil and the wheel's last deflection as they were (it did not: 13.4 kN
     instead of 21.5 kN at the first step)."""
-    from tyrelab.cosim.manifest import TERRAIN_RUN
-    from tyrelab.rig.soil_ground import lay_terrain
-    from tyrelab.road.soil import patch
+    from tyrelab.rig.soil_ground import lay_terrain_around
+    from tyrelab.road.soil import field
 
-    monkeypatch.setattr(patch, "PATCH_LENGTH", 3.0)
+    monkeypatch.setattr(field, "FIELD_SIZE", 4.0)
     soil = ROOT / "src" / "tyrelab" / "road" / "soil" / "data"
     source = tmp_path / "my_soil.toml"
     shutil.copyfile(soil / "sandy-loam.toml", source)
@@ -240,23 +240,22 @@ def test_the_fmu_on_soil_is_the_stepper_on_soil(tmp_path, monkeypatch):
                       load=LC1, frame="road")
     source.unlink()                                          # the FMU carries its own copy
     model = make_tyre_model("xzl-16.00R20", "point")
-    z, v, x0 = model.tyre.unloaded_radius - 0.04, 4.0, 1.0
-    start = {"X_WC": x0, "Z_WC": z, "VX_WC": v, "ROTSPEED": v / z}
+    z, v, x0, y0 = model.tyre.unloaded_radius - 0.04, 4.0, 1.0, -0.91
+    start = {"X_WC": x0, "Y_WC": y0, "Z_WC": z, "VX_WC": v, "ROTSPEED": v / z}
     wheel = FmuWheel(path, {"INITIAL_LOAD": LC1}, 1, start)
-    ground, _ = lay_terrain(model, soil / "sandy-loam.toml", road_from_spec("flat"), x0,
-                            x0 + TERRAIN_RUN)
+    ground, _ = lay_terrain_around(model, soil / "sandy-loam.toml", road_from_spec("flat"), x0, y0)
     stepper = wheel_stepper(model=model, road=ground, load=LC1, speed=v, frame="road")
     got, want = [], []
     try:
         for k in range(2000):
-            centre = WheelCentre(x0 + v * k * DT, 0.0, z, v, 0.0, 0.0, v / z)
+            centre = WheelCentre(x0 + v * k * DT, y0, z, v, 0.0, 0.0, v / z)
             got.append(wheel.step(k * DT, centre, DT, ["FZ", "FX"]))
             loads = stepper.step(k * DT, centre, DT)
             want.append((loads.fz, loads.fx))
     finally:
         wheel.close()
     got, want = np.array(got), np.array(want)
-    assert ground.held()[0] > 5.0                            # the patch moved on
+    assert ground.held()[0] > 3.0                            # the window moved on
     assert want[:, 0].min() > 1e3                            # pressed into the soil throughout
     np.testing.assert_allclose(got, want, rtol=0, atol=1e-9 * np.abs(want).max())
 

@@ -35,8 +35,8 @@ def register(sub):
                           f"or FILE{'|'.join(road_suffixes())}[@V] (sizes in mm; default flat)")
     fmu.add_argument("--terrain", default=None, metavar="SOIL",
                      help="a soil over the road (a built-in soil or FILE.toml, copied into the FMU), "
-                          "laid from the wheel's start x at initialisation forward; the wheel then "
-                          "drives forward along x")
+                          "laid round the wheel's position at initialisation, a 12 m window of it "
+                          "following the wheel anywhere")
     fmu.add_argument("--pressure", type=pressure_kpa(), default=None, metavar="KPA",
                      help="inflation pressure in kPa (built-in tyres; default 300): the PRESSURE "
                           "parameter's default")

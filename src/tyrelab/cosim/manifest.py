@@ -41,8 +41,6 @@ DATA = "tyrelab_data"
 MANIFEST = "manifest.json"
 FORMAT = 1
 FORMAT_TERRAIN = 2
-#: how far ahead of the wheel's start x a terrain is laid [m] (only its active patch is held)
-TERRAIN_RUN = 10000.0
 #: option values a manifest can carry (JSON scalars)
 SCALARS = (bool, int, float, str)
 
@@ -210,16 +208,16 @@ def terrain_spec(resources, manifest: dict):
 
 def build_stepper(resources, manifest: dict, pressure: float, load: float, max_step: float,
                   frame: str, speed: float, start_time: float,
-                  x_start: float = 0.0) -> WheelStepper:
+                  x_start: float = 0.0, y_start: float = 0.0) -> WheelStepper:
     """The wheel an FMU instance steps, from its manifest and its parameters.
 
     ``pressure`` [Pa]: 0 or the tyre file's own takes the file in the FMU; another
     pressure takes the built-in tyre at that pressure from the installed tyrelab
     (a tyre file describes one pressure only: an InputError). ``load`` [N] and
     ``speed`` [m/s] the equilibrium the state starts in; ``max_step`` [s], 0
-    for the model's stable step. A terrain is laid over the road from the wheel's
-    start ``x_start`` [m] forward (:data:`TERRAIN_RUN`; the stepper moves its active
-    patch with the wheel).
+    for the model's stable step. A terrain is laid over the road around the wheel's
+    start ``(x_start, y_start)`` [m] (:func:`~tyrelab.rig.soil_ground.lay_terrain_around`:
+    a soil's window follows the wheel anywhere, the stepper moving it).
     """
     from ..api import make_tyre_model
 
@@ -237,9 +235,9 @@ def build_stepper(resources, manifest: dict, pressure: float, load: float, max_s
     road = road_spec(resources, manifest)
     terrain = terrain_spec(resources, manifest)
     if terrain is not None:
-        from ..rig.soil_ground import lay_terrain
+        from ..rig.soil_ground import lay_terrain_around
         from ..road.spec import road_from_spec
-        road, _ = lay_terrain(tm, terrain, road_from_spec(road), x_start, x_start + TERRAIN_RUN)
+        road, _ = lay_terrain_around(tm, terrain, road_from_spec(road), x_start, y_start)
     return wheel_stepper(model=tm, road=road, load=load,
                          speed=max(speed, 0.0), max_step=max_step if max_step > 0 else None,
                          frame=frame, start_time=start_time)

@@ -118,7 +118,7 @@ class TyrelabWheel(Fmi2Slave):
         self._stepper = build_stepper(self.resources, self._manifest, float(self.PRESSURE),
                                       float(self.INITIAL_LOAD), float(self.INTERNAL_STEP),
                                       OUTPUT_FRAMES[frame], speed, self._start_time,
-                                      x_start=centre.x)
+                                      x_start=centre.x, y_start=centre.y)
         self._publish(self._stepper.loads(centre))
 
     def do_step(self, current_time, step_size):

@@ -69,10 +69,12 @@ class WheelStepper:
         a level road, its ``spin`` is the free-rolling spin.
     ground : optional
         The Python ground whose record the wheel holds. One that holds only a
-        stretch of itself at a time and moves with the wheel (the soil's active
-        patch, :meth:`~tyrelab.road.soil.patch.SoilPatch.follow`) is moved on
-        before each step to cover it, with the rigs' margins
-        (:data:`~tyrelab.rig.soil_ground.KEEP_BEHIND`, ``KEEP_AHEAD``).
+        part of itself at a time and moves with the wheel is moved on before each
+        step to cover it, with the rigs' margins
+        (:data:`~tyrelab.rig.soil_ground.KEEP_BEHIND`, ``KEEP_AHEAD``): in x and y
+        for a window that follows the wheel anywhere (the soil's field,
+        :meth:`~tyrelab.road.soil.field.SoilField.cover`), forward along x for a
+        strip (the rigs' active patch, :meth:`~tyrelab.road.soil.patch.SoilPatch.follow`).
     """
 
     def __init__(self, model: TyreModel, wheel, max_step: float, frame: str = "C-axis",
@@ -94,7 +96,8 @@ class WheelStepper:
         self._time = float(start_time)
         self.equilibrium = equilibrium
         self._ground = ground
-        self._follow = getattr(ground, "follow", None)
+        self._cover = getattr(ground, "cover", None)
+        self._follow = None if self._cover is not None else getattr(ground, "follow", None)
         self._held = getattr(ground, "held", None)
 
     @property
@@ -134,7 +137,9 @@ class WheelStepper:
             raise InputError(f"the wheel's state is at t = {self._time!r} s, the step starts at "
                              f"{time!r} s: step on from where the wheel is", field="time")
         centre = _checked(centre)
-        if self._follow is not None:
+        if self._cover is not None:
+            self._move_field(centre, dt)
+        elif self._follow is not None:
             self._move_ground(centre, dt)
         n = self.sub_steps(dt)
         loads = advance(self.wheel, centre, n, dt / n, self._frame)
@@ -160,6 +165,22 @@ class WheelStepper:
         if ahead <= end:
             return
         record = self._follow(centre.x - KEEP_BEHIND, ahead + 0.5 * (end - start))
+        if record is not None:
+            self.wheel = self.wheel._replace(road=record)
+
+    def _move_field(self, centre: WheelCentre, dt: float) -> None:
+        """Move a ground that follows the wheel anywhere (the soil's field,
+        :class:`~tyrelab.road.soil.field.SoilField`) once the wheel's reach over this step,
+        its radius and :data:`~tyrelab.rig.soil_ground.KEEP_AHEAD` around the centre at the
+        step's start and end, leaves the window it holds: the window then moves the way the
+        wheel goes, keeping :data:`~tyrelab.rig.soil_ground.KEEP_BEHIND` behind it."""
+        reach = self.model.tyre.unloaded_radius + KEEP_AHEAD
+        x1, y1 = centre.x + centre.vx * dt, centre.y + centre.vy * dt
+        speed = math.hypot(centre.vx, centre.vy)
+        toward = (centre.vx / speed, centre.vy / speed) if speed > 0.0 else (0.0, 0.0)
+        record = self._cover(min(centre.x, x1) - reach, max(centre.x, x1) + reach,
+                             min(centre.y, y1) - reach, max(centre.y, y1) + reach,
+                             toward=toward, behind=KEEP_BEHIND)
         if record is not None:
             self.wheel = self.wheel._replace(road=record)
 
@@ -237,8 +258,10 @@ def wheel_stepper(tyre="xzl-16.00R20", model: str | TyreModel = "point", road="f
         A road name or file (:func:`tyrelab.road.spec.road_from_spec`), a road,
         its grid, or any ground of the terrain interface (an object with
         ``surface()``, :mod:`tyrelab.road.terrain`), such as a soil laid over
-        a road (:func:`tyrelab.road.soil.terrain.lay_soil`: its active patch
-        moves on with the wheel, which then steps forward along x). Positions
+        a road: :func:`tyrelab.road.soil.field.lay_soil_field` (a window of it that
+        follows the wheel anywhere, as the FMU lays it) or
+        :func:`tyrelab.road.soil.terrain.lay_soil` (the rigs' strip, whose active
+        patch moves on with the wheel, which then steps forward along x). Positions
         are in its own frame: unlike the rigs, the stepper does not level a
         road whose start is not at height zero.
     pressure, stiffness, handling, options

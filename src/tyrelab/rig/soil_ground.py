@@ -111,12 +111,9 @@ def settle(wheel, ground, load: float, x: float, radius: float, y: float = 0.0,
     return z0
 
 
-def lay_terrain(model, terrain, road, x0: float, x1: float, level_at: float | None = None,
-                **lay_options):
-    """``(ground, meta)``: the ground ``terrain`` names (``--terrain``: a soil's name or file)
-    laid over ``road`` from ``x0`` to ``x1`` [m] (``lay_options``: the soil bed's ``spacing``,
-    ``width``), once ``model`` is known to run on it; ``meta`` names the ground for a run's
-    metadata."""
+def _terrain_for(model, terrain):
+    """``(kind, description, label)`` of the ground ``terrain`` names, once ``model`` is known
+    to run on it (else one InputError naming the models that do)."""
     from ..road.terrain import resolve_terrain
     kind, description, label = resolve_terrain(terrain)
     if not runs_on(model.contact_model, kind):
@@ -124,7 +121,34 @@ def lay_terrain(model, terrain, road, x0: float, x1: float, level_at: float | No
         takers = [n for n, m in contact_models().items() if runs_on(m, kind)]
         raise InputError(f"the '{model.contact}' model does not run on {kind.name}; models that "
                          f"do: {', '.join(takers) or 'none'}", field="model")
+    return kind, description, label
+
+
+def lay_terrain(model, terrain, road, x0: float, x1: float, level_at: float | None = None,
+                **lay_options):
+    """``(ground, meta)``: the ground ``terrain`` names (``--terrain``: a soil's name or file)
+    laid over ``road`` from ``x0`` to ``x1`` [m] (``lay_options``: the soil bed's ``spacing``,
+    ``width``), once ``model`` is known to run on it; ``meta`` names the ground for a run's
+    metadata."""
+    kind, description, label = _terrain_for(model, terrain)
     return kind.lay(description, road, x0, x1, level_at, **lay_options), {kind.name: label}
+
+
+def lay_terrain_around(model, terrain, road, x: float, y: float, level_at: float | None = None,
+                       **lay_options):
+    """``(ground, meta)`` as :func:`lay_terrain`, for a wheel a host drives anywhere from
+    ``(x, y)`` [m] (co-simulation): the kind's ``lay_around`` (the soil: a window that follows
+    the wheel in x and y, :class:`~tyrelab.road.soil.field.SoilField`); a kind without it is
+    laid along x from ``x`` on, as a rig would lay it (:data:`AROUND_RUN`)."""
+    kind, description, label = _terrain_for(model, terrain)
+    if kind.lay_around is None:
+        return kind.lay(description, road, x, x + AROUND_RUN, level_at, **lay_options), \
+            {kind.name: label}
+    return kind.lay_around(description, road, x, y, level_at, **lay_options), {kind.name: label}
+
+
+#: how far along x a kind without ``lay_around`` is laid for a host's wheel [m]
+AROUND_RUN = 10000.0
 
 
 def terrain_wheel(model, terrain, road, x0: float, x1: float, load: float,

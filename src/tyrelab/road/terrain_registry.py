@@ -75,6 +75,13 @@ class TerrainKind:
         to cover that stretch or None, which the rigs call before each chunk of a run)
         over ``road`` from ``x0`` to ``x1`` [m] along y = 0, heights less the road's at
         ``(level_at, 0)`` when given; ``options`` a rig's (the soil bed's spacing, width).
+    lay_around : callable, optional
+        ``lay_around(description, road, x, y, level_at, **options) -> ground``: the ground
+        for a wheel a host drives anywhere (co-simulation), laid around ``(x, y)`` [m]; one
+        that holds a part of itself at a time also has ``cover(x_lo, x_hi, y_lo, y_hi,
+        toward, behind)``, its record moved to hold that box or None (the soil:
+        :class:`~tyrelab.road.soil.field.SoilField`). Without it, ``lay`` over a stretch
+        along x is used.
     hint : str
         What ``--terrain`` takes for this kind, for the message listing them.
     """
@@ -97,6 +104,7 @@ class TerrainKind:
     description: str = ""
     resolve: Any = None
     lay: Any = None
+    lay_around: Any = None
     hint: str = ""
 
     def __post_init__(self):

@@ -46,6 +46,13 @@ import numpy as np
 from ..grid import RoadSurface
 from .params import Soil
 
+#: the soil bed's node spacing [m]: halving it moves the pull of the XZL's rigid wheel on LETE
+#: sand at s = 0.2 by 0.15 % and its sinkage by 1.8 %, and costs four times the time
+BED_SPACING = 0.02
+#: memory of a soil node: undisturbed height, surface, shear displacement, stress
+BYTES_PER_NODE = 4 * 8
+
+
 class SoilSurface(NamedTuple):
     """A soil bed: its parameters and the state of every node (arrays ``(nx, ny)``).
 

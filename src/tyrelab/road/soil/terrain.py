@@ -34,18 +34,14 @@ import numpy as np
 from ..grid import (grid_block_max, grid_blocks, grid_line_height, grid_lines, grid_range,
                     grid_row, local_zmax, road_height, road_height_gradient, road_penetration)
 from ..terrain_registry import TerrainKind, register_terrain
+from .field import lay_soil_field
 from .params import Soil
-from .scm import SoilSurface, bekker_modulus, node_stress
+from .scm import BED_SPACING, BYTES_PER_NODE, SoilSurface, bekker_modulus, node_stress  # noqa: F401
 
-#: the soil bed's node spacing [m]: halving it moves the pull of the XZL's rigid wheel on LETE
-#: sand at s = 0.2 by 0.15 % and its sinkage by 1.8 %, and costs four times the time
-BED_SPACING = 0.02
 #: the bed's width [m] across the wheel's track (its centre line y = 0)
 BED_WIDTH = 2.0
 #: the bed reaches this far [m] behind the start and beyond the end of the run
 BED_MARGIN = 1.0
-#: memory of a soil node: undisturbed height, surface, shear displacement, stress
-BYTES_PER_NODE = 4 * 8
 
 #: the series solve stops when the block and the soil agree to this fraction of the force
 SERIES_TOLERANCE = 1e-6
@@ -204,7 +200,7 @@ register_terrain(TerrainKind(
     "soil", SoilSurface, height=soil_height, height_gradient=soil_height_gradient,
     penetration=soil_penetration, zmax=soil_zmax, range=soil_range, lines=soil_lines,
     row=soil_row, line_height=soil_line_height, blocks=soil_blocks, block_max=soil_block_max,
-    contact=soil_contact, rigid=False, resolve=resolve_soil, lay=lay_soil,
+    contact=soil_contact, rigid=False, resolve=resolve_soil, lay=lay_soil, lay_around=lay_soil_field,
     hint="a soil, NAME (tyrelab soil list) or FILE.toml",
     description="deformable soil (SCM class): Bekker-Wong pressure-sinkage, Mohr-Coulomb and "
                 "Janosi shear, a rut that stays (--terrain NAME|FILE.toml)"))
