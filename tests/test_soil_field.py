@@ -124,9 +124,16 @@ def test_a_wheel_on_a_moving_window_has_the_loads_of_the_whole_field(path):
         assert 0.0 < back < out
 
 
-def test_a_field_too_large_or_too_fine_is_one_line():
+def test_a_field_too_large_or_too_fine_or_a_step_too_far_is_one_line():
+    """Refused in one line: a field above the memory allowed, one finer than its spacing, and
+    a host step that would take the wheel further than a field within that memory holds."""
     road = road_from_spec("flat")
     with pytest.raises(InputError, match="above the .* GiB allowed"):
         lay_soil_field(SOIL, road, 0.0, 0.0, size=2000.0)
     with pytest.raises(InputError, match="at least two spacings"):
         lay_soil_field(SOIL, road, 0.0, 0.0, size=0.01)
+    field = lay_soil_field(SOIL, road, 0.0, 0.0, size=2.0)
+    stepper = wheel_stepper(model=make_tyre_model("xzl-16.00R20", "rigid"), road=field)
+    with pytest.raises(InputError, match="in one step, more than a soil field holds"):
+        stepper.step(0.0, WheelCentre(0.0, 0.0, 0.6, 1e8, 0.0, 0.0, 1e8 / 0.6), 1e-3)  # 100 km
+    assert field.held() == (-1.0, 1.0, -1.0, 1.0)                 # nothing moved

@@ -134,6 +134,10 @@ def lay_terrain(model, terrain, road, x0: float, x1: float, level_at: float | No
     return kind.lay(description, road, x0, x1, level_at, **lay_options), {kind.name: label}
 
 
+#: how far along x a kind without ``lay_around`` is laid for a host's wheel [m]
+AROUND_RUN = 10000.0
+
+
 def lay_terrain_around(model, terrain, road, x: float, y: float, level_at: float | None = None,
                        **lay_options):
     """``(ground, meta)`` as :func:`lay_terrain`, for a wheel a host drives anywhere from
@@ -146,9 +150,6 @@ def lay_terrain_around(model, terrain, road, x: float, y: float, level_at: float
             {kind.name: label}
     return kind.lay_around(description, road, x, y, level_at, **lay_options), {kind.name: label}
 
-
-#: how far along x a kind without ``lay_around`` is laid for a host's wheel [m]
-AROUND_RUN = 10000.0
 
 
 def terrain_wheel(model, terrain, road, x0: float, x1: float, load: float,

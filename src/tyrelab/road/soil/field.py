@@ -21,6 +21,8 @@ import math
 
 import numpy as np
 
+from ...errors import InputError
+from ...limits import MAX_MEMORY
 from .params import Soil
 from .scm import BED_SPACING, BYTES_PER_NODE, bed_record
 
@@ -103,6 +105,10 @@ class SoilField:
             first[axis] = min(first[axis], int(math.floor((lo - anchor) / d)))
             first[axis] = max(first[axis], int(math.ceil((hi - anchor) / d)) - shape[axis] + 1)
         first = (first[0], first[1])
+        if shape[0] * shape[1] * BYTES_PER_NODE > MAX_MEMORY:
+            raise InputError(f"the wheel reaches {x_hi - x_lo:.3g} m x {y_hi - y_lo:.3g} m of soil in "
+                             f"one step, more than a soil field holds within "
+                             f"{MAX_MEMORY / 1024 ** 3:g} GiB; shorter steps", field="dt")
         new = self._fresh(first, shape)
         # the nodes both windows hold keep their state
         a = [max(first[0], self.first[0]), max(first[1], self.first[1])]
@@ -134,8 +140,6 @@ def lay_soil_field(soil: Soil, road, x: float, y: float, level_at: float | None 
     with it (:class:`SoilField`; default :data:`FIELD_SIZE`); nodes every ``spacing`` [m]
     (default the rigs' bed's).
     :attr:`~tyrelab.road.terrain_registry.TerrainKind.lay_around` of the soil."""
-    from ...errors import InputError
-    from ...limits import MAX_MEMORY
     spacing = BED_SPACING if spacing is None else float(spacing)
     size = FIELD_SIZE if size is None else float(size)
     if not (math.isfinite(size) and math.isfinite(spacing) and 0.0 < spacing and 2 * spacing <= size):
