@@ -73,8 +73,9 @@ class WheelStepper:
         step to cover it, with the rigs' margins
         (:data:`~tyrelab.rig.soil_ground.KEEP_BEHIND`, ``KEEP_AHEAD``): in x and y
         for a window that follows the wheel anywhere (the soil's field,
-        :meth:`~tyrelab.road.soil.field.SoilField.cover`), forward along x for a
-        strip (the rigs' active patch, :meth:`~tyrelab.road.soil.patch.SoilPatch.follow`).
+        :meth:`~tyrelab.road.soil.field.SoilField.cover`; several steppers may share one,
+        the window then holding every wheel on it), forward along x for a strip (the
+        rigs' active patch, :meth:`~tyrelab.road.soil.patch.SoilPatch.follow`).
     """
 
     def __init__(self, model: TyreModel, wheel, max_step: float, frame: str = "C-axis",
@@ -178,10 +179,16 @@ class WheelStepper:
         x1, y1 = centre.x + centre.vx * dt, centre.y + centre.vy * dt
         speed = math.hypot(centre.vx, centre.vy)
         toward = (centre.vx / speed, centre.vy / speed) if speed > 0.0 else (0.0, 0.0)
-        record = self._cover(min(centre.x, x1) - reach, max(centre.x, x1) + reach,
-                             min(centre.y, y1) - reach, max(centre.y, y1) + reach,
-                             toward=toward, behind=KEEP_BEHIND)
-        if record is not None:
+        self._cover(min(centre.x, x1) - reach, max(centre.x, x1) + reach,
+                    min(centre.y, y1) - reach, max(centre.y, y1) + reach,
+                    toward=toward, behind=KEEP_BEHIND, wheel=self)
+        self._on_current_ground()
+
+    def _on_current_ground(self) -> None:
+        """The wheel on the record its ground holds now: a field other wheels share may have
+        been moved by their steps."""
+        record = self._ground.surface()
+        if self.wheel.road is not record:
             self.wheel = self.wheel._replace(road=record)
 
     def loads(self, centre: WheelCentre) -> CentreLoads:
@@ -194,6 +201,8 @@ class WheelStepper:
         model's record (a wheel on soil keeps its last deflection there), so it
         leaves no rut and no trace.
         """
+        if self._cover is not None:
+            self._on_current_ground()
         wheel = self.wheel._replace(state=copy.deepcopy(self.wheel.state))
         if getattr(self._ground, "fresh_copy", None) is not None:
             wheel = on_fresh_ground(wheel._replace(contact=copy.deepcopy(wheel.contact)),

@@ -18,6 +18,7 @@ the cost of the rut it leaves behind.
 from __future__ import annotations
 
 import math
+import weakref
 
 import numpy as np
 
@@ -50,6 +51,7 @@ class SoilField:
         n = int(math.ceil(size / self.spacing)) + 1
         self.first = (-(n // 2), -(n // 2))              # lattice index of the window's corner
         self.bed = self._fresh(self.first, (n, n))
+        self._wheels = weakref.WeakKeyDictionary()        # a wheel on it -> the box it needs
 
     def _heights(self, first: tuple[int, int], shape: tuple[int, int]) -> np.ndarray:
         """The undisturbed heights of the nodes from lattice index ``first``, ``shape`` of them."""
@@ -77,14 +79,24 @@ class SoilField:
                 self.y_anchor + k * d, self.y_anchor + (k + ny - 1) * d)
 
     def cover(self, x_lo: float, x_hi: float, y_lo: float, y_hi: float,
-              toward: tuple[float, float] = (0.0, 0.0), behind: float = 0.0):
+              toward: tuple[float, float] = (0.0, 0.0), behind: float = 0.0, wheel=None):
         """The bed's record once the window holds the box ``x_lo..x_hi``, ``y_lo..y_hi`` [m], or
         None when it holds it already.
 
         Moved, the window keeps its size (or grows to the box) and puts the box ``behind``
         [m] from its edge opposite ``toward`` (a horizontal unit vector, the way the wheel
         goes; (0, 0): the box in the middle), so that the wheel drives as far as it can
-        before the next move. The nodes held before and after keep their state."""
+        before the next move. The nodes held before and after keep their state.
+
+        Several wheels on one field (a vehicle's, each stepped on its own): each names
+        itself as ``wheel`` (any object; forgotten once nothing else holds it), the box is
+        its own, and the window holds the boxes of every wheel on the field, so that the
+        rear wheels run in the front wheels' ruts and no wheel's move drops another's soil."""
+        if wheel is not None:
+            self._wheels[wheel] = (x_lo, x_hi, y_lo, y_hi)
+            boxes = list(self._wheels.values())
+            x_lo, x_hi = min(b[0] for b in boxes), max(b[1] for b in boxes)
+            y_lo, y_hi = min(b[2] for b in boxes), max(b[3] for b in boxes)
         lo_x, hi_x, lo_y, hi_y = self.held()
         if lo_x <= x_lo and x_hi <= hi_x and lo_y <= y_lo and y_hi <= hi_y:
             return None
