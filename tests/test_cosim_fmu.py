@@ -41,6 +41,7 @@ from tyrelab.cli.main import main  # noqa: E402
 from tyrelab.cosim import WheelCentre, wheel_stepper  # noqa: E402
 from tyrelab.cosim.fmu import export_fmu  # noqa: E402
 from tyrelab.cosim.variables import INPUTS, OUTPUTS, PARAMETERS, UNITS  # noqa: E402
+from tyrelab.errors import InputError  # noqa: E402
 from tyrelab.rig.quarter_vehicle import QuarterVehicle  # noqa: E402
 from tyrelab.rig.rolling import roll  # noqa: E402
 from tyrelab.road.spec import road_from_spec  # noqa: E402
@@ -131,7 +132,8 @@ def test_fmpy_replaying_a_rolling_rig_run_gives_the_rigs_loads(fmus, case):
 class FmuWheel:
     """The FMU as a host holds it: FMPy's FMU2Slave, inputs and outputs by name."""
 
-    def __init__(self, path: Path, parameters: dict, frame: int, centre: dict):
+    def __init__(self, path: Path, parameters: dict, frame: int, centre: dict,
+                 integers: dict | None = None):
         self.md = read_model_description(str(path))
         self.vr = {v.name: v.valueReference for v in self.md.modelVariables}
         self.folder = extract(str(path))
@@ -142,7 +144,8 @@ class FmuWheel:
         self.fmu.setupExperiment(startTime=0.0)
         self.fmu.enterInitializationMode()
         self.fmu.setReal([self.vr[k] for k in parameters], list(parameters.values()))
-        self.fmu.setInteger([self.vr["OUTPUT_FRAME"]], [frame])
+        integers = {"OUTPUT_FRAME": frame, **(integers or {})}
+        self.fmu.setInteger([self.vr[k] for k in integers], list(integers.values()))
         self.inputs = [self.vr[v.name] for v in INPUTS]
         self.fmu.setReal([self.vr[k] for k in centre], list(centre.values()))
         self.fmu.exitInitializationMode()
@@ -258,6 +261,59 @@ def test_the_fmu_on_soil_is_the_stepper_on_soil(tmp_path, monkeypatch):
     assert ground.held()[0] > 3.0                            # the window moved on
     assert want[:, 0].min() > 1e3                            # pressed into the soil throughout
     np.testing.assert_allclose(got, want, rtol=0, atol=1e-9 * np.abs(want).max())
+
+
+def test_instances_of_one_soil_group_share_the_soil(tmp_path):
+    """A vehicle's front and rear wheel, 3 m apart, as two instances of the soil FMU in one
+    process, stepped one after the other: with SOIL_GROUP = 1 both run on one soil laid round
+    the first instance's start, the rear wheel in the front wheel's rut, and their loads are
+    the stepping API's with both wheels on one field, sample by sample to round-off; the rear
+    wheel then rolls with less than half the front's resistance over the same soil. With
+    SOIL_GROUP = 0 the rear instance has a soil of its own. An instance whose soil is not the
+    group's is refused in one line."""
+    from tyrelab.cosim.manifest import shared_terrain
+    from tyrelab.rig.soil_ground import lay_terrain_around
+
+    path = export_fmu(tmp_path / "soil.fmu", model="rigid", road="flat", terrain="sandy-loam",
+                      load=LC1, frame="road")
+    model = make_tyre_model("xzl-16.00R20", "rigid")
+    z, v, y = model.tyre.unloaded_radius - 0.04, 2.0, 0.5
+
+    def start(x):
+        return {"X_WC": x, "Y_WC": y, "Z_WC": z, "VX_WC": v, "ROTSPEED": v / z}
+
+    def drive(group):
+        wheels = [FmuWheel(path, {"INITIAL_LOAD": LC1}, 1, start(x), {"SOIL_GROUP": group})
+                  for x in (4.0, 1.0)]
+        out = []
+        try:
+            for k in range(3000):
+                out.append([w.step(k * DT, WheelCentre(x + v * k * DT, y, z, v, 0.0, 0.0, v / z),
+                                   DT, ["FZ", "FX"]) for w, x in zip(wheels, (4.0, 1.0))])
+        finally:
+            for w in wheels:
+                w.close()
+        return np.array(out)
+
+    shared, apart = drive(1), drive(0)
+    ground = lay_terrain_around(model, "sandy-loam", road_from_spec("flat"), 4.0, y)[0]
+    api = [wheel_stepper(model=model, road=ground, load=LC1, speed=v, frame="road")
+           for _ in range(2)]
+    want = []
+    for k in range(3000):
+        row = []
+        for stepper, x in zip(api, (4.0, 1.0)):
+            loads = stepper.step(k * DT, WheelCentre(x + v * k * DT, y, z, v, 0.0, 0.0, v / z), DT)
+            row.append((loads.fz, loads.fx))
+        want.append(row)
+    want = np.array(want)
+    np.testing.assert_allclose(shared, want, rtol=0, atol=1e-9 * np.abs(want).max())
+    same_soil = slice(2000, 3000)                            # the rear wheel 3 m behind: 1500 steps
+    assert 0.0 < shared[same_soil, 1, 1].mean() < 0.5 * shared[500:1500, 0, 1].mean()
+    assert apart[same_soil, 1, 1].mean() == pytest.approx(apart[500:1500, 0, 1].mean(), rel=0.02)
+    with pytest.raises(InputError, match="SOIL_GROUP 7 holds another soil"):
+        for soil in ("sandy-loam", "lete-sand"):
+            kept = shared_terrain(model, soil, "flat", 7, 0.0, 0.0, ("spec", "flat"))  # noqa: F841
 
 
 def test_many_instances_in_one_process(fmus):

@@ -222,7 +222,7 @@ def test_the_page_lists_every_fmu_variable_with_its_unit():
     from pathlib import Path
 
     from tyrelab.cosim import CentreLoads
-    from tyrelab.cosim.variables import INPUTS, OUTPUTS, PARAMETERS
+    from tyrelab.cosim.variables import INPUTS, OUTPUTS, PARAMETERS, SOIL_PARAMETERS
 
     page = (Path(__file__).resolve().parents[1] / "docs" / "cosimulation.md").read_text()
     listed = {}
@@ -231,7 +231,7 @@ def test_the_page_lists_every_fmu_variable_with_its_unit():
         if len(cells) >= 3:
             for name in re.findall(r"`([A-Z_]+)`", cells[0]):
                 listed[name] = cells[1]
-    table = INPUTS + OUTPUTS + PARAMETERS
+    table = INPUTS + OUTPUTS + PARAMETERS + SOIL_PARAMETERS
     assert listed == {v.name: v.unit or "-" for v in table}
     assert [v.field for v in INPUTS] == list(WheelCentre._fields)
     assert [v.field for v in OUTPUTS] == list(CentreLoads._fields)

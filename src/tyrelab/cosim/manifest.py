@@ -208,7 +208,8 @@ def terrain_spec(resources, manifest: dict):
 
 def build_stepper(resources, manifest: dict, pressure: float, load: float, max_step: float,
                   frame: str, speed: float, start_time: float,
-                  x_start: float = 0.0, y_start: float = 0.0) -> WheelStepper:
+                  x_start: float = 0.0, y_start: float = 0.0,
+                  soil_group: int = 0) -> WheelStepper:
     """The wheel an FMU instance steps, from its manifest and its parameters.
 
     ``pressure`` [Pa]: 0 or the tyre file's own takes the file in the FMU; another
@@ -217,7 +218,8 @@ def build_stepper(resources, manifest: dict, pressure: float, load: float, max_s
     ``speed`` [m/s] the equilibrium the state starts in; ``max_step`` [s], 0
     for the model's stable step. A terrain is laid over the road around the wheel's
     start ``(x_start, y_start)`` [m] (:func:`~tyrelab.rig.soil_ground.lay_terrain_around`:
-    a soil's window follows the wheel anywhere, the stepper moving it).
+    a soil's window follows the wheel anywhere, the stepper moving it). Instances with the
+    same ``soil_group`` > 0 in one process share one soil (:func:`shared_terrain`).
     """
     from ..api import make_tyre_model
 
@@ -235,9 +237,55 @@ def build_stepper(resources, manifest: dict, pressure: float, load: float, max_s
     road = road_spec(resources, manifest)
     terrain = terrain_spec(resources, manifest)
     if terrain is not None:
-        from ..rig.soil_ground import lay_terrain_around
-        from ..road.spec import road_from_spec
-        road, _ = lay_terrain_around(tm, terrain, road_from_spec(road), x_start, y_start)
+        road = shared_terrain(tm, terrain, road, soil_group, x_start, y_start,
+                              _road_identity(resources, manifest))
     return wheel_stepper(model=tm, road=road, load=load,
                          speed=max(speed, 0.0), max_step=max_step if max_step > 0 else None,
                          frame=frame, start_time=start_time)
+
+
+#: the soils FMU instances share in this process: SOIL_GROUP -> (what was laid, the ground);
+#: a group's soil goes when its last instance does
+_SHARED = {}
+
+
+def _road_identity(resources, manifest: dict) -> tuple:
+    """What a road is, whichever FMU carries it: its spec, or its file's bytes."""
+    road = manifest["road"]
+    if road.get("spec") is not None:
+        return ("spec", road["spec"])
+    return ("file", (Path(_path(resources)) / DATA / road["file"]).read_bytes())
+
+
+def shared_terrain(model: TyreModel, terrain, road: str, group: int, x: float, y: float,
+                   identity: tuple):
+    """The ground an FMU instance's wheel runs on: ``terrain`` laid over ``road`` round its
+    start ``(x, y)`` [m] (:func:`~tyrelab.rig.soil_ground.lay_terrain_around`), its own when
+    ``group`` is 0; else the one ground of that group in this process, laid round the first
+    instance's start, which the others join (the window then holds every wheel on it, and a
+    rear wheel runs in the front wheels' ruts). An instance whose soil or road is not the
+    group's is refused in one line. (``identity``: what the road is, :func:`_road_identity`.)"""
+    import weakref
+
+    from ..rig.soil_ground import lay_terrain_around
+    from ..road.spec import road_from_spec
+    from ..road.terrain import resolve_terrain
+
+    if not group:
+        return lay_terrain_around(model, terrain, road_from_spec(road), x, y)[0]
+    if group < 0:
+        raise InputError(f"SOIL_GROUP must be 0 (a soil of its own) or a group number > 0, got "
+                         f"{group}", field="SOIL_GROUP")
+    what = (resolve_terrain(terrain)[1], identity)
+    held = _SHARED.get(group)
+    ground = held[1]() if held is not None else None
+    if ground is None:
+        ground = lay_terrain_around(model, terrain, road_from_spec(road), x, y)[0]
+        if not hasattr(ground, "cover"):
+            raise InputError(f"this terrain cannot be shared between wheels (it has no window "
+                             "that holds them all); SOIL_GROUP 0", field="SOIL_GROUP")
+        _SHARED[group] = (what, weakref.ref(ground))
+    elif held[0] != what:
+        raise InputError(f"SOIL_GROUP {group} holds another soil or road than this instance's: "
+                         "the wheels of one group run on one soil over one road", field="SOIL_GROUP")
+    return ground

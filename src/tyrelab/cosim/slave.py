@@ -28,7 +28,7 @@ from .._version import __version__
 from ..errors import InputError
 from .kernel import WheelCentre
 from .manifest import build_stepper, read_manifest
-from .variables import INPUTS, OUTPUT_FRAMES, OUTPUTS, PARAMETERS, UNITS
+from .variables import INPUTS, OUTPUT_FRAMES, OUTPUTS, PARAMETERS, SOIL_PARAMETERS, UNITS
 
 
 def leave_objects_to_the_exit():
@@ -74,8 +74,8 @@ class TyrelabWheel(Fmi2Slave):
         self.version = manifest["tyrelab"]
         road = manifest["road"].get("spec") or manifest["road"]["file"]
         terrain = manifest.get("terrain")
-        if terrain is not None:  # soil laid over the road from the wheel's start x
-            road += f" under {terrain.get('spec') or terrain['file']} (from the wheel's start x)"
+        if terrain is not None:  # soil laid over the road round the wheel's start
+            road += f" under {terrain.get('spec') or terrain['file']} (round the wheel's start)"
         self.description = (f"tyrelab {manifest['tyrelab']}: tyre {tyre['file']} "
                             f"({_kpa(tyre['pressure'])}), contact model {manifest['model']}, "
                             f"handling {manifest['handling']}, road {road}. SI units; road frame "
@@ -96,8 +96,8 @@ class TyrelabWheel(Fmi2Slave):
                                         description=v.description))
         starts = {"pressure": tyre["pressure"] or 0.0, "load": manifest["load"],
                   "max_step": manifest["internal_step"],
-                  "frame": OUTPUT_FRAMES.index(manifest["frame"])}
-        for v in PARAMETERS:
+                  "frame": OUTPUT_FRAMES.index(manifest["frame"]), "soil_group": 0}
+        for v in PARAMETERS + (SOIL_PARAMETERS if terrain is not None else ()):
             kind = Integer if v.kind == "Integer" else Real
             setattr(self, v.name, starts[v.field])
             self.register_variable(kind(v.name, causality=Fmi2Causality.parameter,
@@ -118,7 +118,8 @@ class TyrelabWheel(Fmi2Slave):
         self._stepper = build_stepper(self.resources, self._manifest, float(self.PRESSURE),
                                       float(self.INITIAL_LOAD), float(self.INTERNAL_STEP),
                                       OUTPUT_FRAMES[frame], speed, self._start_time,
-                                      x_start=centre.x, y_start=centre.y)
+                                      x_start=centre.x, y_start=centre.y,
+                                      soil_group=int(getattr(self, "SOIL_GROUP", 0)))
         self._publish(self._stepper.loads(centre))
 
     def do_step(self, current_time, step_size):

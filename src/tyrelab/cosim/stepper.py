@@ -279,7 +279,8 @@ def wheel_stepper(tyre="xzl-16.00R20", model: str | TyreModel = "point", road="f
         Static load [N] (or a load case ``"LC1"`` ...) at which the model's
         internal state starts in equilibrium on a flat road, rolling at
         ``speed`` (:meth:`~tyrelab.tyre.model.TyreModel.equilibrium`, where the
-        rigs start it); 0: unloaded (the ring's inflated belt off the road).
+        rigs start it); 0: unloaded (the ring's inflated belt off the road). A model that
+        runs on soil only (``rigid``) has no such equilibrium: its state starts as it is.
         Start the wheel centre at ``R0 -`` that equilibrium's deflection above
         the road (:attr:`WheelStepper.equilibrium`).
     speed : float
@@ -308,8 +309,11 @@ def wheel_stepper(tyre="xzl-16.00R20", model: str | TyreModel = "point", road="f
         load = limits.check_wheel_load(load, tm.tyre)
     speed = limits.check_number(speed, "speed", 0.0, limits.MAX_SPEED, "m/s")
     ground = road if hasattr(road, "surface") else rigid_ground(tm, road)
-    # where the rigs start a wheel: in equilibrium at the load, rolling at the speed
-    eq = tm.equilibrium(load, speed) if load > 0 else None
+    # where the rigs start a wheel: in equilibrium at the load, rolling at the speed, on a level
+    # rigid road; a model that runs on soil only (the rigid wheel) has none there and starts as
+    # it is (before, its FMU failed at initialisation with any INITIAL_LOAD)
+    on_rigid = "rigid" in tm.contact_model.terrains
+    eq = tm.equilibrium(load, speed) if load > 0 and on_rigid else None
     if max_step is None:
         if tm.tyre.wheel_mass > 0 or load > 0:
             max_step = limits.stable_step(tm, load)[0]

@@ -93,6 +93,13 @@ PARAMETERS = (
              "frame", "frame", "Integer"),
 )
 
+#: set before initialisation, in an FMU with a terrain only (``export fmu --terrain``)
+SOIL_PARAMETERS = (
+    Variable("SOIL_GROUP", "", "instances in one process with the same SOIL_GROUP > 0 share one "
+             "soil (a vehicle's wheels: the rear ones run in the front ones' ruts); 0: a soil of "
+             "its own", "soil_group", "Integer"),
+)
+
 #: the values of OUTPUT_FRAME, by the name :func:`~.stepper.wheel_stepper` takes
 OUTPUT_FRAMES = ("C-axis", "road")
 
