@@ -282,7 +282,7 @@ def shared_terrain(model: TyreModel, terrain, road: str, group: int, x: float, y
     if ground is None:
         ground = lay_terrain_around(model, terrain, road_from_spec(road), x, y)[0]
         if not hasattr(ground, "cover"):
-            raise InputError(f"this terrain cannot be shared between wheels (it has no window "
+            raise InputError("this terrain cannot be shared between wheels (it has no window "
                              "that holds them all); SOIL_GROUP 0", field="SOIL_GROUP")
         _SHARED[group] = (what, weakref.ref(ground))
     elif held[0] != what:
