@@ -151,7 +151,6 @@ def lay_terrain_around(model, terrain, road, x: float, y: float, level_at: float
     return kind.lay_around(description, road, x, y, level_at, **lay_options), {kind.name: label}
 
 
-
 def terrain_wheel(model, terrain, road, x0: float, x1: float, load: float,
                   level_at: float | None = None, dt: float = 1e-3, **lay_options):
     """``(wheel, ground, z0, meta)``: ``model``'s :class:`~tyrelab.tyre.wheel.Wheel` on the

@@ -79,9 +79,9 @@ class TerrainKind:
         ``lay_around(description, road, x, y, level_at, **options) -> ground``: the ground
         for a wheel a host drives anywhere (co-simulation), laid around ``(x, y)`` [m]; one
         that holds a part of itself at a time also has ``cover(x_lo, x_hi, y_lo, y_hi,
-        toward, behind)``, its record moved to hold that box or None (the soil:
-        :class:`~tyrelab.road.soil.field.SoilField`). Without it, ``lay`` over a stretch
-        along x is used.
+        toward, behind, wheel)``, its record moved to hold that box (and those of the other
+        wheels on it) or None (the soil: :class:`~tyrelab.road.soil.field.SoilField`).
+        Without it, ``lay`` over a stretch along x is used.
     hint : str
         What ``--terrain`` takes for this kind, for the message listing them.
     """

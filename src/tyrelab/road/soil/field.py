@@ -27,7 +27,7 @@ from ...limits import MAX_MEMORY
 from .params import Soil
 from .scm import BED_SPACING, BYTES_PER_NODE, bed_record
 
-#: side of the square of soil held at once [m]: 601 x 601 nodes at 2 cm (14 MB); the wheel
+#: side of the square of soil held at once [m]: 601 x 601 nodes at 2 cm (12 MB); the wheel
 #: drives about 6 m between moves
 FIELD_SIZE = 12.0
 
