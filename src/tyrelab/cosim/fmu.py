@@ -83,9 +83,9 @@ def export_fmu(path, tyre=DEFAULT_TYRE, model: str = "point", road: str = "flat"
         Default of ``INTERNAL_STEP`` [s]; 0: the model's stable step.
     terrain : str, optional
         A soil laid over the road (``--terrain``: a built-in soil's name or a soil
-        ``.toml`` file, copied into the FMU), from the wheel's start x at initialisation
-        forward; its active patch moves on with the wheel, which then drives forward
-        along x (docs/cosimulation.md).
+        ``.toml`` file, copied into the FMU), round the wheel's position at
+        initialisation: a window of it that follows the wheel anywhere, shared by the
+        instances of one ``SOIL_GROUP`` in a process (docs/cosimulation.md).
 
     Raises
     ------

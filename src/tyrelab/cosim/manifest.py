@@ -26,6 +26,7 @@ import copy
 import json
 import math
 import shutil
+import weakref
 from pathlib import Path
 
 from .._version import __version__
@@ -265,8 +266,6 @@ def shared_terrain(model: TyreModel, terrain, road: str, group: int, x: float, y
     instance's start, which the others join (the window then holds every wheel on it, and a
     rear wheel runs in the front wheels' ruts). An instance whose soil or road is not the
     group's is refused in one line. (``identity``: what the road is, :func:`_road_identity`.)"""
-    import weakref
-
     from ..rig.soil_ground import lay_terrain_around
     from ..road.spec import road_from_spec
     from ..road.terrain import resolve_terrain

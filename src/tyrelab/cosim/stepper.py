@@ -98,7 +98,7 @@ class WheelStepper:
         self.equilibrium = equilibrium
         self._ground = ground
         self._cover = getattr(ground, "cover", None)
-        self._follow = None if self._cover is not None else getattr(ground, "follow", None)
+        self._follow = getattr(ground, "follow", None)
         self._held = getattr(ground, "held", None)
 
     @property

@@ -23,9 +23,8 @@ import weakref
 import numpy as np
 
 from ...errors import InputError
-from ...limits import MAX_MEMORY
 from .params import Soil
-from .scm import BED_SPACING, BYTES_PER_NODE, bed_record
+from .scm import BED_SPACING, bed_record, check_bed_memory
 
 #: side of the square of soil held at once [m]: 601 x 601 nodes at 2 cm (12 MB); the wheel
 #: drives about 6 m between moves
@@ -92,13 +91,15 @@ class SoilField:
         itself as ``wheel`` (any object; forgotten once nothing else holds it), the box is
         its own, and the window holds the boxes of every wheel on the field, so that the
         rear wheels run in the front wheels' ruts and no wheel's move drops another's soil."""
+        lo_x, hi_x, lo_y, hi_y = self.held()
+        inside = lo_x <= x_lo and x_hi <= hi_x and lo_y <= y_lo and y_hi <= hi_y
         if wheel is not None:
             self._wheels[wheel] = (x_lo, x_hi, y_lo, y_hi)
-            boxes = list(self._wheels.values())
-            x_lo, x_hi = min(b[0] for b in boxes), max(b[1] for b in boxes)
-            y_lo, y_hi = min(b[2] for b in boxes), max(b[3] for b in boxes)
-        lo_x, hi_x, lo_y, hi_y = self.held()
-        if lo_x <= x_lo and x_hi <= hi_x and lo_y <= y_lo and y_hi <= hi_y:
+            if not inside:  # (every other wheel's box is inside: each move holds them all)
+                boxes = list(self._wheels.values())
+                x_lo, x_hi = min(b[0] for b in boxes), max(b[1] for b in boxes)
+                y_lo, y_hi = min(b[2] for b in boxes), max(b[3] for b in boxes)
+        if inside:
             return None
         d = self.spacing
         old = self.bed
@@ -117,10 +118,8 @@ class SoilField:
             first[axis] = min(first[axis], int(math.floor((lo - anchor) / d)))
             first[axis] = max(first[axis], int(math.ceil((hi - anchor) / d)) - shape[axis] + 1)
         first = (first[0], first[1])
-        if shape[0] * shape[1] * BYTES_PER_NODE > MAX_MEMORY:
-            raise InputError(f"the wheel reaches {x_hi - x_lo:.3g} m x {y_hi - y_lo:.3g} m of soil in "
-                             f"one step, more than a soil field holds within "
-                             f"{MAX_MEMORY / 1024 ** 3:g} GiB; shorter steps", field="dt")
+        check_bed_memory(shape[0] * shape[1], f"the soil the wheels reach in one step ({x_hi - x_lo:.3g} "
+                         f"m x {y_hi - y_lo:.3g} m)", "shorter steps", "dt")
         new = self._fresh(first, shape)
         # the nodes both windows hold keep their state
         a = [max(first[0], self.first[0]), max(first[1], self.first[1])]
@@ -158,10 +157,7 @@ def lay_soil_field(soil: Soil, road, x: float, y: float, level_at: float | None 
         raise InputError(f"a soil field needs a node spacing > 0 and a side of at least two "
                          f"spacings, got {spacing:g} m and {size:g} m", field="size")
     n = int(math.ceil(size / spacing)) + 1
-    if n * n * BYTES_PER_NODE > MAX_MEMORY:
-        raise InputError(f"a soil field {size:g} m square at {spacing:g} m needs "
-                         f"{n * n * BYTES_PER_NODE / 1024 ** 3:.3g} GiB, above the "
-                         f"{MAX_MEMORY / 1024 ** 3:g} GiB allowed; a smaller field or a coarser "
-                         "bed", field="size")
+    check_bed_memory(n * n, f"a soil field {size:g} m square at {spacing:g} m",
+                     "a smaller field or a coarser bed", "size")
     level = float(road.height(level_at, 0.0)) if level_at is not None else 0.0
     return SoilField(soil, road, x, y, size, spacing, level)

@@ -53,6 +53,16 @@ BED_SPACING = 0.02
 BYTES_PER_NODE = 4 * 8
 
 
+def check_bed_memory(nodes: int, bed: str, remedy: str, field: str) -> None:
+    """One InputError on ``field`` when a bed of ``nodes`` nodes (``bed``: what it is, in words)
+    needs more than the memory one request may take (:data:`~tyrelab.limits.MAX_MEMORY`)."""
+    from ...errors import InputError
+    from ...limits import MAX_MEMORY
+    if nodes * BYTES_PER_NODE > MAX_MEMORY:
+        raise InputError(f"{bed} needs {nodes * BYTES_PER_NODE / 1024 ** 3:.3g} GiB, above the "
+                         f"{MAX_MEMORY / 1024 ** 3:g} GiB allowed; {remedy}", field=field)
+
+
 class SoilSurface(NamedTuple):
     """A soil bed: its parameters and the state of every node (arrays ``(nx, ny)``).
 

@@ -36,7 +36,8 @@ from ..grid import (grid_block_max, grid_blocks, grid_line_height, grid_lines, g
 from ..terrain_registry import TerrainKind, register_terrain
 from .field import lay_soil_field
 from .params import Soil
-from .scm import BED_SPACING, BYTES_PER_NODE, SoilSurface, bekker_modulus, node_stress  # noqa: F401
+from .scm import (BED_SPACING, BYTES_PER_NODE, SoilSurface, bekker_modulus,  # noqa: F401
+                  check_bed_memory, node_stress)
 
 #: the bed's width [m] across the wheel's track (its centre line y = 0)
 BED_WIDTH = 2.0
@@ -178,20 +179,15 @@ def lay_soil(soil: Soil, road, x0: float, x1: float, level_at: float | None = No
     most :data:`~tyrelab.road.soil.patch.PATCH_LENGTH` of it at once, the whole of it when not
     ``moving`` (a run that comes back over its rut); refused above the memory allowed
     (:data:`~tyrelab.limits.MAX_MEMORY`). :attr:`TerrainKind.lay` of the soil."""
-    from ...errors import InputError
-    from ...limits import MAX_MEMORY
     from .patch import PATCH_LENGTH, SoilPatch
     x0, x1 = x0 - BED_MARGIN, x1 + BED_MARGIN
     n_run = int(np.ceil((x1 - x0) / spacing)) + 1
     ny = int(np.ceil(width / spacing)) + 1
     rows = min(n_run, int(np.ceil(PATCH_LENGTH / spacing)) + 1) if moving else n_run
-    if rows * ny * BYTES_PER_NODE > MAX_MEMORY:
-        length = (rows - 1) * spacing
-        raise InputError(f"a soil bed {length:.6g} m long and {width:g} m wide at {spacing:g} m "
-                         f"needs {rows * ny * BYTES_PER_NODE / 1024 ** 3:.3g} GiB, above the "
-                         f"{MAX_MEMORY / 1024 ** 3:g} GiB allowed; "
-                         + ("a shorter run or a coarser bed" if not moving else "a coarser bed"),
-                         field="duration" if not moving else "spacing")
+    check_bed_memory(rows * ny, f"a soil bed {(rows - 1) * spacing:.6g} m long and {width:g} m "
+                                f"wide at {spacing:g} m",
+                     "a shorter run or a coarser bed" if not moving else "a coarser bed",
+                     "duration" if not moving else "spacing")
     level = float(road.height(level_at, 0.0)) if level_at is not None else 0.0
     return SoilPatch(soil, road, x0, n_run, -0.5 * width, ny, spacing, level, rows)
 
