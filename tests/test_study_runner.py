@@ -256,3 +256,32 @@ def test_the_campaigns_runs_fall_into_one_kind_per_contact_model():
         ["point", "volume", "enveloping", "enveloping-edge", "ring", "ring-tp"])
     roads = {t["spec"]["road"] for t in tasks(builtin_spec()) if t["spec"]["contact"] == "ring"}
     assert len(roads) > 3  # one kind spans every road it runs on
+
+
+def _worker_start():
+    import os
+    import signal
+    import sys
+    return os.getppid(), signal.getsignal(signal.SIGINT) is signal.SIG_IGN, "tyrelab.study.runner" in sys.modules
+
+
+def test_local_workers_are_forked_from_one_server_with_sigint_ignored():
+    """The local cluster's workers are forked from one server process that has imported the
+    runner (multiprocessing's forkserver: a process's clusters pay the imports once, not each
+    worker of each cluster), and they ignore SIGINT, so that Ctrl-C reaches only the study's
+    own process (test_study_cli's Ctrl-C test shows what that process then does)."""
+    import os
+
+    from tyrelab.study.runner import _client, _close
+
+    parents = []
+    for _ in range(2):  # two clusters one after the other, as a notebook's two studies
+        client, cluster = _client(None, 2)
+        try:
+            starts = client.run(_worker_start)  # on every worker, as it is when it starts
+        finally:
+            _close(client, cluster, None)
+        assert len(starts) == 2
+        assert all(ignored and preloaded for _, ignored, preloaded in starts.values())
+        parents += [parent for parent, _, _ in starts.values()]
+    assert len(set(parents)) == 1 and parents[0] != os.getpid()  # one server, not this process
