@@ -262,7 +262,8 @@ def _worker_start():
     import os
     import signal
     import sys
-    return os.getppid(), signal.getsignal(signal.SIGINT) is signal.SIG_IGN, "tyrelab.study.runner" in sys.modules
+    ignored = signal.getsignal(signal.SIGINT) is signal.SIG_IGN
+    return os.getppid(), ignored, "tyrelab.study.runner" in sys.modules
 
 
 def test_local_workers_are_forked_from_one_server_with_sigint_ignored():
