@@ -13,16 +13,30 @@ what changed.
 
 from __future__ import annotations
 
+import importlib
 import json
 from pathlib import Path
+from typing import TYPE_CHECKING
 
-
-from .evaluate import evaluate_study
 from .records import expected_cost, kernel_kind
-from .results import Study
-from .soil import soil_curves
 from .spec import RunSpec, StudySpec, builtin_spec, example_spec, load_spec
 from .store import Store
+
+if TYPE_CHECKING:
+    from .results import Study
+
+#: names of this package loaded at their first use, not with it: the evaluation imports
+#: scipy.signal and scipy.stats (0.5-0.9 s of one core), which ``tyrelab study --example``,
+#: a spec's check or the runner's tasks never use (PEP 562)
+_LAZY = {"evaluate_study": ".evaluate", "soil_curves": ".soil", "Study": ".results"}
+
+
+def __getattr__(name):
+    if name not in _LAZY:
+        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+    value = getattr(importlib.import_module(_LAZY[name], __name__), name)
+    globals()[name] = value
+    return value
 
 
 #: the HTML report's name in a study folder
@@ -71,7 +85,11 @@ def run(spec: StudySpec | str | Path | None = None, workers: int | None = None,
     ``output`` overrides the spec's results folder; ``workers`` and
     ``scheduler`` as in :func:`tyrelab.study.runner.run_tasks`.
     """
+    from .evaluate import evaluate_study
+    from .results import Study
     from .runner import run_tasks
+    from .soil import soil_curves
+
     if spec is None:
         spec = builtin_spec()
     elif not isinstance(spec, StudySpec):
@@ -93,6 +111,8 @@ def open(folder: str | Path) -> Study:  # noqa: A001 - the name the issue asks f
     """A finished (or partly finished) study folder as a :class:`Study`: ``.index``,
     ``.metrics``, ``.summary``, ``.thesis``, ``.rank_agreement``, ``.cost``, ``.soil_curves``,
     ``.signal(key)``."""
+    from .results import Study
+
     return Study(folder)
 
 

@@ -82,8 +82,9 @@ def _client(scheduler: str | None, workers: int | None, connect_timeout: float =
     return Client(cluster), cluster
 
 
-#: what the server that forks the local workers imports once (:func:`_forked_workers`)
-WORKER_PRELOAD = ["distributed", __name__]
+#: what the server that forks the local workers imports once (:func:`_forked_workers`): the
+#: runner, whose tasks the workers run, and the evaluation they run after the runs
+WORKER_PRELOAD = ["distributed", __name__, "tyrelab.study.evaluate"]
 
 
 def _forked_workers():
