@@ -89,7 +89,7 @@ WORKER_PRELOAD = ["distributed", __name__, "tyrelab.study.evaluate"]
 
 def _forked_workers():
     """A Dask configuration under which a local cluster's worker processes are forked from one
-    server process that has imported distributed and this module once (multiprocessing's
+    server process that has imported :data:`WORKER_PRELOAD` once (multiprocessing's
     ``forkserver`` start method), not each started as a new interpreter (``spawn``, Dask's
     default), where it exists (not on Windows).
 
@@ -107,7 +107,9 @@ def _forked_workers():
 
     A worker is still started with SIGINT ignored (:func:`_client`): the server inherits the
     disposition when the first cluster starts it, and gives it to every process it forks
-    (``multiprocessing.forkserver`` restores its own start's signal handlers in each child)."""
+    (``multiprocessing.forkserver`` restores its own start's signal handlers in each child).
+    So a process whose first cluster starts outside its main thread, where :func:`_client`
+    leaves SIGINT alone, has workers that take SIGINT for the rest of its life."""
     import dask
 
     if "forkserver" not in multiprocessing.get_all_start_methods():
