@@ -263,14 +263,15 @@ def _worker_start():
     import signal
     import sys
     ignored = signal.getsignal(signal.SIGINT) is signal.SIG_IGN
-    return os.getppid(), ignored, "tyrelab.study.runner" in sys.modules
+    return os.getppid(), ignored, "tyrelab.study.evaluate" in sys.modules
 
 
 def test_local_workers_are_forked_from_one_server_with_sigint_ignored():
     """The local cluster's workers are forked from one server process that has imported the
-    runner (multiprocessing's forkserver: a process's clusters pay the imports once, not each
-    worker of each cluster), and they ignore SIGINT, so that Ctrl-C reaches only the study's
-    own process (test_study_cli's Ctrl-C test shows what that process then does)."""
+    runner and the evaluation (multiprocessing's forkserver: a process's clusters pay the
+    imports once, not each worker of each cluster; a worker started afresh imports the
+    evaluation only when it evaluates), and they ignore SIGINT, so that Ctrl-C reaches only
+    the study's own process (test_study_cli's Ctrl-C test shows what that process then does)."""
     import os
 
     from tyrelab.study.runner import _client, _close
