@@ -59,16 +59,14 @@ class SoilField:
         z = np.asarray(self.road.height(xs[:, None], ys[None, :]), dtype=np.float64)
         return np.ascontiguousarray(z - self.level if self.level else z)
 
-    def _record(self, first, base, h0, z, j, sigma):
-        return bed_record(self.soil, self.x_anchor + first[0] * self.spacing,
-                          self.y_anchor + first[1] * self.spacing, self.spacing, self.spacing,
-                          base, h0, z, j, sigma)
-
     def _fresh(self, first, shape):
+        """Fresh soil on the road's heights: the nodes from lattice index ``first``, ``shape``."""
         base = self._heights(first, shape)
         h0 = base.copy() if self.soil.bulldozing else base
         zeros = np.zeros_like(base)
-        return self._record(first, base, h0, base.copy(), zeros, zeros.copy())
+        return bed_record(self.soil, self.x_anchor + first[0] * self.spacing,
+                          self.y_anchor + first[1] * self.spacing, self.spacing, self.spacing,
+                          base, h0, base.copy(), zeros, zeros.copy())
 
     def held(self) -> tuple[float, float, float, float]:
         """The window held now: ``(x_lo, x_hi, y_lo, y_hi)`` of its outer nodes [m]."""
@@ -111,12 +109,10 @@ class SoilField:
                                      (y_lo, y_hi, shape[1], toward[1], self.y_anchor)):
             room = max(0.5 * ((n - 1) * d - (hi - lo)) - behind, 0.0)  # slack beyond the margin
             centre = 0.5 * (lo + hi) + u * room
-            first.append(int(round((centre - anchor) / d)) - (n - 1) // 2)
-        # the box must lie inside whatever the rounding did
-        for axis, (lo, hi) in enumerate(((x_lo, x_hi), (y_lo, y_hi))):
-            anchor = self.x_anchor if axis == 0 else self.y_anchor
-            first[axis] = min(first[axis], int(math.floor((lo - anchor) / d)))
-            first[axis] = max(first[axis], int(math.ceil((hi - anchor) / d)) - shape[axis] + 1)
+            i = int(round((centre - anchor) / d)) - (n - 1) // 2
+            # the box must lie inside whatever the rounding did
+            i = min(i, int(math.floor((lo - anchor) / d)))
+            first.append(max(i, int(math.ceil((hi - anchor) / d)) - n + 1))
         first = (first[0], first[1])
         check_bed_memory(shape[0] * shape[1], f"the soil the wheels reach in one step ({x_hi - x_lo:.3g} "
                          f"m x {y_hi - y_lo:.3g} m)", "shorter steps", "dt")

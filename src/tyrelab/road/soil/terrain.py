@@ -36,8 +36,7 @@ from ..grid import (grid_block_max, grid_blocks, grid_line_height, grid_lines, g
 from ..terrain_registry import TerrainKind, register_terrain
 from .field import lay_soil_field
 from .params import Soil
-from .scm import (BED_SPACING, BYTES_PER_NODE, SoilSurface, bekker_modulus,  # noqa: F401
-                  check_bed_memory, node_stress)
+from .scm import BED_SPACING, SoilSurface, bekker_modulus, check_bed_memory, node_stress
 
 #: the bed's width [m] across the wheel's track (its centre line y = 0)
 BED_WIDTH = 2.0
