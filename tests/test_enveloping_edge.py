@@ -96,3 +96,40 @@ def test_the_edge_model_is_the_outline_layout_and_refuses_another():
         TyreModel(tyre, "enveloping-edge", options={"cam_layout": "grid"}).contact_params(grid)
     with pytest.raises(InputError, match="cam_layout must be one of grid, outline"):
         effective_road(tyre, grid, 0.0, cam_layout="edges")
+
+
+def test_outline_plane_on_a_3d_road_from_its_cams_one_by_one():
+    """On a road that varies across (random heights every 10 mm), the outline's plane is the
+    least-squares plane through the heights of the outline cams alone: each cam's height
+    taken by itself (a 1 x 1 layout at the cam's place), the cams placed by eq. 2.6 and the
+    patch's width, the plane's slopes fitted here. Fails if an inner row's two outline cams
+    are rested at other places than the grid's ends (the row's first and last cam)."""
+    tyre = load_tyre("xzl-16.00R20", 300e3)
+    rng = np.random.default_rng(3)
+    dx = 0.01
+    z = np.cumsum(rng.normal(0.0, 0.002, (301, 121)), axis=0) + rng.normal(0.0, 0.004, (301, 121))
+    grid = RoadGrid(-1.5, -0.6, dx, dx, z - z[150, 60])
+    cz = R0 - 0.06
+    for xc in (-0.15, 0.0, 0.137):
+        got = effective_road(tyre, grid, xc, 0.0, cz, cam_layout="outline").iloc[0]
+        n_length, n_width = 15, 10
+        ls = 2 * 0.9 * got["half_length"]                         # eq. 2.6
+        u = np.linspace(-ls / 2, ls / 2, n_length)
+        v = np.linspace(-got["half_width"], got["half_width"], n_width)
+        uu, vv = np.meshgrid(u, v, indexing="ij")
+        on = np.zeros(uu.shape, bool)
+        on[[0, -1], :] = True                                     # leading and trailing edge
+        on[:, [0, -1]] = True                                     # the two sides
+        w = np.array([cam_heights_at(tyre, grid, xc + a, b) for a, b in zip(uu[on], vv[on])])
+        slope = (uu[on] * w).sum() / (uu[on] ** 2).sum()
+        camber = (vv[on] * w).sum() / (vv[on] ** 2).sum()
+        assert on.sum() == 46 and abs(slope) > 1e-3 and abs(camber) > 1e-3
+        assert got["slope"] == pytest.approx(slope, abs=1e-12)
+        assert got["camber"] == pytest.approx(camber, abs=1e-12)
+        s_star = slope * AE_ ** 2 / math.sqrt(BE_ ** 2 + slope ** 2 * AE_ ** 2)  # touch point
+        assert got["height"] == pytest.approx(w.mean() - (slope * s_star - drop(s_star)), abs=1e-6)
+
+
+def cam_heights_at(tyre, grid, x, y):
+    """The height of one cam (a 1 x 1 layout) at (x, y), heading +x."""
+    return effective_road(tyre, grid, x, y, R0 - 0.06, n_width=1, n_length=1)["height"].iloc[0]

@@ -95,8 +95,9 @@ class ContactModel:
         estimates a request's time (:func:`tyrelab.limits.model_cost`; None: by
         kind). The built-in models state the mean over the built-in campaign's runs
         (its ``index.parquet``: ``wall_time_s`` over ``simulated_s``, two workers on
-        two cores, 2026-11-27): ring 0.080, ring-tp 0.085, enveloping and
-        enveloping-edge 0.022, volume 0.017, point 0.003. Only the ratios order the runs
+        two cores, 2026-11-27): ring 0.080, ring-tp 0.085, enveloping 0.022,
+        enveloping-edge 0.011 (0.022 before it rested only its outline's cams), volume
+        0.017, point 0.003. Only the ratios order the runs
         and set the study's "time left"; a ring costed 2.5 times too high made it
         say "22 s left" with 58 s of runs to go.
     parameterization : str

@@ -93,7 +93,18 @@ def cam_plane(params, road, cx, cy, cz, fx, fy, dx, dy, cosg, zmax):
             x_b = x_a + (nl - 1) * du * fx
             x_lo, x_hi = min(x_a, x_b), max(x_a, x_b)
             top = row_block_max(params, road, j, x_lo - cap, x_hi + cap) if has_blocks else zmax
-            cam_row(params, road, j, wy, x_lo, du * abs(fx), nl, top, w_row)
+            pitch = du * abs(fx)
+            if outline and not (outer_row or same_rows) and nl > 2:
+                # inside the outline only the row's first and last cam count: rest just
+                # those two (the last at x_lo + (nl - 1) pitch, where the whole row puts
+                # it), their heights into the row's two ends. The last cam's search then
+                # starts where the first rests, not its neighbour (cams.cam_row): the same
+                # maximum along another path, equal to rounding (1e-15), not to the bit.
+                # np.int64: one compiled cam_row for both counts (a literal is its own type)
+                cam_row(params, road, j, wy, x_lo, (nl - 1) * pitch, np.int64(2), top, w_row)
+                w_row[nl - 1] = w_row[1]
+            else:
+                cam_row(params, road, j, wy, x_lo, pitch, nl, top, w_row)
         for i in range(nl):
             u = u_first + i * du
             weight = mult
