@@ -198,8 +198,9 @@ def write_signal(df: pd.DataFrame, path, *, compression: str = "snappy", float32
                 df.to_csv(fh, index=False, float_format="%.9g")
 
 
-def read_signal(path) -> pd.DataFrame:
-    """Read a signal table written by :func:`write_signal`."""
+def read_signal(path, columns=None) -> pd.DataFrame:
+    """Read a signal table written by :func:`write_signal`; ``columns``: only these
+    channels (a Parquet file reads only them from the disk; an absent one is an error)."""
 
     path = Path(path)
     if not path.is_file():
@@ -209,7 +210,7 @@ def read_signal(path) -> pd.DataFrame:
     try:
         if suffix == ".parquet":
             import pyarrow.parquet as pq
-            table = pq.read_table(path)
+            table = pq.read_table(path, columns=None if columns is None else list(columns))
             raw = (table.schema.metadata or {}).get(b"tyrelab")
             meta = json.loads(raw) if raw else {}
             df = table.to_pandas()
@@ -221,7 +222,7 @@ def read_signal(path) -> pd.DataFrame:
                 first = fh.readline()
             if first.startswith("# tyrelab "):
                 meta = json.loads(first[len("# tyrelab "):])
-            df = pd.read_csv(path, comment="#")
+            df = pd.read_csv(path, comment="#", usecols=None if columns is None else list(columns))
         else:
             raise InputError(f"unknown signal format '{path.suffix}', expected .parquet or .csv",
                              source=str(path))
@@ -234,7 +235,8 @@ def read_signal(path) -> pd.DataFrame:
         if values.dtype.kind == "f" and np.isinf(values).any():
             row = int(np.flatnonzero(np.isinf(values))[0])
             raise InputError(f"sample {row + 1} is infinite ({values[row]})", source=str(path), field=col)
-    df.attrs["units"] = meta.get("units", units(df.columns))
+    df.attrs["units"] = {c: u for c, u in meta.get("units", units(df.columns)).items()
+                         if c in df.columns}
     df.attrs["metadata"] = meta.get("metadata", {})
     if "storage" in meta:  # how a compact store kept it (write_signal)
         df.attrs["storage"] = meta["storage"]

@@ -290,7 +290,7 @@ def _stored_text(n: dict, max_points: int | None, exact: bool) -> str:
 
 
 def _signal(study, key, channel):
-    s = study.signal(key)
+    s = study.signal(key, ("RUNTIME", channel))  # only what the figure shows is read
     return s["RUNTIME"].to_numpy(dtype=float), s[channel].to_numpy(dtype=float)
 
 

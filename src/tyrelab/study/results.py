@@ -111,16 +111,18 @@ class Study:
             return soil_curves(self.spec, self.store)
         return empty_table()
 
-    def signal(self, key: str) -> pd.DataFrame:
+    def signal(self, key: str, columns=None) -> pd.DataFrame:
         """The signal table of the finished run ``key``, or of the spec's measured
-        reference file of that name (the ``reference`` column of :attr:`metrics`)."""
+        reference file of that name (the ``reference`` column of :attr:`metrics`); only
+        ``columns``, if given."""
         if not self.store.is_finished(key) and self.spec is not None:
             for test in self.spec.tests:
                 for f in test.reference_files:
                     if f.path.name == key:
                         from ..measure import read_run
-                        return read_run(f.path, column_map=f.column_map)
-        return self.store.signal(key)
+                        run = read_run(f.path, column_map=f.column_map)
+                        return run if columns is None else run[list(columns)]
+        return self.store.signal(key, columns)
 
     # -- rows -----------------------------------------------------------------------
     def _reference_models(self) -> set:

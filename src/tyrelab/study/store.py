@@ -177,11 +177,11 @@ class Store:
             Path(tmp).write_text(text, encoding="utf-8")
         return path
 
-    def signal(self, key: str) -> pd.DataFrame:
-        """The signal table of a finished run."""
+    def signal(self, key: str, columns=None) -> pd.DataFrame:
+        """The signal table of a finished run (only ``columns``, if given)."""
         if not self.is_finished(key):
             raise InputError(f"run {key} is not finished in this study", source=str(self.folder))
-        return read_signal(self.signal_path(key))
+        return read_signal(self.signal_path(key), columns)
 
     def index(self) -> pd.DataFrame:
         """Every run's record as one table (one row per run, sorted by key)."""
