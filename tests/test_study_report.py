@@ -208,6 +208,19 @@ def test_the_workers_evaluate_as_this_process_does(study, tmp_path):
     pd.testing.assert_frame_equal(on_workers, here)
 
 
+
+def test_the_workers_draw_the_page_this_process_draws(study, page):
+    """study.run makes each condition's figures on a worker of its cluster, numbered there as
+    a part of the page and renumbered by it (FigureSink.take): its report.html is, byte for
+    byte but for the date it was made, the page this process writes alone (the ``page``
+    fixture); a numbering restarted per condition, or parts put in the order they finished,
+    would show."""
+    def undated(text):
+        return re.sub(r"Generated [^;]*;", "Generated;", text)
+    on_workers = (study.folder / "report.html").read_text(encoding="utf-8")
+    assert "tyrelab-fig-<" not in on_workers and "tyrelab-fig-3" in on_workers
+    assert undated(on_workers) == undated(page[1])
+
 def _expected_figures(study):
     """One overlay per compared condition, a distribution per track, one cost scatter."""
     m = study.metrics[study.metrics["model"] != "measured repeatability"]

@@ -54,6 +54,11 @@ a screen and compression). ``full_resolution=True`` writes every sample with
 its exact value instead (for zooming into a single impact at the sample
 rate; a page of about 70 MB for that campaign).
 
+Where it is made: in this process, or, given a Dask ``client`` whose workers share the
+study's folder (``tyrelab.study.run`` passes its local cluster's), each condition's figures
+on a worker (:func:`condition_part`), numbered as a part of the page and renumbered here in
+the page's order, so the page is the same byte for byte.
+
 Checks: a tiny script at the top of the page records script errors, failed
 resource loads, unhandled promise rejections and ``console.error`` calls in
 ``<pre id="tyrelab-errors">``; one at the bottom sets the body's
@@ -68,7 +73,6 @@ from __future__ import annotations
 import datetime
 import os
 from pathlib import Path
-from types import SimpleNamespace
 
 import numpy as np
 import pandas as pd
@@ -127,8 +131,18 @@ def _header(study, name: str, note: str) -> str:
             "</header>\n")
 
 
-def _conditions(study, note, figs, colours, max_points) -> str:
-    """Each test condition: its tables, the reference's self-check, its figures."""
+def condition_part(folder, part, cond, rows, refs, note, colours, max_points, exact):
+    """One condition's figures made on a study's worker, which shares the study's folder:
+    ``(html, count)``, the figures numbered as part ``part`` of the page
+    (:meth:`.figure_embed.FigureSink.take`); the arguments as :func:`condition_figures`'s."""
+    from ..study.results import Study
+    figs = FigureSink(exact=exact, part=part)
+    return condition_figures(Study(folder), cond, rows, refs, note, figs, colours, max_points), figs.count
+
+
+def _conditions(study, note, figs, colours, max_points, client=None) -> str:
+    """Each test condition: its tables, the reference's self-check, its figures (with a Dask
+    ``client`` whose workers share the study's folder, made there, one condition per task)."""
     metrics = study.metrics
     out = ["<section id='conditions'><h2>Per test condition</h2>"]
     if metrics is None or len(metrics) == 0:
@@ -141,6 +155,9 @@ def _conditions(study, note, figs, colours, max_points) -> str:
                    "full_resolution=True)</code>.</p>")
     index = study.index
     refs = {k: f"{m} (reference)" for k, m in zip(index["key"], index["model"])}
+    folder = getattr(study, "folder", None)
+    remote = client is not None and folder is not None
+    parts = {}  # position in out -> (part, future) of a condition's figures made on a worker
     rep_mask = metrics["model"] == REPEATABILITY
     for n, (cond, rows) in enumerate(metrics[~rep_mask].groupby(COND, sort=False), start=1):
         rep = metrics[rep_mask]
@@ -168,9 +185,21 @@ def _conditions(study, note, figs, colours, max_points) -> str:
         for r in rows[~ok].itertuples():
             out.append(f"<p class='compare-error'>{esc(r.model)} could not be compared: "
                        f"{esc(r.error)}</p>")
-        if len(good):
+        if len(good) and remote:
+            parts[len(out)] = (n, cond, good, client.submit(
+                condition_part, folder, n, cond, good, refs, note, colours, max_points, figs.exact,
+                pure=False))
+            out.append("")
+        elif len(good):
             out.append(condition_figures(study, cond, good, refs, note, figs, colours, max_points))
         out.append("</section>")
+    for at, (n, cond, good, future) in parts.items():  # numbered in the page's order
+        try:
+            text, count = future.result()
+        except Exception:  # the worker died: made here
+            text, count = condition_part(folder, n, cond, good, refs, note, colours, max_points,
+                                         figs.exact)
+        out[at] = figs.take(text, n, count)
     return "\n".join(out) + "</section>\n"
 
 
@@ -199,35 +228,48 @@ def _cost(study, note, figs, colours) -> str:
     return "\n".join(out) + "</section>\n"
 
 
-def _normalised(study) -> SimpleNamespace:
+class _Normalised:
     """The attributes the report reads; an index or metrics table that is None or has
     no columns (nothing run, nothing compared) becomes an empty table of the
     interface's columns. Rows comparing the reference with itself (``key ==
     reference``, or ``is_reference`` where the table has it) are moved out of
-    the metrics into ``self_checks``: they are no model and are never ranked."""
-    def frame(df, columns):
-        return pd.DataFrame(columns=columns) if df is None or len(df.columns) == 0 else df
-    out = SimpleNamespace(**{a: getattr(study, a, None) for a in _ATTRIBUTES})
-    out.index = frame(getattr(study, "index", None), INDEX_COLUMNS)
-    metrics = frame(getattr(study, "metrics", None), METRIC_COLUMNS + list(METRICS))
-    own = (metrics["key"].astype(str) == metrics["reference"].astype(str)).to_numpy()
-    if "is_reference" in metrics.columns:
-        own = own | metrics["is_reference"].fillna(False).astype(bool).to_numpy()
-    out.metrics, out.self_checks = metrics[~own], metrics[own]
-    return out
+    the metrics into ``self_checks``: they are no model and are never ranked.
+    The others (:data:`_ATTRIBUTES`; None where the study has none) are read at their
+    first use, so a study's workers draw its figures while the tables are made."""
+
+    def __init__(self, study):
+        def frame(df, columns):
+            return pd.DataFrame(columns=columns) if df is None or len(df.columns) == 0 else df
+        self._study = study
+        self.index = frame(getattr(study, "index", None), INDEX_COLUMNS)
+        metrics = frame(getattr(study, "metrics", None), METRIC_COLUMNS + list(METRICS))
+        own = (metrics["key"].astype(str) == metrics["reference"].astype(str)).to_numpy()
+        if "is_reference" in metrics.columns:
+            own = own | metrics["is_reference"].fillna(False).astype(bool).to_numpy()
+        self.metrics, self.self_checks = metrics[~own], metrics[own]
+
+    def __getattr__(self, name):  # only for what __init__ did not set
+        if name not in _ATTRIBUTES:
+            raise AttributeError(name)
+        value = getattr(self._study, name, None)
+        setattr(self, name, value)
+        return value
 
 
 def study_report_html(study, *, name: str | None = None, max_points: int = MAX_POINTS,
-                      full_resolution: bool = False) -> str:
-    """The whole page as text (see the module docstring); ``name`` if the study has none."""
-    study = _normalised(study)
+                      full_resolution: bool = False, client=None) -> str:
+    """The whole page as text (see the module docstring); ``name`` if the study has none;
+    ``client``: a Dask client whose workers share the study's folder (the study's local
+    cluster) makes the conditions' figures, one condition per task (the same page)."""
+    study = _Normalised(study)
     note = str(getattr(study, "reference_note", "") or "reference: not stated")
     name = _study_name(study, name)
     models = list(dict.fromkeys([*study.index["model"].astype(str),
                                  *study.metrics["model"].astype(str)]))
     colours = {m: PALETTE[i % len(PALETTE)] for i, m in enumerate(models)}
     figs = FigureSink(exact=full_resolution)
-    conditions = _conditions(study, note, figs, colours, None if full_resolution else max_points)
+    conditions = _conditions(study, note, figs, colours, None if full_resolution else max_points,
+                             client)
     soil = soil_section(study, figs, colours)
     body = [_header(study, name, note),
             "<nav><a href='#runs'>runs</a> &middot; <a href='#conditions'>per condition</a> &middot; "
@@ -246,7 +288,7 @@ def study_report_html(study, *, name: str | None = None, max_points: int = MAX_P
 
 
 def write_study_report(study, path, *, max_points: int = MAX_POINTS,
-                       full_resolution: bool = False) -> Path:
+                       full_resolution: bool = False, client=None) -> Path:
     """Write the study report to ``path`` (HTML) and return the path.
 
     ``max_points``: most points per overlay trace (the min/max envelope of
@@ -257,11 +299,11 @@ def write_study_report(study, path, *, max_points: int = MAX_POINTS,
     and renamed over ``path``, so an interrupted write never leaves a page
     that looks finished. Without ``study.spec`` the study is named after its
     folder (``study.folder`` or ``study.store.folder``), else after the
-    folder ``path`` is in.
+    folder ``path`` is in. ``client``: as :func:`study_report_html`'s.
     """
     path = Path(path)
     text = study_report_html(study, name=path.resolve().parent.name, max_points=max_points,
-                             full_resolution=full_resolution)
+                             full_resolution=full_resolution, client=client)
     with atomic_output(path) as tmp:
         with open(tmp, "w", encoding="utf-8") as fh:
             fh.write(text)

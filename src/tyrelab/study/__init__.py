@@ -96,15 +96,19 @@ def run(spec: StudySpec | str | Path | None = None, workers: int | None = None,
         spec = load_spec(spec)
     store = Store(output if output is not None else spec.output, storage=spec.store)
     _keep_spec(spec, store)
-    # metrics.parquet, rewritten every time: on the study's local cluster (its workers share
-    # this disk), in this process with a running scheduler's or for a small finished study
+
+    def then(client):
+        # metrics.parquet, rewritten every time, and the report's figures: on the study's
+        # local cluster (its workers share this disk), in this process with a running
+        # scheduler's (client None) or for a small finished study
+        from ..report.study_report import write_study_report
+        evaluate_study(spec, store, progress=progress, client=client)
+        soil_curves(spec, store)                    # soil_curves.parquet, in this process
+        write_study_report(Study(store.folder), store.folder / REPORT, client=client)
+
     run_tasks(tasks(spec), store, workers=workers, scheduler=scheduler, progress=progress,
-              then=lambda client: evaluate_study(spec, store, progress=progress, client=client))
-    soil_curves(spec, store)                        # soil_curves.parquet, likewise
-    result = Study(store.folder)
-    from ..report.study_report import write_study_report
-    write_study_report(result, store.folder / REPORT)
-    return result
+              then=then)
+    return Study(store.folder)
 
 
 def open(folder: str | Path) -> Study:  # noqa: A001 - the name the issue asks for

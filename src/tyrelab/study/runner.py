@@ -5,9 +5,9 @@ columns its record and the index carry) and ``simulate`` (the keyword
 arguments of :func:`tyrelab.simulate`, SI units). Workers compute the
 signal table and send it back; only this process writes the store, so a
 cluster whose workers do not share its disk works as well as a local one.
-After the runs, a study's evaluation reads the store on the workers of its local
-cluster (``then``: they share its disk); with a running scheduler it is done in
-this process.
+After the runs, a study's evaluation and its report's figures read the store on the
+workers of its local cluster (``then``: they share its disk); with a running scheduler
+they are made in this process.
 
 Execution: a :class:`distributed.LocalCluster` of worker *processes*, one
 thread each (numba kernels hold the GIL-free core for themselves), as many
