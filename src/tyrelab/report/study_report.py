@@ -131,13 +131,12 @@ def _header(study, name: str, note: str) -> str:
             "</header>\n")
 
 
-def condition_part(folder, part, cond, rows, refs, note, colours, max_points, exact):
+def condition_part(study, part, cond, rows, refs, note, colours, max_points, exact):
     """One condition's figures made on a study's worker, which shares the study's folder:
     ``(html, count)``, the figures numbered as part ``part`` of the page
     (:meth:`.figure_embed.FigureSink.take`); the arguments as :func:`condition_figures`'s."""
-    from ..study.results import Study
     figs = FigureSink(exact=exact, part=part)
-    return condition_figures(Study(folder), cond, rows, refs, note, figs, colours, max_points), figs.count
+    return condition_figures(study, cond, rows, refs, note, figs, colours, max_points), figs.count
 
 
 def _conditions(study, note, figs, colours, max_points, client=None) -> str:
@@ -155,8 +154,7 @@ def _conditions(study, note, figs, colours, max_points, client=None) -> str:
                    "full_resolution=True)</code>.</p>")
     index = study.index
     refs = {k: f"{m} (reference)" for k, m in zip(index["key"], index["model"])}
-    folder = getattr(study, "folder", None)
-    remote = client is not None and folder is not None
+    remote = client is not None and getattr(study, "folder", None) is not None
     parts = {}  # position in out -> (part, future) of a condition's figures made on a worker
     rep_mask = metrics["model"] == REPEATABILITY
     for n, (cond, rows) in enumerate(metrics[~rep_mask].groupby(COND, sort=False), start=1):
@@ -187,8 +185,8 @@ def _conditions(study, note, figs, colours, max_points, client=None) -> str:
                        f"{esc(r.error)}</p>")
         if len(good) and remote:
             parts[len(out)] = (n, cond, good, client.submit(
-                condition_part, folder, n, cond, good, refs, note, colours, max_points, figs.exact,
-                pure=False))
+                condition_part, study.source, n, cond, good, refs, note, colours, max_points,
+                figs.exact, pure=False))
             out.append("")
         elif len(good):
             out.append(condition_figures(study, cond, good, refs, note, figs, colours, max_points))
@@ -197,7 +195,7 @@ def _conditions(study, note, figs, colours, max_points, client=None) -> str:
         try:
             text, count = future.result()
         except Exception:  # the worker died: made here
-            text, count = condition_part(folder, n, cond, good, refs, note, colours, max_points,
+            text, count = condition_part(study, n, cond, good, refs, note, colours, max_points,
                                          figs.exact)
         out[at] = figs.take(text, n, count)
     return "\n".join(out) + "</section>\n"
@@ -240,7 +238,7 @@ class _Normalised:
     def __init__(self, study):
         def frame(df, columns):
             return pd.DataFrame(columns=columns) if df is None or len(df.columns) == 0 else df
-        self._study = study
+        self.source = study  # what a worker is sent to read the runs' signals (_conditions)
         self.index = frame(getattr(study, "index", None), INDEX_COLUMNS)
         metrics = frame(getattr(study, "metrics", None), METRIC_COLUMNS + list(METRICS))
         own = (metrics["key"].astype(str) == metrics["reference"].astype(str)).to_numpy()
@@ -251,7 +249,7 @@ class _Normalised:
     def __getattr__(self, name):  # only for what __init__ did not set
         if name not in _ATTRIBUTES:
             raise AttributeError(name)
-        value = getattr(self._study, name, None)
+        value = getattr(self.source, name, None)
         setattr(self, name, value)
         return value
 

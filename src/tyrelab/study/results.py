@@ -61,6 +61,11 @@ class Study:
     def __repr__(self) -> str:
         return f"Study({str(self.folder)!r})"
 
+    def __getstate__(self) -> dict:
+        """Pickled as its folder: the tables are read again where it is unpickled (a study's
+        worker, which shares the folder, draws the report's figures from the signals)."""
+        return {"folder": self.folder, "store": self.store}
+
     # -- what the folder holds ------------------------------------------------------
     @functools.cached_property
     def spec(self) -> StudySpec | None:
