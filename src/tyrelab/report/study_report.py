@@ -155,7 +155,7 @@ def _conditions(study, note, figs, colours, max_points, client=None) -> str:
     index = study.index
     refs = {k: f"{m} (reference)" for k, m in zip(index["key"], index["model"])}
     remote = client is not None and getattr(study, "folder", None) is not None
-    parts = {}  # position in out -> (part, future) of a condition's figures made on a worker
+    parts = {}  # position in out -> (part, condition, rows, future) of figures made on a worker
     rep_mask = metrics["model"] == REPEATABILITY
     for n, (cond, rows) in enumerate(metrics[~rep_mask].groupby(COND, sort=False), start=1):
         rep = metrics[rep_mask]
