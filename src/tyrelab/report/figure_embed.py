@@ -377,17 +377,16 @@ class FigureSink:
     ``exact`` (the full-resolution page) rounds nothing. plotly.js and the
     loader go into the page once, after the last figure (:func:`page_scripts`)."""
 
-    def __init__(self, exact: bool = False, part: int | None = None):
-        """``part``: the figures are one part of a page built elsewhere (a study's worker):
-        numbered ``tyrelab-fig-<part:k>`` for the page to number them in turn (:meth:`take`)."""
+    def __init__(self, exact: bool = False, deferred: bool = False):
+        """``deferred``: the figures are a part of a page built elsewhere (a study's worker):
+        numbered ``tyrelab-fig-<k>`` for the page to number them in turn (:meth:`take`)."""
         self.count = 0
         self.exact = exact
-        self.part = part
+        self.deferred = deferred
 
     def add(self, fig, kind: str, caption: str, *, packed: bool = False) -> str:
         self.count += 1
-        div_id = (f"tyrelab-fig-{self.count}" if self.part is None
-                  else f"tyrelab-fig-<{self.part}:{self.count}>")
+        div_id = f"tyrelab-fig-<{self.count}>" if self.deferred else f"tyrelab-fig-{self.count}"
         block, _ = pack_figure(fig, packed=packed, exact=self.exact)
         height = fig.layout.height or 420
         return (f"<figure class='tyrelab-figure' data-kind='{kind}'>"
@@ -400,15 +399,14 @@ class FigureSink:
         """plotly.js and the loader, once (nothing when the page has no figure)."""
         return (plotly_block() + "\n" + LOADER_SCRIPT) if self.count else ""
 
-    def take(self, text: str, part: int, count: int) -> str:
-        """The HTML ``text`` of a part's ``count`` figures (a sink with that ``part`` made it),
-        numbered after this sink's own: the page then reads as if this sink had made them.
-        Captions are escaped, so "<" in the text is only ever in a part's figure number."""
+    def take(self, text: str, count: int) -> str:
+        """The HTML ``text`` of ``count`` figures a deferred sink made, numbered after this
+        sink's own: the page then reads as if this sink had made them. Captions are
+        escaped, so "<" in the text is only ever in a deferred figure number."""
         first = self.count
         self.count += count
-        return _PART_FIGURE.sub(lambda m: f"tyrelab-fig-{first + int(m[2])}" if int(m[1]) == part
-                                else m[0], text)
+        return _DEFERRED_FIGURE.sub(lambda m: f"tyrelab-fig-{first + int(m[1])}", text)
 
 
-#: a figure number of a part of a page (FigureSink(part=...))
-_PART_FIGURE = re.compile(r"tyrelab-fig-<(\d+):(\d+)>")
+#: a deferred sink's figure number (FigureSink(deferred=True))
+_DEFERRED_FIGURE = re.compile(r"tyrelab-fig-<(\d+)>")

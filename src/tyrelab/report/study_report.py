@@ -131,11 +131,11 @@ def _header(study, name: str, note: str) -> str:
             "</header>\n")
 
 
-def condition_part(study, part, cond, rows, refs, note, colours, max_points, exact):
+def condition_part(study, cond, rows, refs, note, colours, max_points, exact):
     """One condition's figures made on a study's worker, which shares the study's folder:
-    ``(html, count)``, the figures numbered as part ``part`` of the page
+    ``(html, count)``, the figures numbered for the page to number them in turn
     (:meth:`.figure_embed.FigureSink.take`); the arguments as :func:`condition_figures`'s."""
-    figs = FigureSink(exact=exact, part=part)
+    figs = FigureSink(exact=exact, deferred=True)
     return condition_figures(study, cond, rows, refs, note, figs, colours, max_points), figs.count
 
 
@@ -155,7 +155,7 @@ def _conditions(study, note, figs, colours, max_points, client=None) -> str:
     index = study.index
     refs = {k: f"{m} (reference)" for k, m in zip(index["key"], index["model"])}
     remote = client is not None and getattr(study, "folder", None) is not None
-    parts = {}  # position in out -> (part, condition, rows, future) of figures made on a worker
+    parts = {}  # position in out -> (condition, rows, future) of figures made on a worker
     rep_mask = metrics["model"] == REPEATABILITY
     for n, (cond, rows) in enumerate(metrics[~rep_mask].groupby(COND, sort=False), start=1):
         rep = metrics[rep_mask]
@@ -184,20 +184,20 @@ def _conditions(study, note, figs, colours, max_points, client=None) -> str:
             out.append(f"<p class='compare-error'>{esc(r.model)} could not be compared: "
                        f"{esc(r.error)}</p>")
         if len(good) and remote:
-            parts[len(out)] = (n, cond, good, client.submit(
-                condition_part, study.source, n, cond, good, refs, note, colours, max_points,
+            parts[len(out)] = (cond, good, client.submit(
+                condition_part, study.source, cond, good, refs, note, colours, max_points,
                 figs.exact, pure=False))
             out.append("")
         elif len(good):
             out.append(condition_figures(study, cond, good, refs, note, figs, colours, max_points))
         out.append("</section>")
-    for at, (n, cond, good, future) in parts.items():  # numbered in the page's order
+    for at, (cond, good, future) in parts.items():  # numbered in the page's order
         try:
             text, count = future.result()
         except Exception:  # the worker died: made here
-            text, count = condition_part(study, n, cond, good, refs, note, colours, max_points,
+            text, count = condition_part(study, cond, good, refs, note, colours, max_points,
                                          figs.exact)
-        out[at] = figs.take(text, n, count)
+        out[at] = figs.take(text, count)
     return "\n".join(out) + "</section>\n"
 
 
