@@ -62,8 +62,13 @@ SKIP = {
         "the study machinery runs in tests/test_study_*.py, the example spec via "
         "'tyrelab study spec.toml --workers 2' and examples/small_campaign.py",
     r"^tyrelab fit ring\b":
-        "identifies the flexible ring: several minutes of ring simulations; tests/test_ring_fit.py "
-        "and tests/test_fit_ring_campaign.py cover the identification",
+        "identifies the flexible ring: several minutes of ring simulations; "
+        "tests/test_ring_fit_campaign_fast.py runs 'tyrelab fit ring' end to end on a reduced "
+        "campaign (default run), tests/test_fit_ring_campaign.py the whole identification (slow)",
+    r"^python examples/(?!run_all\.py)\w+\.py\s*(#.*)?$":
+        "an example of the gallery: tests/test_examples.py runs each as written, in a fresh copy "
+        "of examples/, and checks what it prints and draws (every script has its test there: "
+        "test_every_example_is_tested_and_in_the_gallery)",
     r"--scheduler tcp://HEAD:":
         "needs a Dask scheduler running on a machine named HEAD (the README's multi-machine "
         "set-up); the runner's scheduler path is tested in tests/test_study_runner.py",
@@ -73,7 +78,8 @@ SKIP = {
 SHORTEN = {
     r"^tyrelab fit all\b(?!.*--skip)": (
         " --skip ring", "the ring step identifies the flexible ring (minutes of ring simulations); "
-        "tests/test_fit_ring_campaign.py covers it, tests/test_fit_campaign.py runs fit all"),
+        "tests/test_ring_fit_campaign_fast.py runs it end to end on a reduced campaign, "
+        "tests/test_fit_campaign.py runs fit all"),
 }
 
 #: a word bash passes on as it is: no quote, expansion, glob, redirection, operator or comment
