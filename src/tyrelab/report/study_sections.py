@@ -79,18 +79,27 @@ def run_matrix(index: pd.DataFrame) -> str:
     cols = list(dict.fromkeys(label))
     out = ["<section id='runs'><h2>Run matrix</h2><table class='run-matrix'><tr><th>test</th>"
            "<th>speed</th><th>load</th>" + "".join(f"<th>{esc(c)}</th>" for c in cols) + "</tr>"]
-    for (test, speed, load), runs in index.assign(_label=label).groupby(COND, sort=False):
+    # the runs of each condition and column, in the index's order, from one pass over its rows
+    # (a filter and a row iteration per cell took 0.4-1.2 s of the built-in campaign's report);
+    # like a groupby, a run with a missing condition or label is left out
+    cells_of: dict[tuple, list] = {}
+    for r, c in zip(index.itertuples(index=False), label):
+        key = (r.test, r.speed_kmh, r.load, c)
+        if not any(pd.isna(k) for k in key):
+            cells_of.setdefault(key, []).append(r)
+    has_error = "error" in index.columns
+    for test, speed, load in dict.fromkeys(k[:3] for k in cells_of):
         cells = []
         for c in cols:
-            sel = runs[runs["_label"] == c]
-            if sel.empty:
+            sel = cells_of.get((test, speed, load, c))
+            if sel is None:
                 cells.append("<td class='text'>&ndash;</td>")
                 continue
-            bad = sel["status"] != "done"
             parts = [_slip_text(r) + (("&#10003; " + cell(r.wall_time_s) + " s") if r.status == "done"
-                                      else "&#10007; " + esc(r.status)) for r in sel.itertuples()]
-            tip = "; ".join(as_text(e) for e in sel.loc[bad].get("error", []) if as_text(e))
-            cls = "failed" if bad.any() else "done"
+                                      else "&#10007; " + esc(r.status)) for r in sel]
+            bad = [r for r in sel if r.status != "done"]
+            tip = "; ".join(as_text(r.error) for r in bad if has_error and as_text(r.error))
+            cls = "failed" if bad else "done"
             cells.append(f"<td class='{cls}' title='{esc(tip)}'>" + "<br>".join(parts) + "</td>")
         out.append(f"<tr><th class='text'>{esc(test)}</th><td>{float(speed):g} km/h</td>"
                    f"<td>{esc(load_text(load))}</td>" + "".join(cells) + "</tr>")

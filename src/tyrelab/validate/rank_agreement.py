@@ -80,9 +80,12 @@ def rank_agreement(ours: pd.DataFrame, theirs: pd.DataFrame,
         idx = [(*key, m) for m in run["model"] if (*key, m) in mine.index]
         row["n_models"] = len(idx)
         rhos = []
-        for m in metrics:
-            x = mine.loc[idx, m].abs().to_numpy(dtype=float) if idx else np.array([])
-            y = run.set_index("model").loc[[i[-1] for i in idx], m].abs().to_numpy(dtype=float)
+        # the shared models' |values|, every metric at once (model by model in idx's order)
+        both = (mine.loc[idx, metrics].abs().to_numpy(dtype=float) if idx
+                else np.empty((0, len(metrics))),
+                run.set_index("model").loc[[i[-1] for i in idx], metrics].abs().to_numpy(dtype=float))
+        for j, m in enumerate(metrics):
+            x, y = both[0][:, j], both[1][:, j]
             ok = np.isfinite(x) & np.isfinite(y)
             x, y = x[ok], y[ok]
             rho = np.nan
