@@ -81,11 +81,11 @@ def rank_agreement(ours: pd.DataFrame, theirs: pd.DataFrame,
         row["n_models"] = len(idx)
         rhos = []
         # the shared models' |values|, every metric at once (model by model in idx's order)
-        both = (mine.loc[idx, metrics].abs().to_numpy(dtype=float) if idx
-                else np.empty((0, len(metrics))),
-                run.set_index("model").loc[[i[-1] for i in idx], metrics].abs().to_numpy(dtype=float))
+        xs = (mine.loc[idx, metrics].abs().to_numpy(dtype=float) if idx
+              else np.empty((0, len(metrics))))
+        ys = run.set_index("model").loc[[i[-1] for i in idx], metrics].abs().to_numpy(dtype=float)
         for j, m in enumerate(metrics):
-            x, y = both[0][:, j], both[1][:, j]
+            x, y = xs[:, j], ys[:, j]
             ok = np.isfinite(x) & np.isfinite(y)
             x, y = x[ok], y[ok]
             rho = np.nan
