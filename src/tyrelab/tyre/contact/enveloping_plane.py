@@ -86,7 +86,8 @@ def cam_plane(params, road, cx, cy, cz, fx, fy, dx, dy, cosg, zmax):
         count = float(min(nw, 2) * nl + max(nw - 2, 0) * min(nl, 2))
     for jr in range(rows):
         v = 0.0 if same_rows else v_first + jr * dv
-        outer_row = jr == 0 or jr == nw - 1
+        # a row between the outline's two outer rows: only its first and last cam count
+        inner_row = outline and not (same_rows or jr == 0 or jr == nw - 1)
         if aligned:
             j, wy = terrain_row(road, py + v * ly)
             x_a = px + u_first * fx + v * lx  # first and last cam of the row
@@ -94,12 +95,12 @@ def cam_plane(params, road, cx, cy, cz, fx, fy, dx, dy, cosg, zmax):
             x_lo, x_hi = min(x_a, x_b), max(x_a, x_b)
             top = row_block_max(params, road, j, x_lo - cap, x_hi + cap) if has_blocks else zmax
             pitch = du * abs(fx)
-            if outline and not (outer_row or same_rows) and nl > 2:
-                # inside the outline only the row's first and last cam count: rest just
-                # those two (the last at x_lo + (nl - 1) pitch, where the whole row puts
-                # it), their heights into the row's two ends. The last cam's search then
-                # starts where the first rests, not its neighbour (cams.cam_row): the same
-                # maximum along another path, equal to rounding (1e-15), not to the bit.
+            if inner_row and nl > 2:
+                # rest just the row's first and last cam (the last at x_lo + (nl - 1) pitch,
+                # where the whole row puts it), their heights into the row's two ends. The
+                # last cam's search then starts where the first rests, not its neighbour
+                # (cams.cam_row): the same maximum along another path, equal to rounding
+                # (1e-15), not to the bit.
                 # np.int64: one compiled cam_row for both counts (a literal is its own type)
                 cam_row(params, road, j, wy, x_lo, (nl - 1) * pitch, np.int64(2), top, w_row)
                 w_row[nl - 1] = w_row[1]
@@ -112,7 +113,7 @@ def cam_plane(params, road, cx, cy, cz, fx, fy, dx, dy, cosg, zmax):
                 end = i == 0 or i == nl - 1
                 if same_rows:
                     weight = float(nw) if end else float(min(nw, 2))
-                elif not (end or outer_row):
+                elif inner_row and not end:
                     continue  # inside the patch: not evaluated (thesis 5.4)
             if aligned:
                 w = w_row[i] if fx > 0.0 else w_row[nl - 1 - i]
