@@ -249,6 +249,11 @@ def test_measured_reference_files_and_their_repeatability(tiny, tmp_path):
     # the report's overlays read the measured reference through Study.signal
     got = study.signal("m1.parquet")
     assert np.array_equal(got["FZ_HUB"].to_numpy(), meas["FZ_HUB"].to_numpy())
+    part = study.signal("m1.parquet", ("RUNTIME", "FZ_HUB"))     # what an overlay reads
+    assert list(part.columns) == ["RUNTIME", "FZ_HUB"]
+    assert np.array_equal(part.to_numpy(), meas[["RUNTIME", "FZ_HUB"]].to_numpy())
+    with pytest.raises(InputError, match="no channel FX in this measured run"):
+        study.signal("m1.parquet", ("RUNTIME", "FX"))
 
 
 def test_study_opens_the_folder(tiny):

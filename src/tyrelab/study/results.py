@@ -120,14 +120,26 @@ class Study:
         """The signal table of the finished run ``key``, or of the spec's measured
         reference file of that name (the ``reference`` column of :attr:`metrics`); only
         ``columns``, if given."""
-        if not self.store.is_finished(key) and self.spec is not None:
-            for test in self.spec.tests:
-                for f in test.reference_files:
-                    if f.path.name == key:
-                        from ..measure import read_run
-                        run = read_run(f.path, column_map=f.column_map)
-                        return run if columns is None else run[list(columns)]
-        return self.store.signal(key, columns)
+        measured = self._measured_file(key)
+        if measured is None:
+            return self.store.signal(key, columns)
+        from ..measure import read_run
+        run = read_run(measured.path, column_map=measured.column_map)
+        if columns is None:
+            return run
+        missing = [c for c in columns if c not in run.columns]
+        if missing:  # one line, as read_signal gives for a stored run
+            raise InputError(f"no channel {', '.join(missing)} in this measured run",
+                             source=str(measured.path))
+        return run[list(columns)]
+
+    def _measured_file(self, key: str):
+        """The spec's measured reference file named ``key`` when no finished run has that
+        key, else None."""
+        if self.store.is_finished(key) or self.spec is None:
+            return None
+        return next((f for test in self.spec.tests for f in test.reference_files
+                     if f.path.name == key), None)
 
     # -- rows -----------------------------------------------------------------------
     def _reference_models(self) -> set:
