@@ -207,6 +207,8 @@ def test_the_workers_evaluate_as_this_process_does(study, tmp_path):
     assert len(here) >= 9 and here["error"].eq("").sum() >= 8
     pd.testing.assert_frame_equal(on_workers, here)
 
+def _undated(text):
+    return re.sub(r"Generated [^;]*;", "Generated;", text)
 
 
 def test_the_workers_draw_the_page_this_process_draws(study, page):
@@ -215,11 +217,34 @@ def test_the_workers_draw_the_page_this_process_draws(study, page):
     byte but for the date it was made, the page this process writes alone (the ``page``
     fixture); a numbering restarted per condition, or parts put in the order they finished,
     would show."""
-    def undated(text):
-        return re.sub(r"Generated [^;]*;", "Generated;", text)
     on_workers = (study.folder / "report.html").read_text(encoding="utf-8")
     assert "tyrelab-fig-<" not in on_workers and "tyrelab-fig-3" in on_workers
-    assert undated(on_workers) == undated(page[1])
+    assert _undated(on_workers) == _undated(page[1])
+
+
+def test_a_client_is_given_every_compared_condition_to_draw(study, page):
+    """With a client, each condition that has compared runs goes to a worker (one task each,
+    none drawn here), and the page is the one this process draws alone: the test above cannot
+    tell the workers' path from this process's, this one can. A real Dask client (threads)."""
+    from distributed import Client, LocalCluster
+    m = study.metrics
+    compared = m[(m["model"] != "measured repeatability") & ~m["is_reference"].astype(bool)
+                 & (m["error"].fillna("") == "")]
+    conditions = compared[["test", "speed_kmh", "load"]].drop_duplicates()
+    sent = []
+    with LocalCluster(n_workers=1, threads_per_worker=1, processes=False,
+                      dashboard_address=None) as cluster, Client(cluster) as client:
+        submit = client.submit
+
+        def recorded(fn, *args, **kwargs):
+            sent.append(fn.__name__)
+            return submit(fn, *args, **kwargs)
+
+        client.submit = recorded
+        text = study_report_html(study, name=page[0].parent.name, client=client)
+    assert len(conditions) >= 2 and sent == ["condition_part"] * len(conditions)
+    assert _undated(text) == _undated(page[1])
+
 
 def _expected_figures(study):
     """One overlay per compared condition, a distribution per track, one cost scatter."""
