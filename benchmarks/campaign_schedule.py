@@ -83,12 +83,14 @@ def main(folder: str) -> None:
         return html
 
     study_report.condition_figures = timed_figures
-    t0 = time.perf_counter()
-    result = study.open(folder)
-    _ = (result.summary, result.thesis, result.rank_agreement, result.cost)
-    write_study_report(result, Path(folder) / "report-schedule-check.html")
-    serial["report's tables"] = time.perf_counter() - t0 - sum(figures)
-    study_report.condition_figures = draw
+    try:
+        t0 = time.perf_counter()
+        result = study.open(folder)
+        _ = (result.summary, result.thesis, result.rank_agreement, result.cost)
+        write_study_report(result, Path(folder) / "report-schedule-check.html")
+        serial["report's tables"] = time.perf_counter() - t0 - sum(figures)
+    finally:
+        study_report.condition_figures = draw
     (Path(folder) / "report-schedule-check.html").unlink()
 
     runs = sum(ordered)
