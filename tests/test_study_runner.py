@@ -222,19 +222,21 @@ def _play(tasks, slots):
 
 
 def test_a_cold_cache_is_filled_once_per_kind_of_kernel():
-    """The thesis campaign's shape (6 kinds, the ring runs the longest) on 2 and 4 workers:
+    """The thesis campaign's shape (4 kinds, the ring's the longest runs: the ring and ring-tp
+    share one kind, the enveloping model and its edge variant another) on 2 and 4 workers:
     every kind's first run ends before another run of its kind starts, every run runs once,
     and (asserted inside) no worker waits while runs do. With one kind and 3 workers the
     workers are not left idle: all three start at once; with as many slots as runs (a running
     scheduler's) nothing waits."""
-    costs = {"ring": 20.0, "ring-tp": 21.0, "enveloping": 3.0, "edge": 2.5, "volume": 1.7,
-             "point": 0.8}
-    tasks = [{"key": f"{kind}{i}", "kernels": kind, "cost": cost * (1 + 0.01 * i)}
-             for kind, cost in costs.items() for i in range(10)]
+    costs = {("ring", "ring"): 20.0, ("ring-tp", "ring"): 21.0, ("enveloping", "envelope"): 3.0,
+             ("edge", "envelope"): 2.5, ("volume", "volume"): 1.7, ("point", "point"): 0.8}
+    tasks = [{"key": f"{model}{i}", "kernels": kind, "cost": cost * (1 + 0.01 * i)}
+             for (model, kind), cost in costs.items() for i in range(10)]
+    kinds = {kind for _, kind in costs}
     for slots in (2, 4):
         log, cold = _play(tasks, slots)
         assert sorted(e[2]["key"] for e in log) == sorted(t["key"] for t in tasks)
-        assert cold == {kind: 1 for kind in costs}, slots
+        assert cold == {kind: 1 for kind in kinds}, slots
     log, cold = _play([t for t in tasks if t["kernels"] == "point"], 3)
     assert [e[0] for e in log[:3]] == [0.0, 0.0, 0.0] and cold == {"point": 3}
     # a running scheduler's workers may not share this disk: every run goes at once
@@ -242,18 +244,31 @@ def test_a_cold_cache_is_filled_once_per_kind_of_kernel():
     assert all(e[0] == 0.0 for e in log)
 
 
-def test_the_campaigns_runs_fall_into_one_kind_per_contact_model():
-    """``kernel_kind`` labels runs by the compiled code they need: in the thesis campaign (one
-    tyre, the trailer, a point left wheel, no soil) that is the contact model alone -- ring and
-    ring-tp apart, the stiffness law (a value, not a type) not -- whatever the road, speed or load."""
+def test_runs_share_a_kind_exactly_when_their_wheels_compile_alike():
+    """``kernel_kind`` labels runs by the compiled code they need. In the thesis campaign (one
+    tyre, the trailer, a point left wheel, no soil) two runs get one label exactly when numba
+    types their test wheels alike (the type the rig's loop is compiled for), whatever the
+    road, speed or load: the ring and ring-tp share one, as do the enveloping model and its
+    edge variant; the stiffness law, a value, splits none."""
+    import numba
+
+    from tyrelab.road.spec import road_from_spec
     from tyrelab.study import tasks
     from tyrelab.study.spec import builtin_spec
+    from tyrelab.tyre.library import load_tyre
+    from tyrelab.tyre.model import TyreModel
 
-    kinds = {}
+    labels = {}
     for t in tasks(builtin_spec()):
-        kinds.setdefault(t["kernels"], set()).add(t["spec"]["contact"])
-    assert sorted(c for (c,) in kinds.values()) == sorted(
-        ["point", "volume", "enveloping", "enveloping-edge", "ring", "ring-tp"])
+        labels.setdefault(t["spec"]["contact"], set()).add(t["kernels"])
+    assert all(len(v) == 1 for v in labels.values()), labels  # one label per model
+    grid = road_from_spec("cleat:50x50").grid()
+    tyre = load_tyre("xzl-16.00R20", 300e3)
+    types = {c: numba.typeof(TyreModel(tyre, contact=c).wheel(grid, 30e3)) for c in labels}
+    assert len(types) == 6
+    for a in labels:
+        for b in labels:
+            assert (labels[a] == labels[b]) == (types[a] == types[b]), (a, b)
     roads = {t["spec"]["road"] for t in tasks(builtin_spec()) if t["spec"]["contact"] == "ring"}
     assert len(roads) > 3  # one kind spans every road it runs on
 

@@ -262,8 +262,22 @@ def kernel_kind(run: RunSpec) -> str:
     """What compiled code a run needs, as a label: runs with equal labels share their kernels
     (the rig's loop over the tyre's contact and handling models, the left wheel's and the
     ground's types). Road, speed, load and pressure are values, not types: they share code.
-    Two labels for the same code only cost a second compile, never a wrong result
-    (:class:`tyrelab.study.runner.KernelWaves`)."""
-    return "|".join(str(part) for part in (run.tyre.file, run.model.contact, run.model.handling,
-                                           dict(run.model.options), run.rig, run.left_contact,
-                                           run.terrain))
+
+    A contact or handling model is named by its parameter record, the type the compiled code
+    is chosen by (:class:`tyrelab.tyre.registry.ContactModel`), not by its name: the ring and
+    the ring with its tread pattern are one ring kernel, the enveloping model and its edge
+    variant one enveloping kernel. Labelled by name, a fresh install's campaign started a ring
+    and a ring-tp run at once, and the second worker sat on the ring's compile lock for about
+    30 s instead of compiling and running the other models (:class:`KernelWaves
+    <tyrelab.study.runner.KernelWaves>`). Two labels for the same code only cost such a wait or
+    a second compile, never a wrong result."""
+    from ..tyre.registry import contact_model, handling_model
+
+    def contact_record(name):
+        return None if name is None else contact_model(name).record.__name__
+
+    handling = run.model.handling
+    return "|".join(str(part) for part in (
+        run.tyre.file, contact_record(run.model.contact),
+        None if handling is None else handling_model(handling).record.__name__,
+        run.rig, contact_record(run.left_contact), run.terrain))
