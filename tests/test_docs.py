@@ -58,7 +58,7 @@ TIMEOUT = 600
 #: commands shown in the documentation that this test does not run: pattern -> why
 SKIP = {
     r"^tyrelab study\s*(#.*)?$":
-        "the thesis's whole campaign: 200 runs, 3-4 minutes on 2 cores (README benchmarks); "
+        "the thesis's whole campaign: 200 runs, 2.5-3 minutes on 2 cores (README, Benchmarks); "
         "the study machinery runs in tests/test_study_*.py, the example spec via "
         "'tyrelab study spec.toml --workers 2' and examples/small_campaign.py",
     r"^tyrelab fit ring\b":

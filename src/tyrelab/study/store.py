@@ -21,7 +21,7 @@ line) is kept for the report and retried on the next run of the study.
 
 How a run's table is stored (``[study] store`` of the spec, :data:`STORAGE`;
 measured on the 200 runs of the built-in campaign by
-``benchmarks/store_format.py``, README "Benchmarks"):
+``benchmarks/store_format.py``, docs/benchmarks.md):
 
 * ``"compact"`` (the default): only the channels the study's evaluation and
   report read (:data:`COMPACT_CHANNELS`: time, the load cell's and the
