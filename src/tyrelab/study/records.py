@@ -273,11 +273,12 @@ def kernel_kind(run: RunSpec) -> str:
     a second compile, never a wrong result."""
     from ..tyre.registry import contact_model, handling_model
 
-    def contact_record(name):
-        return None if name is None else contact_model(name).record.__name__
+    def record(model):  # by module too: two plugins may both call theirs "Params"
+        return None if model is None else f"{model.record.__module__}.{model.record.__qualname__}"
 
     handling = run.model.handling
     return "|".join(str(part) for part in (
-        run.tyre.file, contact_record(run.model.contact),
-        None if handling is None else handling_model(handling).record.__name__,
-        run.rig, contact_record(run.left_contact), run.terrain))
+        run.tyre.file, record(contact_model(run.model.contact)),
+        record(None if handling is None else handling_model(handling)), run.rig,
+        record(None if run.left_contact is None else contact_model(run.left_contact)),
+        run.terrain))
