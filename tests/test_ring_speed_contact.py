@@ -8,8 +8,12 @@
   small rough grid, inside and beyond its edges;
 * the ring's force step (:func:`~tyrelab.tyre.ring.kernel.ring_kick`, with
   the tread contact inlined) is compiled without reference counting: no
-  ``NRT_incref``/``NRT_decref`` in its code (with them the trailer on the
-  Belgian paving took about a quarter longer, docs/ring.md "Performance").
+  ``NRT_incref``/``NRT_decref`` in the code a run executes, read from the
+  kernel as the process loaded it (from the compile cache, where numba keeps
+  the optimised LLVM module beside the object code; until 2026-11-27 the test
+  compiled a second copy for its IR, 6-10 s of every suite run). With them the
+  trailer on the Belgian paving took about a quarter longer (docs/ring.md
+  "Performance").
 """
 
 import re
@@ -73,6 +77,10 @@ def test_road_penetration_is_the_bilinear_surface(which):
 
 
 def test_ring_kick_is_compiled_without_reference_counting():
+    """Read in the code a user's run executes: the kernel's library as this process got it
+    (loaded from the compile cache, or compiled here when the cache is cold). Its module
+    for linking is the optimised LLVM module the machine code was made from, which numba
+    keeps beside the object code in the cache for callers to inline."""
     from tyrelab.road.obstacles import Flat
     from tyrelab.tyre.library import load_tyre
     from tyrelab.tyre.model import TyreModel
@@ -82,13 +90,12 @@ def test_ring_kick_is_compiled_without_reference_counting():
     model = TyreModel(load_tyre("xzl-16.00R20", 300e3), contact="ring",
                       options={"n_segments": 40, "n_blocks": 2})
     wheel = model.wheel(Flat().grid(), 30e3)
-    # a fresh compile of the same function with the same options (a cached one has no IR)
-    options = {k: v for k, v in ring_kick.targetoptions.items() if k != "nopython"}
-    fresh = nb.njit(**options)(ring_kick.py_func)
-    fresh(wheel.contact, wheel.state, wheel.road,
-          pose(0.0, 0.0, 0.75, velocity=(3.0, 0.0, 0.0), omega=4.0),
-          0.0, 0.0, 0.0, 0.0, 1e-4, 0.01)
-    llvm = fresh.inspect_llvm(fresh.signatures[0])
+    ring_kick(wheel.contact, wheel.state, wheel.road,
+              pose(0.0, 0.0, 0.75, velocity=(3.0, 0.0, 0.0), omega=4.0),
+              0.0, 0.0, 0.0, 0.0, 1e-4, 0.01)
+    signature = nb.typeof((wheel.contact, wheel.state, wheel.road)).types
+    [library] = [cres.library for sig, cres in ring_kick.overloads.items() if sig[:3] == signature]
+    llvm = str(library._get_module_for_linking())
     bodies = {}
     for f in llvm.split("\ndefine ")[1:]:
         bodies[re.match(r'[^@]*@"?([^"(\s]+)', f).group(1)] = f
