@@ -80,7 +80,9 @@ def test_ring_kick_is_compiled_without_reference_counting():
     """Read in the code a user's run executes: the kernel's library as this process got it
     (loaded from the compile cache, or compiled here when the cache is cold). Its module
     for linking is the optimised LLVM module the machine code was made from, which numba
-    keeps beside the object code in the cache for callers to inline."""
+    keeps beside the object code in the cache for callers to inline
+    (``_get_module_for_linking``: numba-internal, as ``_nrt`` is; the numba range they were
+    tested on is pinned, ``test_the_numba_range_pinned_is_the_range_tested_and_installed``)."""
     from tyrelab.road.obstacles import Flat
     from tyrelab.tyre.library import load_tyre
     from tyrelab.tyre.model import TyreModel
