@@ -92,11 +92,11 @@ def test_ring_kick_is_compiled_without_reference_counting():
     model = TyreModel(load_tyre("xzl-16.00R20", 300e3), contact="ring",
                       options={"n_segments": 40, "n_blocks": 2})
     wheel = model.wheel(Flat().grid(), 30e3)
-    ring_kick(wheel.contact, wheel.state, wheel.road,
-              pose(0.0, 0.0, 0.75, velocity=(3.0, 0.0, 0.0), omega=4.0),
-              0.0, 0.0, 0.0, 0.0, 1e-4, 0.01)
-    signature = nb.typeof((wheel.contact, wheel.state, wheel.road)).types
-    [library] = [cres.library for sig, cres in ring_kick.overloads.items() if sig[:3] == signature]
+    args = (wheel.contact, wheel.state, wheel.road,
+            pose(0.0, 0.0, 0.75, velocity=(3.0, 0.0, 0.0), omega=4.0),
+            0.0, 0.0, 0.0, 0.0, 1e-4, 0.01)
+    ring_kick(*args)
+    library = ring_kick.overloads[tuple(nb.typeof(a) for a in args)].library
     llvm = str(library._get_module_for_linking())
     bodies = {}
     for f in llvm.split("\ndefine ")[1:]:
