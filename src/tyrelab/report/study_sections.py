@@ -84,11 +84,11 @@ def run_matrix(index: pd.DataFrame) -> str:
     # like a groupby, a run with a missing condition or label is left out
     cells_of: dict[tuple, list] = {}
     for r, c in zip(index.itertuples(index=False), label):
-        key = (r.test, r.speed_kmh, r.load, c)
+        key = (*(getattr(r, k) for k in COND), c)
         if not any(pd.isna(k) for k in key):
             cells_of.setdefault(key, []).append(r)
     has_error = "error" in index.columns
-    for test, speed, load in dict.fromkeys(k[:3] for k in cells_of):
+    for test, speed, load in dict.fromkeys(k[:-1] for k in cells_of):
         cells = []
         for c in cols:
             sel = cells_of.get((test, speed, load, c))
