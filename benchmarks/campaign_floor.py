@@ -15,7 +15,9 @@ Prints the total run time (one core), the pool's wall time, each model's share, 
 the RESULTS_FOLDER of a finished ``tyrelab study`` of the built-in campaign, each model's run
 time there (its ``index.parquet``): the difference is what the runs lose inside a study to
 the other work on the same cores (the study's process, which receives and stores every
-signal, and the workers' own threads).
+signal, and the workers' own threads) -- and to the machine's drift, when the two were not
+measured within the same few minutes (on this project's machine, 18 % within nine minutes:
+docs/benchmarks.md, "The floor under the campaign").
 """
 
 from __future__ import annotations
@@ -38,6 +40,8 @@ def main(workers: int, folder: str | None) -> None:
 
     from tyrelab import study
 
+    if folder and not os.path.isfile(os.path.join(folder, "index.parquet")):
+        sys.exit(f"{folder}: no index.parquet; expected a finished 'tyrelab study' folder")
     spec = study.builtin_spec()
     tasks = sorted(study.tasks(spec), key=lambda t: -t.get("cost", 0.0))
     model = {t["key"]: t["spec"]["model"] for t in tasks}
