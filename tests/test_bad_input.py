@@ -169,6 +169,9 @@ CASES = [
     (["simulate", "--rate", "3000", "-o", "{d}/o.parquet"], 2, "--rate: output rate 3000 Hz is faster"),
     (["simulate", "--speed", "1e6", "-o", "{d}/o.parquet"], 2, "allowed: 0.036 <= speed <= 200 km/h"),
     (["simulate", "--speed", "nan", "-o", "{d}/o.parquet"], 2, "speed must be a finite number"),
+    # the option named is the one given: the left wheel's, not the test wheel's --model
+    (["simulate", "--left-wheel", "bogus", "-o", "{d}/o.parquet"], 2,
+     "--left-wheel: unknown model 'bogus', expected one of point,"),
     (["static", "--max-deflection", "500"], 2, "--max-deflection: 500 mm would press"),
     (["validate", "{d}/run.parquet", "{d}/run.parquet", "--speed", "inf", "--html", "{d}/v.html"], 2,
      "speed must be a finite number"),

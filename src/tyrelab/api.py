@@ -7,12 +7,13 @@
 
 from __future__ import annotations
 
-from .errors import InputError
+from .errors import InputError, named
 from .limits import check_pressure
 from .rig.simulation import SimulationError
 from .tyre.model import TyreModel
 from .tyre.library import DEFAULT_TYRE, load_tyre
 from .tyre.params import Tyre
+from .tyre.registry import contact_models
 
 #: output sample rate [Hz] when none is given (every step when the step is longer than 1 ms)
 DEFAULT_OUTPUT_RATE = 1000.0
@@ -185,6 +186,8 @@ def simulate(tyre: str | Tyre = DEFAULT_TYRE, model: str = "point", road=None,
         two = ", ".join(name for name, r in rigs().items() if r.wheels > 1)
         raise InputError(f"left_wheel applies to the rigs with two wheels ({two}), not to '{rig}'",
                          field="left_wheel")
+    if left_wheel is not None:  # looked up here, so that an unknown name is the left wheel's
+        named(contact_models(), left_wheel, "model", "left_wheel")
     if isinstance(load, str):
         from .rig.trailer import load_case_wheel_load
         wheel_load = limits.check_wheel_load(load_case_wheel_load(load), tm.tyre)
