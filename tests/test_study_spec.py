@@ -508,3 +508,8 @@ def test_model_options_reach_the_run_and_its_key(tmp_path):
           "expected a table")
     fails(edit(18, 'contact = "ring"\noptions = { parameters = 1 }'), tmp_path, 19,
           "model[2].options.parameters", "Python only")
+    # an impossible value is the spec's error, not a failed run (it once ran out of memory)
+    fails(edit(18, 'contact = "ring"\noptions = { n_segments = 100000 }'), tmp_path, 19,
+          "model[2].options.n_segments", "ring segments 100000 is out of range; allowed: 12 to 1000")
+    fails(edit(18, 'contact = "enveloping"\noptions = { step = 0.0 }'), tmp_path, 19,
+          "model[2].options.step", "sampling step 0 m is out of range")

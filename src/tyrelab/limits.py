@@ -102,6 +102,23 @@ MAX_WHEEL_MASS, MAX_WHEEL_INERTIA = 1e4, 1e4
 #: typo or a damaged file; 1e12 leaves room for stiffnesses per m^2 and pressures in Pa)
 MAX_TIR_MAGNITUDE = 1e12
 
+# --- model resolution (options) ---------------------------------------------------------
+
+#: the flexible ring's belt segments: at least 12 (a polygon that still rolls), at most 1000.
+#: Its out-of-plane matrix is 2N x 2N (32 MB at 1000; 298 GB at 100,000, which ended in an
+#: out-of-memory error), and its stable step falls with N (400 us at 100, 161 us at 200)
+MIN_RING_SEGMENTS, MAX_RING_SEGMENTS = 12, 1000
+#: the ring's tread blocks per segment: at most 100 (the built-in ring has 10; each block is
+#: a contact element evaluated every internal step)
+MAX_RING_BLOCKS = 100
+#: the ring's samples across a block's width: at most 16 (statics use 4)
+MAX_LATERAL_SAMPLES = 16
+#: the enveloping model's cams along and across the patch: at most 100 each way (the
+#: built-in tyre has 15 x 10; ``tyrelab fit cams`` searches up to 20)
+MAX_CAMS = 100
+#: the volume model's discs per half width: at most 100 (the XZL's shape table gives 8)
+MAX_DISCS = 100
+
 # --- roads -----------------------------------------------------------------------------
 
 #: obstacle heights and depths [m]: up to 1 m (a cleat, bump, step or pothole taller than

@@ -154,8 +154,12 @@ def input_files(*values) -> list[str]:
     return out
 
 
-def renamed(exc: InputError, names: dict[str, str]) -> InputError:
-    """The same error with the Python argument name replaced by the command-line option."""
+def renamed(exc: InputError, names: dict[str, str], options=()) -> InputError:
+    """The same error with the Python argument name replaced by the command-line option; a
+    model option the user gave (a name in ``options``, from ``--option NAME=VALUE``) becomes
+    ``--option NAME``."""
+    if exc.field in options:
+        return InputError(exc.reason, source=exc.source, line=exc.line, field=f"--option {exc.field}")
     if exc.field in names:
         return InputError(exc.reason, source=exc.source, line=exc.line, field=names[exc.field])
     return exc

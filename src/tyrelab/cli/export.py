@@ -70,7 +70,7 @@ def run_fmu(args) -> int:
                           options=model_options(args.option), load=args.load, frame=args.frame,
                           internal_step=args.internal_step, terrain=args.terrain)
     except InputError as exc:
-        raise renamed(exc, OPTIONS) from None
+        raise renamed(exc, OPTIONS, model_options(args.option)) from None
     ground = args.road if args.terrain is None else f"{args.terrain} over {args.road}"
     print(f"{path}: FMI 2.0 co-simulation FMU, model {args.model} on {ground} "
           "(needs a Python with tyrelab installed in the host)")

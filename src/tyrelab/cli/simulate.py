@@ -91,7 +91,7 @@ def run(args) -> int:
                          options=model_options(args.option), terrain=args.terrain,
                          rig_options=None if args.slip is None else {"slip": args.slip})
     except InputError as exc:
-        raise renamed(exc, OPTIONS) from None
+        raise renamed(exc, OPTIONS, model_options(args.option)) from None
     write_signal(table, out)
     fz = table["FZW"]
     found = table.attrs["metadata"].get("physics_warnings", [])

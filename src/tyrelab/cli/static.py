@@ -40,6 +40,15 @@ def register(sub):
 
 
 def run(args) -> int:
+    from ..errors import InputError
+    try:
+        return _run(args)
+    except InputError as exc:  # the model's records are built by the press: name the options
+        raise renamed(exc, {"options": "--option", "model": "--model"},
+                      model_options(args.option)) from None
+
+
+def _run(args) -> int:
     from ..api import make_tyre_model
     from ..errors import InputError
     from ..io_atomic import IMAGE_SUFFIXES, atomic_write, save_figure
@@ -53,11 +62,8 @@ def run(args) -> int:
         out = output_path(args.output, TABLE_SUFFIXES + IMAGE_SUFFIXES, inputs=inputs) \
             if args.output else None
         press_road(args.test, args.direction)  # a bad test name or cleat size: refused now
-    try:
-        model = make_tyre_model(args.tyre, args.model, args.pressure, args.stiffness, handling="none",
-                                options=model_options(args.option))
-    except InputError as exc:
-        raise renamed(exc, {"options": "--option", "model": "--model"}) from None
+    model = make_tyre_model(args.tyre, args.model, args.pressure, args.stiffness, handling="none",
+                            options=model_options(args.option))
     tyre = model.tyre
     if args.test == "footprint":
         from ..report.footprint import plot_footprint

@@ -115,6 +115,11 @@ class ContactModel:
         ``--option KEY=VALUE``, a study spec's ``options`` table), name -> type
         (``int``, ``float``, ``bool``, ``str``, or ``object`` for a Python value);
         :func:`check_options` refuses any other name and a value of another type.
+    check_values : callable, optional
+        ``check_values(options)`` refuses an option's impossible value (an
+        :class:`InputError` whose field is the option's name) before any work is
+        started: :func:`check_options` calls it, so the command line and a study
+        spec's check refuse the value, not the run; ``build`` checks again.
     """
 
     name: str
@@ -132,6 +137,7 @@ class ContactModel:
     parameterization: str = ""
     fit_steps: tuple = ()
     terrains: tuple = ("rigid",)
+    check_values: Callable[[dict], Any] | None = None
 
     def __post_init__(self):
         if (self.geometry is None) == (self.step is None):
@@ -213,7 +219,11 @@ def contact_model(name: str) -> ContactModel:
 def check_options(name: str, options: dict | None, field: str = "options") -> dict:
     """``options`` for the contact model ``name`` (a new dict), or InputError naming the
     unknown keys and the ones the model takes (:attr:`ContactModel.options`)."""
-    return checked_options(options, contact_model(name).options, f"the '{name}' model", field)
+    model = contact_model(name)
+    checked = checked_options(options, model.options, f"the '{name}' model", field)
+    if model.check_values is not None:
+        model.check_values(checked)
+    return checked
 
 
 def checked_options(options: dict | None, declared: dict, owner: str, field: str) -> dict:

@@ -89,6 +89,7 @@ from ..wheel import ContactGeometry, WheelPose
 from .cams import cam_tables
 from .patch_laws import half_length, half_width, length_law, patch_key, width_law
 from .enveloping_params import (_DATA, _OTHER_OPTIONS, _USER_OPTIONS, BLOCK, CAM_LAYOUTS, FIT_STEPS,
+                                cam_option_values,
                                 MIN_PATCH_DEFLECTION, EnvelopingParams)
 from .enveloping_plane import cam_plane
 from .volume import DEFAULT_STEP, no_contact, plane_contact
@@ -154,10 +155,11 @@ def enveloping_params(tyre, grid, width_table=None, n_width=None, n_length=None,
                          field="cam_layout")
     tir = tyre.tir
     r0, w0 = float(tyre.unloaded_radius), float(tyre.width)
-    rho_min = MIN_PATCH_DEFLECTION * r0 if min_patch_deflection is None else float(min_patch_deflection)
-    if not rho_min >= 0.0:
-        raise InputError(f"min_patch_deflection must be >= 0 m, got {min_patch_deflection}",
-                         field="min_patch_deflection")
+    bounded = cam_option_values({"n_width": n_width, "n_length": n_length, "step": step,
+                                 "min_patch_deflection": min_patch_deflection})
+    n_width, n_length = bounded.get("n_width"), bounded.get("n_length")
+    step = bounded["step"]
+    rho_min = bounded.get("min_patch_deflection", MIN_PATCH_DEFLECTION * r0)
     b_max = 0.5 * w0
     lmode, (a1, a2) = length_law(tir)
     wmode, (b1, b2, b3), wtable = width_law(tir, width_table, b_max)
@@ -319,5 +321,6 @@ register_contact(ContactModel("enveloping", EnvelopingParams, enveloping_params,
                               summary="3D enveloping contact (tandem elliptical cams), "
                                       "thesis 2.3.3",
                               options={**_USER_OPTIONS, "cam_layout": str}, cost=0.022,
-                              parameterization=_DATA, fit_steps=FIT_STEPS, terrains=("rigid", "soil")))
+                              parameterization=_DATA, fit_steps=FIT_STEPS, terrains=("rigid", "soil"),
+                              check_values=cam_option_values))
 

@@ -31,7 +31,7 @@ from __future__ import annotations
 from ...errors import InputError
 from ..registry import ContactModel, register_contact
 from .enveloping import enveloping_contact, enveloping_params
-from .enveloping_params import _DATA, _USER_OPTIONS, FIT_STEPS, EnvelopingParams
+from .enveloping_params import _DATA, _USER_OPTIONS, FIT_STEPS, EnvelopingParams, cam_option_values
 
 
 def edge_params(tyre, grid, **options) -> EnvelopingParams:
@@ -50,4 +50,5 @@ register_contact(ContactModel("enveloping-edge", EnvelopingParams, edge_params,
                                       "model (5.4)",
                               options=_USER_OPTIONS, cost=0.011,
                               parameterization=_DATA + " (the cams on the patch's edges only)",
-                              fit_steps=FIT_STEPS, terrains=("rigid", "soil")))
+                              fit_steps=FIT_STEPS, terrains=("rigid", "soil"),
+                              check_values=cam_option_values))

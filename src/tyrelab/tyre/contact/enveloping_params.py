@@ -23,6 +23,26 @@ _OTHER_OPTIONS = ("discs",)
 #: the options a user sets, by type (tyrelab.tyre.registry.check_options)
 _USER_OPTIONS = {"n_length": int, "n_width": int, "width_table": bool, "step": float,
                  "min_patch_deflection": float}
+
+
+def cam_option_values(options: dict) -> dict:
+    """The bounded options of the enveloping models among ``options``, checked and converted:
+    ``n_width``, ``n_length`` 1 to :data:`~tyrelab.limits.MAX_CAMS` cams, ``step`` > 0 m,
+    ``min_patch_deflection`` >= 0 m (an :class:`InputError` on the option's name)."""
+    from ...limits import MAX_CAMS, check_count, check_number
+    out = {}
+    for key, what in (("n_width", "cams across the width"), ("n_length", "cams along the length")):
+        if options.get(key) is not None:
+            out[key] = check_count(options[key], key, 1, MAX_CAMS, what)
+    if options.get("step") is not None:
+        out["step"] = check_number(options["step"], "step", low=0.0, low_open=True, unit="m",
+                                   what="sampling step")
+    if options.get("min_patch_deflection") is not None:
+        out["min_patch_deflection"] = check_number(options["min_patch_deflection"],
+                                                   "min_patch_deflection", low=0.0, unit="m")
+    return out
+
+
 #: what the model must be given, measured (thesis chapter 4)
 _DATA = ("load-deflection curve + contact-patch length and width vs load (footprints) + cam "
          "(ellipse) parameters from cleat tests")

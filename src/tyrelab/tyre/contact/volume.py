@@ -51,6 +51,7 @@ import numpy as np
 
 from ...core.vec3 import unit, wheel_axes
 from ...errors import InputError
+from ...limits import MAX_DISCS, check_count, check_number
 from ...road.terrain import terrain_height, terrain_range, terrain_zmax
 from ..model import TyreModel, contact_geometry_table
 from ..registry import ContactModel, register_contact
@@ -85,6 +86,19 @@ class VolumeParams(NamedTuple):
     profile_breaks: np.ndarray
 
 
+def volume_option_values(options: dict) -> dict:
+    """The bounded options of the volume model among ``options``, checked and converted:
+    ``discs`` at least 1 per half width, ``step`` > 0 m (an :class:`InputError` on the
+    option's name)."""
+    out = {}
+    if options.get("discs") is not None:
+        out["discs"] = check_count(options["discs"], "discs", 1, MAX_DISCS, "discs per half width")
+    if options.get("step") is not None:
+        out["step"] = check_number(options["step"], "step", low=0.0, low_open=True, unit="m",
+                                   what="sampling step")
+    return out
+
+
 def volume_params(tyre, grid, discs=None, step=DEFAULT_STEP, **options) -> VolumeParams:
     """The volume model's record: the disc set and the road's profile breakpoints.
 
@@ -112,8 +126,7 @@ def volume_params(tyre, grid, discs=None, step=DEFAULT_STEP, **options) -> Volum
     if unknown:
         raise InputError(f"unknown volume-model option(s) {', '.join(sorted(unknown))}; "
                          "expected discs, step", field="options")
-    if not (step > 0):
-        raise InputError(f"sampling step must be positive, got {step}", field="step")
+    step = volume_option_values({"step": step})["step"]
     offsets, radii, widths = carcass_discs(tyre, discs)
     breaks = grid.profile_breaks()
     if breaks is None:
@@ -307,5 +320,6 @@ def volume_geometry(tyre, road, x, y=0.0, z=None, axis=(0.0, 1.0, 0.0), discs=No
 register_contact(ContactModel("volume", VolumeParams, volume_params, geometry=volume_contact,
                               summary="3D equivalent volume contact, thesis 2.3.2",
                               options={"discs": int, "step": float}, cost=0.017,
+                              check_values=volume_option_values,
                               parameterization="load-deflection curve + carcass cross-section shape",
                               terrains=("rigid", "soil"), fit_steps=("vertical", "damping", "shape")))

@@ -16,7 +16,8 @@ import math
 import numpy as np
 
 from ...errors import InputError
-from ...limits import DYNAMIC_INTERNAL_STEP
+from ...limits import (DYNAMIC_INTERNAL_STEP, MAX_LATERAL_SAMPLES, MAX_RING_BLOCKS, MAX_RING_SEGMENTS,
+                       MIN_RING_SEGMENTS, check_count, check_number)
 from ..registry import ContactModel, register_contact
 from .kernel import ring_step
 from .parameters import ring_parameters, stable_step, tread_half_width
@@ -48,6 +49,32 @@ _DATA = ("load-deflection curve + modal tests (belt eigenfrequencies) + static c
 #: or a file) and ``parameters`` (a RingParameters record) are Python values
 _OPTION_TYPES = {"n_segments": int, "n_blocks": int, "friction": float, "dt_max": float,
                  "pattern": object, "parameters": object, "relax": float, "lateral_samples": int}
+
+
+def ring_option_values(options: dict) -> dict:
+    """The bounded options of the ring models among ``options``, checked and converted:
+    ``n_segments`` and ``n_blocks`` within :data:`~tyrelab.limits.MIN_RING_SEGMENTS` ..
+    :data:`~tyrelab.limits.MAX_RING_SEGMENTS` and 1 .. :data:`~tyrelab.limits.MAX_RING_BLOCKS`,
+    ``friction`` >= 0, ``relax`` >= 0 1/s, ``lateral_samples`` 1 ..
+    :data:`~tyrelab.limits.MAX_LATERAL_SAMPLES` (an :class:`InputError` on the option's name).
+    ``dt_max`` depends on the parameters: :func:`ring_params` checks it."""
+    out = {}
+    if options.get("n_segments") is not None:
+        out["n_segments"] = check_count(options["n_segments"], "n_segments", MIN_RING_SEGMENTS,
+                                        MAX_RING_SEGMENTS, "ring segments")
+    if options.get("n_blocks") is not None:
+        out["n_blocks"] = check_count(options["n_blocks"], "n_blocks", 1, MAX_RING_BLOCKS,
+                                      "tread blocks per segment")
+    if options.get("friction") is not None:
+        out["friction"] = check_number(options["friction"], "friction", low=0.0,
+                                       what="friction coefficient")
+    if options.get("relax") is not None:
+        out["relax"] = check_number(options["relax"], "relax", low=0.0, unit="1/s",
+                                    what="relaxation rate")
+    if options.get("lateral_samples") is not None:
+        out["lateral_samples"] = check_count(options["lateral_samples"], "lateral_samples", 1,
+                                             MAX_LATERAL_SAMPLES, "lateral samples")
+    return out
 
 
 def ring_params(tyre, grid=None, tread_pattern=False, n_segments=N_SEGMENTS, n_blocks=N_BLOCKS,
@@ -90,11 +117,11 @@ def ring_params(tyre, grid=None, tread_pattern=False, n_segments=N_SEGMENTS, n_b
     if unknown:
         raise InputError(f"unknown ring option(s) {', '.join(sorted(unknown))}; expected "
                          f"{', '.join(_OPTIONS)}", field="model")
-    n = int(n_segments)
-    nb = int(n_blocks)
-    if n < 12 or nb < 1:
-        raise InputError("the ring needs at least 12 segments and 1 block per segment",
-                         field="n_segments")
+    bounded = ring_option_values({"n_segments": n_segments, "n_blocks": n_blocks,
+                                  "friction": friction, "relax": relax,
+                                  "lateral_samples": lateral_samples})
+    n, nb, relax = bounded["n_segments"], bounded["n_blocks"], bounded["relax"]
+    friction, lateral_samples = bounded.get("friction"), bounded.get("lateral_samples")
     rp = parameters if parameters is not None else ring_parameters(tyre)
     p = float(tyre.pressure)
     if not (math.isfinite(p) and p > 0):
@@ -369,13 +396,14 @@ register_contact(ContactModel("ring", RingParams, _ring_build, step=ring_step,
                               initial_state=_ring_state, equilibrium=_ring_equilibrium,
                               static_options={"relax": RELAX_RATE},
                               footprint=ring_footprint_of, options=_OPTION_TYPES, cost=0.08,
-                              terrains=("rigid", "soil"),
+                              terrains=("rigid", "soil"), check_values=ring_option_values,
                               parameterization=_DATA, fit_steps=_FIT_STEPS,
                               summary="flexible ring (FTire class), evenly spaced tread blocks"))
 register_contact(ContactModel("ring-tp", RingParams, _ring_tp_build, step=ring_step,
                               initial_state=_ring_tp_state, equilibrium=_ring_tp_equilibrium,
                               static_options={"relax": RELAX_RATE}, footprint=ring_footprint_of,
                               options=_OPTION_TYPES, cost=0.085, terrains=("rigid", "soil"),
+                              check_values=ring_option_values,
                               parameterization=_DATA + " + tread pattern",
                               # no fit_steps: its pattern is a file the user gives, not fitted
                               summary="flexible ring with blocks on the tread pattern"))
