@@ -188,6 +188,8 @@ CASES = [
      "--option discs: discs per half width 0 is out of range; allowed: 1 to 100"),
     (["static", "--model", "ring", "--option", "n_blocks=0", "-o", "{d}/s.csv"], 2,
      "--option n_blocks: tread blocks per segment 0 is out of range"),
+    (["simulate", "--road", "iso8608:C@-1", "-o", "{d}/o.parquet"], 2,
+     "cannot read seed '-1' in road 'iso8608:C@-1'; expected a whole number >= 0"),
     # the option named is the one given: the left wheel's, not the test wheel's --model
     (["simulate", "--left-wheel", "bogus", "-o", "{d}/o.parquet"], 2,
      "--left-wheel: unknown model 'bogus', expected one of point,"),

@@ -132,8 +132,8 @@ def road_from_spec(spec: str | Road, force: bool = False) -> Road:
         seed = 0
         if seed_txt:
             if not seed_txt.isdigit():
-                raise InputError(f"cannot read seed '{seed_txt}' in road '{text}'; expected an integer",
-                                 field="road")
+                raise InputError(f"cannot read seed '{seed_txt}' in road '{text}'; expected a whole "
+                                 "number >= 0", field="road")
             seed = int(seed_txt)
         if kind == "iso8608":
             if body.upper() not in tuple("ABCDEFGH"):

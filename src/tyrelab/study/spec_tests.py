@@ -60,7 +60,7 @@ def _road(ck: Checker, value, path) -> tuple[str, str]:
     if kind in ("iso8608", "powerlaw") and args:  # synthesised when built: checked here instead
         body, _, seed = args.partition("@")
         if seed and not seed.isdigit():
-            ck.fail(path, f"cannot read seed '{seed}' in road '{text}'; expected an integer")
+            ck.fail(path, f"cannot read seed '{seed}' in road '{text}'; expected a whole number >= 0")
         if kind == "iso8608" and body.upper() not in tuple("ABCDEFGH"):
             ck.fail(path, f"unknown ISO 8608 class '{body}' in road '{text}'; expected A to H")
         if kind == "powerlaw":
