@@ -288,7 +288,7 @@ def parse_spec(text: str, source: str | Path = "<string>", base: str | Path | No
     name, output, dt, rate, left, store = _study(ck, doc)
     tyres = _tyres(ck, doc)
     models = _models(ck, doc, tyres)
-    tests = _tests(ck, doc, models, dt, rate)
+    tests = _tests(ck, doc, models, dt, rate, tyres)
     limits = _limits(ck, doc)
     return StudySpec(name, output, dt, rate, tuple(t for t, _ in tyres), models, tests, limits,
                      Path(src) if src != "<string>" else src, left, text, ck.base, store)

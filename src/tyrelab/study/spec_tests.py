@@ -180,11 +180,14 @@ def _reference(ck: Checker, raw, path, speeds, loads, models, cases, soil_test: 
 
 
 def _tests(ck: Checker, doc, models, dt: float = DEFAULT_DT,
-           rate: float = DEFAULT_OUTPUT_RATE) -> tuple[TestSpec, ...]:
+           rate: float = DEFAULT_OUTPUT_RATE, tyres=()) -> tuple[TestSpec, ...]:
+    """The ``[[test]]`` tables; ``tyres``, the spec's ``(TyreSpec, Tyre)`` pairs, each test's
+    loads are checked against (every tyre runs every test)."""
     from ..rig.registry import rigs
     from ..tyre.library import load_cases
 
-    cases = list(load_cases().index)
+    table = load_cases()
+    cases = list(table.index)
     tests, first = [], {}
     conditions: dict[tuple, int] = {}
     for i, raw in enumerate(ck.array_of_tables(doc, "test")):
@@ -218,6 +221,12 @@ def _tests(ck: Checker, doc, models, dt: float = DEFAULT_DT,
             if load in loads:
                 ck.fail(path + ("loads", k), f"duplicate load {v!r}")
             loads.append(load)
+            newtons = float(table.loc[load, "wheel_load_N"]) if isinstance(load, str) else load
+            for spec, tyre in tyres:  # refused here, not by each run of it
+                try:
+                    limits.check_wheel_load(newtons, tyre)
+                except InputError as exc:
+                    ck.fail(path + ("loads", k), f"{exc.reason} (tyre {json.dumps(spec.name)})")
         duration = DEFAULT_SOIL_DURATION if slips else None
         if "duration" in t:
             duration = ck.number(t["duration"], path + ("duration",), "a duration > 0 [s]", low=0.0)
