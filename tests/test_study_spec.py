@@ -220,6 +220,9 @@ BAD = [
     (4, "output_rate = 5000", 4, "study.output_rate", "faster than the time step", "at most 1000 Hz"),
     (25, "duration = 0.0", 25, "test[1].duration", "expected a duration > 0"),
     (24, "loads = [-5]", 24, "test[1].loads[1]", "wheel load > 0 in N"),
+    # an obstacle taller than the tyre's radius, the same
+    (22, 'road = "step:800"', 22, "test[1].road", "an edge 0.8 m high", "taller than the tyre's "
+     "unloaded radius 0.6715 m", '(tyre "xzl")'),
     # a load the tyre cannot carry: the spec's error, not a failed run of it
     (24, "loads = [1e9]", 24, "test[1].loads[1]", "would press xzl-16.00R20 onto its rim",
      '(tyre "xzl")'),

@@ -179,6 +179,26 @@ def _reference(ck: Checker, raw, path, speeds, loads, models, cases, soil_test: 
     return None, tuple(out)
 
 
+#: the roads made of one obstacle, built in milliseconds: checked against each tyre in the spec
+OBSTACLES = ("cleat", "step", "bump", "pothole")
+
+
+def _check_obstacle_for_tyres(ck: Checker, road: str, path, tyres) -> None:
+    """An obstacle with an edge taller than a tyre's radius
+    (:func:`tyrelab.guards.check_road_for_tyre`) is the spec's error, not a failed run; tracks
+    and road files are checked when a run builds them."""
+    if road.partition(":")[0].strip().lower() not in OBSTACLES or not tyres:
+        return
+    from ..guards import check_road_for_tyre
+    from ..road.spec import road_from_spec
+    obstacle = road_from_spec(road)
+    for spec, tyre in tyres:
+        try:
+            check_road_for_tyre(obstacle, tyre)
+        except InputError as exc:
+            ck.fail(path, f"{exc.reason} (tyre {json.dumps(spec.name)})")
+
+
 def _tests(ck: Checker, doc, models, dt: float = DEFAULT_DT,
            rate: float = DEFAULT_OUTPUT_RATE, tyres=()) -> tuple[TestSpec, ...]:
     """The ``[[test]]`` tables; ``tyres``, the spec's ``(TyreSpec, Tyre)`` pairs, each test's
@@ -202,6 +222,7 @@ def _tests(ck: Checker, doc, models, dt: float = DEFAULT_DT,
         if "road" not in t and the_rig.terrain != "soil":
             ck.fail(path, f"missing key 'road' (required; keys: {', '.join(_TEST_KEYS)})")
         road, group = _road(ck, t.get("road", the_rig.default_road), path + ("road",))
+        _check_obstacle_for_tyres(ck, road, path + ("road",), tyres)
         if slips:  # a soil test: a slip curve, none of the thesis's groups
             if "group" in t:
                 ck.fail(path + ("group",), f"a soil test (with slips) is in the group "
