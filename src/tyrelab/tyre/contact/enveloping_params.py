@@ -15,6 +15,8 @@ from typing import NamedTuple
 
 import numpy as np
 
+from ...limits import MAX_CAMS, check_count, check_number
+
 #: length of the ground's blocks whose bounds let cams skip road they cannot touch [m]
 BLOCK = 0.05
 #: default floor of the deflection that sizes the patch, a fraction of R0 (:mod:`.enveloping`)
@@ -24,12 +26,19 @@ _OTHER_OPTIONS = ("discs",)
 _USER_OPTIONS = {"n_length": int, "n_width": int, "width_table": bool, "step": float,
                  "min_patch_deflection": float}
 
+#: what the model must be given, measured (thesis chapter 4)
+_DATA = ("load-deflection curve + contact-patch length and width vs load (footprints) + cam "
+         "(ellipse) parameters from cleat tests")
+#: the steps of ``tyrelab fit`` that identify it: the patch sizes the cams, the shape their sections
+FIT_STEPS = ("vertical", "damping", "patch", "shape")
+#: which cams make the effective plane: the whole grid, or only those on the patch's outline
+CAM_LAYOUTS = ("grid", "outline")
+
 
 def cam_option_values(options: dict) -> dict:
     """The bounded options of the enveloping models among ``options``, checked and converted:
     ``n_width``, ``n_length`` 1 to :data:`~tyrelab.limits.MAX_CAMS` cams, ``step`` > 0 m,
     ``min_patch_deflection`` >= 0 m (an :class:`InputError` on the option's name)."""
-    from ...limits import MAX_CAMS, check_count, check_number
     out = {}
     for key, what in (("n_width", "cams across the width"), ("n_length", "cams along the length")):
         if options.get(key) is not None:
@@ -41,15 +50,6 @@ def cam_option_values(options: dict) -> dict:
         out["min_patch_deflection"] = check_number(options["min_patch_deflection"],
                                                    "min_patch_deflection", low=0.0, unit="m")
     return out
-
-
-#: what the model must be given, measured (thesis chapter 4)
-_DATA = ("load-deflection curve + contact-patch length and width vs load (footprints) + cam "
-         "(ellipse) parameters from cleat tests")
-#: the steps of ``tyrelab fit`` that identify it: the patch sizes the cams, the shape their sections
-FIT_STEPS = ("vertical", "damping", "patch", "shape")
-#: which cams make the effective plane: the whole grid, or only those on the patch's outline
-CAM_LAYOUTS = ("grid", "outline")
 
 
 class EnvelopingParams(NamedTuple):

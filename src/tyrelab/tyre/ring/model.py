@@ -120,7 +120,8 @@ def ring_params(tyre, grid=None, tread_pattern=False, n_segments=N_SEGMENTS, n_b
     bounded = ring_option_values({"n_segments": n_segments, "n_blocks": n_blocks,
                                   "friction": friction, "relax": relax,
                                   "lateral_samples": lateral_samples})
-    n, nb, relax = bounded["n_segments"], bounded["n_blocks"], bounded["relax"]
+    n, nb = bounded.get("n_segments", N_SEGMENTS), bounded.get("n_blocks", N_BLOCKS)
+    relax = bounded.get("relax", 0.0)
     friction, lateral_samples = bounded.get("friction"), bounded.get("lateral_samples")
     rp = parameters if parameters is not None else ring_parameters(tyre)
     p = float(tyre.pressure)
