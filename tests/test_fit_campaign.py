@@ -161,6 +161,20 @@ LD = '[[test]]\nkind = "load_deflection"\nfile = "load_deflection.csv"\n' \
     ('[tyre]\nunloaded_radius = "671.5 kg"\n' + LD, "line 2: tyre.unloaded_radius: expected a number and "
                                                   "a unit of m"),
     (LD + 'step = -5\n', "line 5: test[1].step: expected a positive value"),
+    # the example in the message is in the unit asked for
+    ('[tyre]\nfnomin = "65 parsecs"\n' + LD, 'line 2: tyre.fnomin: expected a number and a unit of N, '
+                                              'like "40 kN", got "65 parsecs"'),
+    # the [tyre] values checked as a property file's, at their key (it named "<new>", RIM_RADIUS)
+    ('[tyre]\nunloaded_radius = "671.5 mm"\nrim_radius = "900 mm"\n' + LD,
+     "line 3: tyre.rim_radius: RIM_RADIUS 0.9 m is not inside the tyre"),
+    ('[tyre]\nwheel_iyy = 1e30\n' + LD, "line 2: tyre.wheel_iyy: 1e+30 kg m^2 is not physical"),
+    # pressures within tyrelab.limits (5500 kPa was fitted)
+    (LD + 'pressure = "5500 kPa"\n', "line 5: test[1].pressure: pressure 5500 kPa is out of range; "
+                                    "allowed: 20 <= pressure <= 1500 kPa"),
+    ('[tyre]\npressure = "3 kPa"\n' + LD, "line 2: tyre.pressure: pressure 3 kPa is out of range"),
+    # a load case that is none: said so (it asked for "a unit of N, like \"10 mm\"")
+    ('[[test]]\nkind = "drop_test"\nfile = "load_deflection.csv"\nload_case = "LC7"\n',
+     'line 4: test[1].load_case: unknown load case "LC7"; expected LC1, LC2, LC3'),
     ('[tyre\n', "campaign.toml, line 1: not valid TOML"),
     (LD.replace("load_N_300kPa", "load_N_200kPa"), "load_deflection.csv, line 2: load: column "
                                                    "'load_N_200kPa' is not in the header"),

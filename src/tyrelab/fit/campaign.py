@@ -72,6 +72,9 @@ TEST_UNITS = {"step": "m", "pressure": "Pa", "inertia": "kg m^2", "lever": "m", 
               "deflection": "m", "calibration": "m", "angle": "rad", "speed": "m/s"}
 #: units no unit word converts to: the value is a plain number in them
 PLAIN = ("kg m^2", "Hz")
+#: how a quantity of each unit may be written, for the messages
+UNIT_EXAMPLES = {"m": "10 mm", "Pa": "300 kPa", "N": "40 kN", "kg": "154 kg", "deg": "45 deg",
+                 "m/s": "12 km/h"}
 TRAILER_KEYS = ("hitch_to_axle", "track", "frame_cg_behind_hitch", "frame_cg_height", "ballast_height")
 
 
@@ -125,8 +128,8 @@ class _Manifest:
                 number = math.nan
             word = m.group(2) if m else ""
             if not math.isfinite(number) or not is_known_unit(word) or si_unit(word) != unit:
-                self.fail(keys, f"expected a number and a unit of {unit}, like \"10 mm\", got "
-                                f"{json.dumps(value)}")
+                self.fail(keys, f"expected a number and a unit of {unit}, like "
+                                f"\"{UNIT_EXAMPLES.get(unit, '1 ' + unit)}\", got {json.dumps(value)}")
             value = float(to_si(number, word))
         if not math.isfinite(float(value)):
             self.fail(keys, f"expected a finite number, got {value!r}")
@@ -159,7 +162,39 @@ def _cleat(m: _Manifest, value, keys):
 def _load_case(m: _Manifest, value, keys):
     if isinstance(value, str) and re.fullmatch(r"LC[1-3]", value.strip().upper()):
         return value.strip().upper()
+    if isinstance(value, str) and value.strip().upper().startswith("LC"):
+        m.fail(keys, f"unknown load case {json.dumps(value)}; expected LC1, LC2, LC3 (thesis "
+                     "Table 3-4) or a wheel load, like \"40 kN\"")
     return m.positive(value, keys, "N")
+
+
+def _pressure(m: _Manifest, value, keys) -> float:
+    """An inflation pressure within :data:`tyrelab.limits.MIN_PRESSURE` ..
+    :data:`~tyrelab.limits.MAX_PRESSURE`."""
+    from ..limits import check_pressure
+    v = m.positive(value, keys, "Pa")
+    try:
+        return check_pressure(v)
+    except InputError as exc:
+        m.fail(keys, exc.reason)
+
+
+def _tyre_physics(m: _Manifest, tyre: dict) -> None:
+    """The ``[tyre]`` values checked as a property file's would be
+    (:func:`tyrelab.tyre.params.check_physics`: sizes, the rim inside the tyre, masses and
+    inertias), each failure at its manifest key."""
+    from ..tyre.params import check_physics
+    from ..tyre.tir import TirFile
+    from .property_file import TYRE_KEYS as TIR_KEYS
+    tir, key_of = TirFile(source=str(m.path)), {}
+    for key, (section, name) in TIR_KEYS.items():
+        if key in tyre:
+            tir.set(section, name, float(tyre[key]))
+            key_of[name] = key
+    try:
+        check_physics(tir)
+    except InputError as exc:
+        m.fail(("tyre", key_of.get(exc.field, exc.field)), exc.reason)
 
 
 def _test(m: _Manifest, entry, i, folder: Path):
@@ -193,6 +228,7 @@ def _test(m: _Manifest, entry, i, folder: Path):
     for k, unit in TEST_UNITS.items():
         if k in entry and k in KINDS[kind]:
             opts[k] = m.quantity(entry[k], keys + (k,), unit) if k == "angle" else \
+                _pressure(m, entry[k], keys + (k,)) if k == "pressure" else \
                 m.positive(entry[k], keys + (k,), unit)
     if "load_case" in entry:
         opts["load_case"] = _load_case(m, entry["load_case"], keys + ("load_case",))
@@ -285,8 +321,11 @@ def read_campaign(path) -> Campaign:
                 m.fail(("tyre", k), f"no such property file: {base}")
         elif k == "name":
             tyre[k] = str(v)
+        elif k == "pressure":
+            tyre[k] = _pressure(m, v, ("tyre", k))
         else:
             tyre[k] = m.positive(v, ("tyre", k), TYRE_KEYS[k])
+    _tyre_physics(m, tyre)
     tests = doc.get("test", [])
     if not isinstance(tests, list) or not tests:
         m.fail(("test",), "a campaign lists its tests as one or more [[test]] tables")
