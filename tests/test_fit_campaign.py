@@ -7,6 +7,7 @@ test files with mistakes are refused in one line naming file, line and key.
 """
 
 import copy
+import math
 import shutil
 from pathlib import Path
 
@@ -323,3 +324,16 @@ def test_static_cleats_are_predicted_by_the_ring_once_identified(tmp_path, xzl):
     assert set(rms) == {"point", "volume", "enveloping", "enveloping-edge", "ring"}
     assert rms["point"] < 1.0
     assert np.all(pred["ring"] < plate)
+
+
+def test_every_unit_example_in_a_message_is_itself_accepted(tmp_path):
+    """The manifest's messages show how to write each unit (``UNIT_EXAMPLES``); each example,
+    given where that unit is asked for, is read as the SI value it writes."""
+    from tyrelab.fit.campaign import UNIT_EXAMPLES, _Manifest
+
+    m = _Manifest(tmp_path / "campaign.toml", "")
+    si = {"10 mm": 0.01, "300 kPa": 3e5, "40 kN": 4e4, "154 kg": 154.0, "45 deg": math.pi / 4,
+          "12 km/h": 12 / 3.6}
+    assert set(UNIT_EXAMPLES.values()) == set(si)
+    for unit, example in UNIT_EXAMPLES.items():
+        assert m.quantity(example, ("x",), unit) == pytest.approx(si[example], rel=1e-12), example

@@ -73,7 +73,7 @@ TEST_UNITS = {"step": "m", "pressure": "Pa", "inertia": "kg m^2", "lever": "m", 
 #: units no unit word converts to: the value is a plain number in them
 PLAIN = ("kg m^2", "Hz")
 #: how a quantity of each unit may be written, for the messages
-UNIT_EXAMPLES = {"m": "10 mm", "Pa": "300 kPa", "N": "40 kN", "kg": "154 kg", "deg": "45 deg",
+UNIT_EXAMPLES = {"m": "10 mm", "Pa": "300 kPa", "N": "40 kN", "kg": "154 kg", "rad": "45 deg",
                  "m/s": "12 km/h"}
 TRAILER_KEYS = ("hitch_to_axle", "track", "frame_cg_behind_hitch", "frame_cg_height", "ballast_height")
 
