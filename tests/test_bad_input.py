@@ -190,6 +190,8 @@ CASES = [
      "--option n_blocks: tread blocks per segment 0 is out of range"),
     (["simulate", "--road", "iso8608:C@-1", "-o", "{d}/o.parquet"], 2,
      "cannot read seed '-1' in road 'iso8608:C@-1'; expected a whole number >= 0"),
+    # the cam study's roads: refused before its progress bar draws (it drew, then the line)
+    (["fit", "cams", "--road", "bogus", "-o", "{d}/c.csv"], 2, "road: unknown road 'bogus'"),
     # the option named is the one given: the left wheel's, not the test wheel's --model
     (["simulate", "--left-wheel", "bogus", "-o", "{d}/o.parquet"], 2,
      "--left-wheel: unknown model 'bogus', expected one of point,"),

@@ -350,6 +350,9 @@ def run_cams(args) -> int:
                 raise InputError(f"no such property file or built-in tyre '{args.into}'", field="--into")
             base = load_tyre(args.into).tir
     check_reference(args.reference)  # before the progress bar
+    from ..road.spec import road_from_spec
+    for road in roads:  # an unknown road or a bad size: before the progress bar too
+        road_from_spec(road)
     total = study_runs(args.lengths, args.widths, roads, speeds, args.reference)
     with tqdm(total=total, desc="cam study", unit="config", leave=False) as bar:
         def step(label):
