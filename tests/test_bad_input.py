@@ -343,7 +343,8 @@ def test_python_api_refuses_the_same(tmp_path):
     from tyrelab.errors import InputError
     for kwargs, words in [({"speed": 1e-9}, "speed"), ({"duration": 1e-6}, "too short"),
                           ({"dt": 1e-9}, "time step"), ({"output_rate": 3000.0}, "faster"),
-                          ({"road": "bump:1e9"}, "bump height"), ({"load": 1e9}, "onto its rim")]:
+                          ({"road": "bump:1e9"}, "bump height"), ({"load": 1e9}, "onto its rim"),
+                          ({"options": "x"}, "a mapping of names to values")]:  # a ValueError once
         with pytest.raises(InputError, match=words):
             tyrelab.simulate(**kwargs)
     with pytest.raises(InputError, match="does not exist"):

@@ -16,6 +16,7 @@ so no model id, flag or generated entry function is needed.
 from __future__ import annotations
 
 import importlib
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 from typing import Any, Callable
 
@@ -230,6 +231,9 @@ def checked_options(options: dict | None, declared: dict, owner: str, field: str
     """``options`` checked against ``declared`` (name -> type) of ``owner`` ("the 'ring' model",
     "the 'single-wheel' rig"): a new dict, integers turned into floats where a number is
     declared; an unknown name or a value of another type is an InputError listing the names."""
+    if options is not None and not isinstance(options, Mapping):
+        raise InputError(f"the options of {owner} are a mapping of names to values, like "
+                         f"{{'name': value}}, got {options!r}", field=field)
     options = dict(options or {})
     unknown = sorted(set(options) - set(declared))
     if unknown:
