@@ -29,10 +29,12 @@ import time
 
 
 def _run(task: dict) -> tuple[str, float]:
-    from tyrelab.api import simulate
-    t0 = time.perf_counter()
-    simulate(**task["simulate"], progress=False)
-    return task["key"], time.perf_counter() - t0
+    """The study worker's own call (:func:`tyrelab.study.runner.execute`); the signal stays here."""
+    from tyrelab.study.runner import execute
+    status, result, wall = execute(task)
+    if status != "done":
+        raise RuntimeError(f"run {task['key']} failed: {result}")
+    return task["key"], wall
 
 
 def main(workers: int, folder: str | None) -> None:

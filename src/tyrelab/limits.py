@@ -206,6 +206,11 @@ def check_count(value, field: str, low: int, high: int, what: str | None = None)
     return int(value)
 
 
+def check_sampling_step(step, field: str = "step") -> float:
+    """A contact model's sampling step [m] along a section: a finite number > 0."""
+    return check_number(step, field, low=0.0, low_open=True, unit="m", what="sampling step")
+
+
 def check_speed(speed, field: str = "speed") -> float:
     """A towing speed [m/s] inside [MIN_SPEED, MAX_SPEED]."""
     return check_number(speed, field, MIN_SPEED, MAX_SPEED, "m/s")

@@ -206,8 +206,9 @@ def _tests(ck: Checker, doc, models, dt: float = DEFAULT_DT,
     from ..rig.registry import rigs
     from ..tyre.library import load_cases
 
-    table = load_cases()
-    cases = list(table.index)
+    from ..rig.trailer import load_case_wheel_load
+
+    cases = list(load_cases().index)
     tests, first = [], {}
     conditions: dict[tuple, int] = {}
     for i, raw in enumerate(ck.array_of_tables(doc, "test")):
@@ -242,7 +243,7 @@ def _tests(ck: Checker, doc, models, dt: float = DEFAULT_DT,
             if load in loads:
                 ck.fail(path + ("loads", k), f"duplicate load {v!r}")
             loads.append(load)
-            newtons = float(table.loc[load, "wheel_load_N"]) if isinstance(load, str) else load
+            newtons = load_case_wheel_load(load) if isinstance(load, str) else load
             for spec, tyre in tyres:  # refused here, not by each run of it
                 try:
                     limits.check_wheel_load(newtons, tyre)

@@ -158,7 +158,7 @@ def enveloping_params(tyre, grid, width_table=None, n_width=None, n_length=None,
     bounded = cam_option_values({"n_width": n_width, "n_length": n_length, "step": step,
                                  "min_patch_deflection": min_patch_deflection})
     n_width, n_length = bounded.get("n_width"), bounded.get("n_length")
-    step = bounded["step"]
+    step = bounded.get("step", DEFAULT_STEP)
     rho_min = bounded.get("min_patch_deflection", MIN_PATCH_DEFLECTION * r0)
     b_max = 0.5 * w0
     lmode, (a1, a2) = length_law(tir)

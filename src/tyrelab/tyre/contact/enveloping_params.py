@@ -15,7 +15,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from ...limits import MAX_CAMS, check_count, check_number
+from ...limits import MAX_CAMS, check_count, check_number, check_sampling_step
 
 #: length of the ground's blocks whose bounds let cams skip road they cannot touch [m]
 BLOCK = 0.05
@@ -44,8 +44,7 @@ def cam_option_values(options: dict) -> dict:
         if options.get(key) is not None:
             out[key] = check_count(options[key], key, 1, MAX_CAMS, what)
     if options.get("step") is not None:
-        out["step"] = check_number(options["step"], "step", low=0.0, low_open=True, unit="m",
-                                   what="sampling step")
+        out["step"] = check_sampling_step(options["step"])
     if options.get("min_patch_deflection") is not None:
         out["min_patch_deflection"] = check_number(options["min_patch_deflection"],
                                                    "min_patch_deflection", low=0.0, unit="m")

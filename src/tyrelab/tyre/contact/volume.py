@@ -51,7 +51,7 @@ import numpy as np
 
 from ...core.vec3 import unit, wheel_axes
 from ...errors import InputError
-from ...limits import MAX_DISCS, check_count, check_number
+from ...limits import MAX_DISCS, check_count, check_sampling_step
 from ...road.terrain import terrain_height, terrain_range, terrain_zmax
 from ..model import TyreModel, contact_geometry_table
 from ..registry import ContactModel, register_contact
@@ -94,8 +94,7 @@ def volume_option_values(options: dict) -> dict:
     if options.get("discs") is not None:
         out["discs"] = check_count(options["discs"], "discs", 1, MAX_DISCS, "discs per half width")
     if options.get("step") is not None:
-        out["step"] = check_number(options["step"], "step", low=0.0, low_open=True, unit="m",
-                                   what="sampling step")
+        out["step"] = check_sampling_step(options["step"])
     return out
 
 
