@@ -28,13 +28,16 @@ def test_an_option_reaches_the_model_through_simulate():
     one = tyrelab.simulate(model="enveloping", options={"n_length": 1, "n_width": 1}, **RUN)
     # one cam under the centre envelops the cleat less than 15 x 10 spread over the patch
     assert one["FZ_HUB"].max() > grid["FZ_HUB"].max() + 1e3
+    # TOML and the command line read 1e0 as a float: a whole float is the integer it names
+    whole = tyrelab.simulate(model="enveloping", options={"n_length": 1.0, "n_width": 1e0}, **RUN)
+    assert whole["FZ_HUB"].to_numpy().tobytes() == one["FZ_HUB"].to_numpy().tobytes()
 
 
 @pytest.mark.parametrize("model, options, words", [
     ("volume", {"n_length": 5}, ["unknown option(s) n_length of the 'volume' model", "discs, step"]),
     ("point", {"discs": 4}, ["of the 'point' model", "it takes: none"]),
-    ("enveloping", {"n_length": 2.5}, ["option n_length", "expected an integer, got 2.5"]),
-    ("enveloping", {"n_width": True}, ["expected an integer, got True"]),
+    ("enveloping", {"n_length": 2.5}, ["option n_length", "expected a whole number, got 2.5"]),
+    ("enveloping", {"n_width": True}, ["expected a whole number, got True"]),
     ("ring", {"friction": "high"}, ["option friction", "expected a number, got 'high'"]),
 ])
 def test_unknown_or_mistyped_options_are_refused_before_any_work(model, options, words):
@@ -54,7 +57,8 @@ def test_the_option_flag_of_the_command_line(tmp_path, capsys):
     capsys.readouterr()
     for args, words in [(["--option", "n_lenght=5"], "--option: unknown option(s) n_lenght"),
                         (["--option", "n_length"], "expected KEY=VALUE"),
-                        (["--option", "n_length=five"], "expected an integer, got 'five'")]:
+                        (["--option", "n_length=five"], "expected a whole number, got 'five'"),
+                        (["--option", "n_length=1e9"], "1000000000 is out of range; allowed: 1 to 100")]:
         assert main(["simulate", "--model", "enveloping", *args, "-o", str(out)]) == 2
         err = capsys.readouterr().err.strip().splitlines()
         assert len(err) == 1 and words in err[0], err

@@ -203,7 +203,8 @@ BAD = [
     # bad roads (the road grammar's own checks)
     (22, 'road = "cleat:50"', 22, "test[1].road", "cannot read sizes '50'"),
     (22, 'road = "cleat:50x50@x"', 22, "test[1].road", "cannot read angle 'x'"),
-    (22, 'road = "cleat:50x50@95"', 22, "test[1].road", "cleat angle must be between -80 and 80"),
+    (22, 'road = "cleat:50x50@95"', 22, "test[1].road",
+     "cleat angle 95 deg is out of range; allowed: -80 <= cleat angle <= 80 deg"),
     (22, 'road = "iso8608:Z"', 22, "test[1].road", "unknown ISO 8608 class 'Z'"),
     (22, 'road = "powerlaw:0,2"', 22, "test[1].road", "expected A,N with A > 0"),
     (22, 'road = "moon-surface"', 22, "test[1].road", "unknown road 'moon-surface'", "belgian-paving"),
@@ -509,7 +510,7 @@ def test_model_options_reach_the_run_and_its_key(tmp_path):
     fails(edit(18, 'contact = "volume"\noptions = { n_length = 5 }'), tmp_path, 19,
           "model[2].options.n_length", "unknown option(s) n_length of the 'volume' model", "discs, step")
     fails(edit(18, 'contact = "volume"\noptions = { discs = "four" }'), tmp_path, 19,
-          "model[2].options.discs", "expected an integer, got 'four'")
+          "model[2].options.discs", "expected a whole number, got 'four'")
     fails(edit(18, 'contact = "volume"\noptions = 4'), tmp_path, 19, "model[2].options",
           "expected a table")
     fails(edit(18, 'contact = "ring"\noptions = { parameters = 1 }'), tmp_path, 19,

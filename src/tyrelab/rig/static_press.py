@@ -22,7 +22,7 @@ import numpy as np
 import pandas as pd
 
 from ..errors import InputError
-from ..road.obstacles import Cleat, Flat, Ridge
+from ..road.obstacles import Cleat, Flat, Ridge, sizes_quoted_in_mm
 from ..tyre.contact.shape import carcass_discs
 from ..tyre.model import TyreModel
 from ..tyre.static import DT, HOLD, PC, PRESS_COLUMNS, PRESS_RATE, WINDOW, press_path
@@ -44,9 +44,13 @@ def press_road(test: str = "plate", direction: str = "lateral"):
     if direction not in DIRECTIONS:
         raise InputError(f"unknown direction '{direction}', expected {' or '.join(DIRECTIONS)}",
                          field="direction")
-    if direction == "lateral":
-        return Cleat(w, h, angle=0.0, start=-w / 2), h
-    return Ridge(w, h), h
+    try:
+        with sizes_quoted_in_mm():  # as the test's name gives them
+            if direction == "lateral":
+                return Cleat(w, h, angle=0.0, start=-w / 2), h
+            return Ridge(w, h), h
+    except InputError as exc:
+        raise InputError(f"{exc.reason} in static test '{test}'", field="test") from None
 
 
 def pressed_wheel(model: TyreModel, grid, top: float, deflections):

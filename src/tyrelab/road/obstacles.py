@@ -16,6 +16,8 @@ any grid is built.
 
 from __future__ import annotations
 
+import contextvars
+from contextlib import contextmanager
 import math
 
 import numpy as np
@@ -32,23 +34,38 @@ HALF_WIDTH = 2.0
 EDGE_SPACING = 0.005
 
 
-def _positive(value, name):
-    if not (value is not None and np.isfinite(value) and value > 0):
-        raise InputError(f"must be a positive number of metres, got {value}", field=name)
-    return float(value)
+#: the unit a message quotes a size in, as (unit, factor from metres): metres, the
+#: constructors' unit, or millimetres while a road is built from its name or a static
+#: test's (their grammar is in mm: road.spec, rig.static_press), so that a user reads back
+#: the number typed
+_QUOTED_UNIT = contextvars.ContextVar("obstacle_size_unit", default=("m", 1.0))
+
+
+@contextmanager
+def sizes_quoted_in_mm():
+    """Within this block, a size refused by an obstacle is quoted in millimetres."""
+    token = _QUOTED_UNIT.set(("mm", 1e3))
+    try:
+        yield
+    finally:
+        _QUOTED_UNIT.reset(token)
+
+
+def _size(value, name, low, high, low_open=False):
+    """A size [m] within ``[low, high]``, refused in the quoted unit."""
+    unit, scale = _QUOTED_UNIT.get()
+    return limits.check_number(value, "road", low, high, unit, low_open=low_open, what=name,
+                               scale=scale)
 
 
 def _height(value, name):
     """An obstacle height or depth [m]: positive, at most MAX_OBSTACLE_HEIGHT."""
-    _positive(value, name)
-    return limits.check_number(value, "road", 0.0, limits.MAX_OBSTACLE_HEIGHT, "m", low_open=True,
-                               what=name)
+    return _size(value, name, 0.0, limits.MAX_OBSTACLE_HEIGHT, low_open=True)
 
 
 def _length(value, name, high=limits.MAX_OBSTACLE_LENGTH):
     """An obstacle size [m] along or across the road: MIN_OBSTACLE_SIZE to ``high``."""
-    _positive(value, name)
-    return limits.check_number(value, "road", limits.MIN_OBSTACLE_SIZE, high, "m", what=name)
+    return _size(value, name, limits.MIN_OBSTACLE_SIZE, high)
 
 
 def _start(value):
@@ -107,14 +124,9 @@ class Cleat(Road):
     def __init__(self, width, height, angle=0.0, bevel=0.0, start=5.0):
         self.width = _length(width, "cleat width")
         self.cleat_height = _height(height, "cleat height")
-        if not (np.isfinite(angle) and -80.0 <= angle <= 80.0):
-            raise InputError(f"cleat angle must be between -80 and 80 degrees, got {angle}",
-                             field="cleat angle")
-        self.angle = float(angle)
-        if not (np.isfinite(bevel) and 0.0 <= bevel <= min(self.width / 2, self.cleat_height)):
-            raise InputError(f"bevel must be between 0 and half the width / the height, got {bevel}",
-                             field="cleat bevel")
-        self.bevel = float(bevel)
+        self.angle = limits.check_number(angle, "road", -80.0, 80.0, "deg", what="cleat angle")
+        # a chamfer of both top edges: at most half the width, at most the height
+        self.bevel = _size(bevel, "cleat bevel", 0.0, min(self.width / 2, self.cleat_height))
         self.start = _start(start)
         self.name = (f"cleat {self.width * 1e3:g} x {self.cleat_height * 1e3:g} mm "
                      f"at {self.angle:g} deg")
@@ -169,9 +181,8 @@ class TrapezoidalBump(Road):
         self.bump_height = _height(height, "bump height")
         self.ramp_length = _length(ramp_length if ramp_length is not None else 4.0 * self.bump_height,
                                    "bump ramp length")
-        self.top_length = float(top_length) if top_length is not None else 0.5
-        if not (np.isfinite(self.top_length) and self.top_length >= 0):
-            raise InputError(f"top length must be >= 0, got {top_length}", field="bump top length")
+        self.top_length = (_size(top_length, "bump top length", 0.0, limits.MAX_OBSTACLE_LENGTH)
+                           if top_length is not None else 0.5)
         if self.top_length > 0:
             _length(self.top_length, "bump top length")
         self.start = _start(start)
@@ -202,12 +213,10 @@ class Step(Road):
     """A step of ``height`` (negative: down) at x = ``start``."""
 
     def __init__(self, height, start=5.0, spacing=EDGE_SPACING):
-        if not (np.isfinite(height) and height != 0.0):
-            raise InputError(f"step height must be a non-zero number of metres, got {height}",
-                             field="step height")
-        limits.check_number(abs(height), "road", 0.0, limits.MAX_OBSTACLE_HEIGHT, "m", low_open=True,
-                            what="step height")
-        self.step_height = float(height)
+        self.step_height = _size(height, "step height", -limits.MAX_OBSTACLE_HEIGHT,
+                                 limits.MAX_OBSTACLE_HEIGHT)
+        if self.step_height == 0.0:
+            raise InputError("step height must not be 0 (negative: a step down)", field="road")
         self.start = _start(start)
         self.default_spacing = (limits.check_number(spacing, "road", limits.MIN_GRID_SPACING,
                                                     limits.MAX_GRID_SPACING, "m",

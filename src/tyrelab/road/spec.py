@@ -98,34 +98,35 @@ def road_from_spec(spec: str | Road, force: bool = False) -> Road:
     kind = kind.lower()
     if text.lower() == "flat":
         return ob.Flat()
-    if kind == "cleat" and args:
-        bevel = 0.0
-        if "/" in args:
-            args, bevel_txt = args.split("/", 1)
-            bevel = _numbers(bevel_txt, text, 1, 1)[0]
-        angle = 0.0
-        if "@" in args:
-            args, angle_txt = args.split("@", 1)
-            if not re.fullmatch(_NUM, angle_txt):
-                raise InputError(f"cannot read angle '{angle_txt}' in road '{text}'; expected degrees",
-                                 field="road")
-            angle = float(angle_txt)
-        w, h = _numbers(args, text, 2, 2)
-        return ob.Cleat(width=w / 1e3, height=h / 1e3, angle=angle, bevel=bevel / 1e3,
-                        start=OBSTACLE_START)
-    if kind == "bump" and args:
-        vals = _numbers(args, text, 1, 3)
-        h = vals[0] / 1e3
-        ramp = vals[1] / 1e3 if len(vals) > 1 else None
-        top = vals[2] / 1e3 if len(vals) > 2 else None
-        return ob.TrapezoidalBump(height=h, ramp_length=ramp, top_length=top, start=OBSTACLE_START)
-    if kind == "step" and args:
-        (h,) = _numbers(args, text, 1, 1)
-        return ob.Step(height=h / 1e3, start=OBSTACLE_START)
-    if kind == "pothole" and args:
-        vals = _numbers(args, text, 2, 3)
-        width = vals[2] / 1e3 if len(vals) > 2 else None
-        return ob.Pothole(depth=vals[0] / 1e3, length=vals[1] / 1e3, width=width, start=OBSTACLE_START)
+    with ob.sizes_quoted_in_mm():  # the grammar's sizes are in mm: so are its messages
+        if kind == "cleat" and args:
+            bevel = 0.0
+            if "/" in args:
+                args, bevel_txt = args.split("/", 1)
+                bevel = _numbers(bevel_txt, text, 1, 1)[0]
+            angle = 0.0
+            if "@" in args:
+                args, angle_txt = args.split("@", 1)
+                if not re.fullmatch(_NUM, angle_txt):
+                    raise InputError(f"cannot read angle '{angle_txt}' in road '{text}'; expected degrees",
+                                     field="road")
+                angle = float(angle_txt)
+            w, h = _numbers(args, text, 2, 2)
+            return ob.Cleat(width=w / 1e3, height=h / 1e3, angle=angle, bevel=bevel / 1e3,
+                            start=OBSTACLE_START)
+        if kind == "bump" and args:
+            vals = _numbers(args, text, 1, 3)
+            h = vals[0] / 1e3
+            ramp = vals[1] / 1e3 if len(vals) > 1 else None
+            top = vals[2] / 1e3 if len(vals) > 2 else None
+            return ob.TrapezoidalBump(height=h, ramp_length=ramp, top_length=top, start=OBSTACLE_START)
+        if kind == "step" and args:
+            (h,) = _numbers(args, text, 1, 1)
+            return ob.Step(height=h / 1e3, start=OBSTACLE_START)
+        if kind == "pothole" and args:
+            vals = _numbers(args, text, 2, 3)
+            width = vals[2] / 1e3 if len(vals) > 2 else None
+            return ob.Pothole(depth=vals[0] / 1e3, length=vals[1] / 1e3, width=width, start=OBSTACLE_START)
     if kind in ("iso8608", "powerlaw") and args:
         from .iso8608 import RandomRoad
         body, _, seed_txt = args.partition("@")

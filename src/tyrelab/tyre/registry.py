@@ -245,15 +245,18 @@ def checked_options(options: dict | None, declared: dict, owner: str, field: str
     return options
 
 
-_TYPE_WORDS = {int: "an integer", float: "a number", bool: "true or false", str: "a text"}
+_TYPE_WORDS = {int: "a whole number", float: "a number", bool: "true or false", str: "a text"}
 
 
 def _typed(owner: str, key: str, value, kind, field: str):
-    """``value`` as an option of type ``kind`` (an integer is a number too), or InputError."""
+    """``value`` as an option of type ``kind`` (an integer is a number too, a whole float an
+    integer), or InputError."""
     if kind is object:
         return value
     if kind is float and isinstance(value, int) and not isinstance(value, bool):
         return float(value)
+    if kind is int and isinstance(value, float) and value.is_integer():
+        return int(value)  # TOML and the command line read 1e3 as a float
     if isinstance(value, kind) and not (kind is int and isinstance(value, bool)):
         return value
     raise InputError(f"option {key} of {owner}: expected {_TYPE_WORDS.get(kind, kind)}, "
