@@ -16,7 +16,9 @@ import numpy as np
 import pytest
 
 from cli_process import run_tyrelab
+import tyrelab.study
 from tyrelab.cli.main import main
+from tyrelab.errors import InputError
 from tyrelab.signal import make_signal, read_signal, write_signal
 
 DATA = Path(__file__).parent / "data"
@@ -291,6 +293,30 @@ def test_bad_input_is_refused_in_one_line(work, capsys, long_work, argv, code, w
     assert words in lines[0], lines[0]
     assert "Traceback" not in lines[0]
     assert _files(work) == before  # no output, no temporary file left
+
+
+def test_a_local_cluster_holds_no_more_workers_than_the_memory(work, capsys, long_work, monkeypatch):
+    """Each local worker holds about 0.5 GiB (limits.WORKER_MEMORY): a machine of 4 GiB takes
+    8 of them; 9 are refused, naming --workers, before any run, with or without a spec. (1000
+    workers on this project's 24 GB machine used to start until it ran out of memory.)"""
+    from tyrelab import limits
+
+    gib = 1024 ** 3
+    assert limits.max_local_workers(4 * gib) == 8
+    assert limits.max_local_workers(gib // 4) == 1              # one worker always starts
+    assert limits.max_local_workers(10 ** 6 * gib) == limits.MAX_WORKERS
+    monkeypatch.setattr(limits, "machine_memory", lambda: 4 * gib)
+    assert limits.check_local_workers(8) == 8
+    for spec in ([], [work / "good_study.toml"]):
+        (work / "good_study.toml").write_text(
+            (work / "study.toml").read_text().replace("dt = nan", "dt = 1e-3"))
+        code, lines, _ = run_cli(["study", *spec, "--workers", "9"], capsys)
+        assert (code, long_work) == (2, []), lines
+        assert lines == ["tyrelab: error: --workers: 9 worker processes need about 4.83 GB of memory "
+                         "(537 MB each); this machine has 4.29 GB: allowed 1 to 8"]
+    with pytest.raises(InputError, match="allowed 1 to 8"):             # the Python door
+        tyrelab.study.run(work / "good_study.toml", workers=9, output=work / "nine")
+    assert not (work / "nine").exists()                                 # refused before the folder
 
 
 def test_physically_impossible_runs_warn(work, capsys, tmp_path):

@@ -14,6 +14,7 @@ Estimates are rough (within a factor of about 3): enough to tell a typo
 from __future__ import annotations
 
 import math
+import os
 
 from .errors import InputError
 
@@ -26,6 +27,12 @@ MAX_MEMORY = 2 * 1024 ** 3
 #: longest estimated wall time of one request before ``force`` [s]: 10 min (the longest
 #: runs of the thesis campaign, the ring on a 100 m track at 3 km/h, take about 2-3 min)
 MAX_WALL_TIME = 600.0
+#: memory one worker process of a local study cluster holds [bytes]: 0.5 GiB (measured: a
+#: process that had imported tyrelab and run the ring, ring-tp and enveloping models held
+#: 0.42-0.44 GB); a local cluster starts no more workers than the machine's memory holds
+WORKER_MEMORY = 512 * 1024 ** 2
+#: most worker processes a study's local cluster may have
+MAX_WORKERS = 1024
 #: cost of a contact model that states none (``ContactModel.cost``, the registry), analytic /
 #: with its own dynamics [s per simulated s at 1 ms on one core]
 ANALYTIC_COST, DYNAMIC_COST = 0.015, 1.0
@@ -416,3 +423,34 @@ def check_resources(what: str, memory: float = 0.0, wall_time: float = 0.0, forc
         raise InputError(f"{what} would take about {_time(wall_time)}, above the limit of "
                          f"{_time(MAX_WALL_TIME)}{extra}; pass --force (force=True) to run it anyway",
                          field=field)
+
+
+def machine_memory() -> int | None:
+    """The machine's physical memory [bytes], None where the system does not say."""
+    try:
+        return os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES")
+    except (AttributeError, ValueError, OSError):  # no sysconf (Windows) or no such name
+        return None
+
+
+def max_local_workers(memory: int | None = None) -> int:
+    """Most worker processes a local cluster may start on a machine with ``memory`` bytes
+    (default: this machine's): one per :data:`WORKER_MEMORY`, 1 to :data:`MAX_WORKERS`."""
+    memory = machine_memory() if memory is None else memory
+    if memory is None:
+        return MAX_WORKERS
+    return max(1, min(MAX_WORKERS, int(memory // WORKER_MEMORY)))
+
+
+def check_local_workers(n, field: str = "--workers", memory: int | None = None) -> int:
+    """``n`` worker processes of a local cluster: a whole number from 1 to what the machine's
+    memory holds (:func:`max_local_workers`), or InputError. 1000 workers on a 24 GB machine
+    used to start until the machine ran out of memory."""
+    n = check_count(n, field, 1, MAX_WORKERS, what="workers")
+    memory = machine_memory() if memory is None else memory
+    high = max_local_workers(memory)
+    if n > high:
+        raise InputError(f"{n} worker processes need about {_size(n * WORKER_MEMORY)} of memory "
+                         f"({_size(WORKER_MEMORY)} each); this machine has {_size(memory)}: "
+                         f"allowed 1 to {high}", field=field)
+    return n

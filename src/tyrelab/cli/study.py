@@ -28,7 +28,8 @@ def register(sub):
     p.add_argument("spec", nargs="?", default=None, help="study spec file (TOML); default: built-in")
     p.add_argument("--example", action="store_true", help="print a commented example spec and exit")
     p.add_argument("--workers", type=_workers, default=None, metavar="N",
-                   help="worker processes of the local cluster (default: one per core)")
+                   help="worker processes of the local cluster (default: one per core; at most one "
+                        "per 0.5 GiB of the machine's memory)")
     p.add_argument("--scheduler", default=None, metavar="ADDRESS",
                    help="a running Dask scheduler, e.g. tcp://host:8786 (default: a local cluster)")
     p.add_argument("-o", "--output", default=None, metavar="FOLDER",

@@ -32,7 +32,7 @@ import signal
 import threading
 import time
 
-from .. import stop
+from .. import limits, stop
 from ..errors import InputError
 from .store import Store
 
@@ -61,7 +61,9 @@ def _client(scheduler: str | None, workers: int | None, connect_timeout: float =
                              f"{connect_timeout:g} s ({type(exc).__name__}); expected the address a "
                              "running 'dask scheduler' prints, e.g. tcp://host:8786",
                              field="--scheduler") from None
-    n = workers or os.cpu_count() or 1
+    # one per core by default, and never more than the machine's memory holds (limits)
+    n = (limits.check_local_workers(workers) if workers is not None
+         else min(os.cpu_count() or 1, limits.max_local_workers()))
     # the worker processes start with SIGINT ignored (an ignored signal stays ignored across
     # exec, and Python then installs no KeyboardInterrupt handler): Ctrl-C in a terminal
     # reaches the whole process group, and only this process should answer it, by
