@@ -41,6 +41,7 @@ def test_a_soil_file_reads_in_si(tmp_path):
     ("kphi = 5301e3", "kphi = nan", "kphi", "finite"),
     ("kphi = 5301e3", 'kphi = "stiff"', "kphi", "finite number"),
     ("friction_angle = 31.1", "friction_angle = 60.0", "friction_angle", "[0, 60) deg"),
+    ("cohesion = 1.3e3", "cohesion = 1e7", "cohesion", "a cohesion up to 1e+06 Pa"),
     ("janosi_k = 0.0115", "janosi_k = 0", "janosi_k", "> 0"),
     ("cohesion = 1.3e3", "cohesion = 1.3e3\ncohesin = 3", "cohesin", "unknown key 'cohesin'"),
     ("janosi_k = 0.0115\n", "", None, "missing key 'janosi_k'"),

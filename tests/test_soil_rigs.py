@@ -54,3 +54,27 @@ def test_the_trailer_on_a_ground_too_stiff_to_sink_is_the_trailer_on_the_road():
     deflection = load_tyre().unloaded_radius - road["Z_WC"].mean()
     assert abs(soil["Z_WC"].mean() - road["Z_WC"].mean()) < 0.01 * deflection
     assert soil["FZ"].mean() == pytest.approx(road["FZ"].mean(), rel=0.005)
+
+
+def test_a_soil_that_throws_the_wheel_off_is_a_divergence_not_a_result(tmp_path, capsys):
+    """Soil damping of 1e20 Pa s/m (Chrono's demo: 3e4) at a 1 ms step pushes the single
+    wheel with 1e15 kN in its first step; it then flew on with finite numbers, 300 km up
+    after 0.5 s, and the slip curve averaged its zero load and pull as a result. A normal
+    force over 100 times the static load, more than any tyre carries (the XZL reaches its
+    rim at 15.7 times LC1), is a diverged run: an error naming the terrain, from
+    tyrelab.simulate and from the slip curve's command, which writes nothing."""
+    from tyrelab.cli.main import main
+    from tyrelab.rig.simulation import SimulationError
+
+    soil = tmp_path / "viscous.toml"
+    soil.write_text("[soil]\nn = 1.1\nkc = 0.0\nkphi = 2e6\ncohesion = 0.0\nfriction_angle = 30.0\n"
+                    "janosi_k = 0.01\ndamping = 1e20\n")
+    with pytest.raises(SimulationError, match=r"times the static wheel load .* on the terrain"):
+        tyrelab.simulate(model="rigid", rig="single-wheel", terrain=str(soil), load=LOAD, speed=1.0,
+                         rig_options={"slip": 0.2}, duration=0.5, progress=False)
+    out = tmp_path / "curve.csv"
+    assert main(["soil", "curve", "--terrain", str(soil), "--slips", "0.2", "--duration", "0.5",
+                 "-o", str(out)]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "diverged" in err[0] and "damping" in err[0], err
+    assert not out.exists()

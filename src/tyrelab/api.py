@@ -67,11 +67,19 @@ def _default_duration(road, speed: float) -> float:
     return max(road.extent()[1] - road.run_start, 1.0) / speed
 
 
-def _diverged(exc: Exception, tm: TyreModel, dt: float, wheel_load: float) -> SimulationError:
+def divergence_error(exc: Exception, tm: TyreModel, dt: float, wheel_load: float,
+              terrain=None) -> SimulationError:
     """A divergence as one line naming the step size and the likely parameter."""
     from .limits import stable_step, wheel_hop_omega
     limit, why = stable_step(tm, wheel_load)
     text = " ".join(str(exc).split())
+    if terrain is not None:
+        # the tyre's own stable step was checked before the run: the ground is what changed
+        name = terrain if isinstance(terrain, str) else "the soil"
+        return SimulationError(f"{text.rstrip('.;')} at time step {dt:g} s on the terrain {name}; "
+                               "likely cause: its elastic_stiffness, damping or cohesion, too large "
+                               "for the step (they push the wheel harder than the tyre does); try a "
+                               "smaller time step or check the soil's values")
     if tm.has_state:
         likely = (f"the {tm.contact} model's parameters ([FLEXIBLE_RING] of the tyre) or the time "
                   f"step; its stated stable step is {limit:.3g} s")
@@ -226,7 +234,7 @@ def simulate(tyre: str | Tyre = DEFAULT_TYRE, model: str = "point", road=None,
     try:
         table = the_rig.run(request)
     except SimulationError as exc:
-        raise _diverged(exc, tm, dt, wheel_load) from None
+        raise divergence_error(exc, tm, dt, wheel_load, terrain) from None
     found = guards.check_run(table, tm.tyre)
     if found:
         table.attrs["metadata"]["physics_warnings"] = found

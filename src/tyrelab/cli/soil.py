@@ -69,9 +69,10 @@ def run_list(args) -> int:
 
 
 def run_curve(args) -> int:
-    from ..api import make_tyre_model
+    from ..api import divergence_error, make_tyre_model
     from ..io_atomic import IMAGE_SUFFIXES, atomic_write, save_figure
-    from ..rig.single_wheel import single_wheel, slip_curve
+    from ..rig.simulation import SimulationError
+    from ..rig.single_wheel import STEP, single_wheel, slip_curve
     from ..road.soil import load_soil
     import pandas as pd
 
@@ -85,15 +86,20 @@ def run_curve(args) -> int:
     if sys.stderr.isatty():
         from tqdm import tqdm
         bar = tqdm(total=len(args.slips) * len(models), unit="run", desc="slip curve", file=sys.stderr)
+    curves = []
     try:
-        curve = pd.concat([slip_curve(model, args.terrain, args.load, args.speed, args.slips,
-                                      args.duration,
-                                      progress=(lambda done: bar.update(1)) if bar else None)
-                           .assign(model=name) for name, model in zip(names, models)],
-                          ignore_index=True)
+        for name, model in zip(names, models):
+            try:
+                curves.append(slip_curve(model, args.terrain, args.load, args.speed, args.slips,
+                                         args.duration,
+                                         progress=(lambda done: bar.update(1)) if bar else None)
+                              .assign(model=name))
+            except SimulationError as exc:  # named as tyrelab.simulate names it
+                raise divergence_error(exc, model, STEP, args.load, args.terrain) from None
     finally:
         if bar is not None:
             bar.close()
+    curve = pd.concat(curves, ignore_index=True)
     model = models[-1]
     title = (f"{model.tyre.name}, {soil_name}, {args.load / 1e3:.3g} kN, "
              f"{args.speed * 3.6:.3g} km/h")

@@ -42,6 +42,8 @@ STATE = ("Z", "VZ", "T")
 S = named_index("SingleWheelStateIndex", STATE)
 #: where the carriage starts along the bin [m]
 X_START = 0.0
+#: the rig's time step [s] unless a run gives one (the slip curves' step)
+STEP = 1e-3
 #: the slowest speed [m/s] at which a model's rolling radius is found (rolling_radius)
 ROLLING_RADIUS_SPEED = 1.0
 
@@ -100,7 +102,7 @@ def rolling_radius(model, load: float, speed: float) -> float:
 
 def single_wheel(model, soil, load: float, speed: float, slip: float = 0.0, length: float = 10.0,
                  width: float = BED_WIDTH, spacing: float = BED_SPACING, duration: float | None = None,
-                 dt: float = 1e-3, output_rate: float = 1000.0, progress: bool | None = None,
+                 dt: float = STEP, output_rate: float = 1000.0, progress: bool | None = None,
                  road=None, passes: int = 1, return_bed: bool = False):
     """Drive ``model`` through a soil bin; returns the signal table (a list of them, one per
     pass over the same bed, when ``passes`` > 1; with ``return_bed`` also the soil bed after,

@@ -8,7 +8,7 @@ Chrono's ``SCMTerrain::SetSoilParameters``::
     n = 0.79                    # Bekker's sinkage exponent, 0 < n <= 2
     kc = 102e3                  # cohesive modulus k_c [N/m^(n+1)]
     kphi = 5301e3               # frictional modulus k_phi [N/m^(n+2)]
-    cohesion = 1.3e3            # Mohr-Coulomb cohesion c [Pa]
+    cohesion = 1.3e3            # Mohr-Coulomb cohesion c [Pa], at most 1e6
     friction_angle = 31.1       # Mohr-Coulomb internal friction angle phi [deg], 0 <= phi < 60
     janosi_k = 0.0115           # Janosi-Hanamoto shear deformation modulus K [m]
     elastic_stiffness = 4e7     # optional: unloading/reloading stiffness [Pa/m]
@@ -53,6 +53,10 @@ from ...errors import InputError
 DEFAULT_ELASTIC_STIFFNESS = 4e7
 #: largest friction angle accepted [deg]: above it tan(phi) > 1.7, no natural soil
 MAX_FRICTION_ANGLE = 60.0
+#: largest cohesion accepted [Pa]: 1 MPa. The firmest soil of Wong's Table 2.3 (heavy clay)
+#: has 69 kPa; a ground of megapascals is rock, for the rigid road. (A cohesion of 10 MPa
+#: gave a single wheel on 23 kN a drawbar pull of 528 kN; 1e15 Pa threw it off the ground.)
+MAX_COHESION = 1e6
 #: the keys of a [soil] table: required, then optional with their defaults
 REQUIRED = ("n", "kc", "kphi", "cohesion", "friction_angle", "janosi_k")
 OPTIONAL = {"name": None, "elastic_stiffness": DEFAULT_ELASTIC_STIFFNESS, "damping": 0.0}
@@ -98,9 +102,9 @@ def soil_from_table(table: dict, source: str | None = None, lines=None) -> tuple
     """``(Soil, name)`` from a ``[soil]`` table's values (file units: the angle in degrees).
 
     ``lines(key)`` gives a key's line for messages. Every value is checked: numbers,
-    finite, not negative, ``0 < n <= 2``, ``0 <= friction_angle < 60`` deg, ``janosi_k``
-    and ``elastic_stiffness`` above 0 and ``kc + kphi`` above 0 (a soil that carries
-    something). Unknown keys are refused with the allowed ones listed.
+    finite, not negative, ``0 < n <= 2``, ``cohesion <= 1 MPa``, ``0 <= friction_angle < 60``
+    deg, ``janosi_k`` and ``elastic_stiffness`` above 0 and ``kc + kphi`` above 0 (a soil
+    that carries something). Unknown keys are refused with the allowed ones listed.
     """
     def fail(key, why):
         raise InputError(why, source=source, line=lines(key) if lines else None,
@@ -127,6 +131,9 @@ def soil_from_table(table: dict, source: str | None = None, lines=None) -> tuple
         values[key] = float(v)
     if not 0.0 < values["n"] <= 2.0:
         fail("n", f"expected the sinkage exponent n in (0, 2], got {values['n']!r}")
+    if values["cohesion"] > MAX_COHESION:
+        fail("cohesion", f"expected a cohesion up to {MAX_COHESION:g} Pa (1 MPa; a firmer ground is "
+                         f"rock: use the rigid road), got {values['cohesion']!r}")
     if not values["friction_angle"] < MAX_FRICTION_ANGLE:
         fail("friction_angle", f"expected a friction angle in [0, {MAX_FRICTION_ANGLE:g}) deg, "
                                f"got {values['friction_angle']!r}")
