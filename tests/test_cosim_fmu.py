@@ -339,6 +339,36 @@ def test_many_instances_in_one_process(fmus):
     assert got == [got[0]] * 10 and got[0] > LC1     # on the cleat's edge
 
 
+def test_a_wheel_below_the_road_is_a_warning_in_the_hosts_log(fmus):
+    """The stepper's warning (tests/test_cosim_stepper.py) reaches the host through the FMI
+    logger, with fmi2Warning status, once, though the wheel stays below the cleat road for
+    three steps: a host with z pointing down learns why its tyre pulls the wheel down."""
+    from fmpy import simulate_fmu
+
+    log = []
+
+    def logger(component, instance, status, category, message):
+        log.append((status, message.decode()))
+    simulate_fmu(str(fmus("point")), start_values={"Z_WC": -0.6}, stop_time=3 * DT,
+                 output_interval=DT, logger=logger, debug_logging=True)
+    found = [(status, m) for status, m in log if "below the road" in m]
+    assert len(found) == 1 and found[0][0] == 1, log      # fmi2Warning = 1
+    assert "z = -0.6 m under the road's 0 m" in found[0][1]
+
+
+def test_a_negative_internal_step_is_refused_at_initialisation(fmus):
+    """INTERNAL_STEP 0 means the model's stable step; a negative one is a mistake (it used to
+    mean the stable step too, silently)."""
+    from fmpy import simulate_fmu
+    from fmpy.fmi1 import FMICallException
+
+    log = []
+    with pytest.raises(FMICallException, match="fmi2ExitInitializationMode"):
+        simulate_fmu(str(fmus("point")), start_values={"INTERNAL_STEP": -1.0}, stop_time=DT,
+                     logger=lambda *args: log.append(args[-1].decode()), debug_logging=True)
+    assert any("internal step -1 s is out of range" in m for m in log), log
+
+
 def test_the_road_file_travels_inside_the_fmu(tmp_path):
     """Exported from a copy of the CRG road, the FMU runs after the copy is deleted and gives
     the stepping API's loads on the original file."""

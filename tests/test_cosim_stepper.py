@@ -13,6 +13,7 @@
 from __future__ import annotations
 
 import math
+import warnings
 
 import numpy as np
 import pytest
@@ -186,6 +187,35 @@ def test_the_soils_moving_patch_follows_a_stepped_wheel(monkeypatch):
     back = WheelCentre(2.0, 0.0, 0.6, 0.0, 0.0, 0.0, 0.0)
     with pytest.raises(InputError, match="reaches behind the soil the bed holds"):
         stepper.step(stepper.time, back, 1e-3)
+
+
+def test_a_wheel_put_below_the_road_or_onto_its_rim_is_warned_once_each():
+    """A host whose vertical axis points down puts the wheel centre 0.6 m *below* a flat road;
+    the disc then finds the road 0.6 m from its centre as if beneath it: a deflection of
+    R0 - 0.6 = 71.5 mm and an FZ pulling the wheel further down, finite and silent (and no
+    contact at all once the centre is a radius deep). The stepper warns once, as the rigs'
+    guards warn. Pressed to 0.26 m the XZL (R0 0.6715 m, RIM_RADIUS 0.254 m: 417.5 mm of
+    room) has 411.5 mm of deflection and no warning; to 0.20 m, 471.5 mm: rim contact."""
+    from tyrelab.guards import PhysicsWarning
+
+    wheel = wheel_stepper("xzl-16.00R20", "point", "flat")
+
+    def at(z):
+        return WheelCentre(0.0, 0.0, z, 0.0, 0.0, 0.0, 0.0)
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")               # any warning here fails the test
+        wheel.loads(at(0.6))
+        assert wheel.step(0.0, at(0.26), 1e-3).deflection == pytest.approx(0.4115)
+    with pytest.warns(PhysicsWarning) as found:
+        below = wheel.loads(at(-0.6))
+        wheel.loads(at(-0.7))                         # the same finding: not again
+        wheel.step(1e-3, at(0.20), 1e-3)
+    assert [str(w.message).split(":")[0] for w in found] == [
+        "the wheel centre is below the road at t = 0.001 s", "rim contact at t = 0.002 s"]
+    assert "z = -0.6 m under the road's 0 m" in str(found[0].message)
+    assert "472 mm is beyond the 418 mm" in str(found[1].message)   # 471.5, rounded
+    assert below.fz < 0                               # why it must be said: it pulls downwards
 
 
 @pytest.mark.parametrize("call, match", [

@@ -241,7 +241,7 @@ def build_stepper(resources, manifest: dict, pressure: float, load: float, max_s
         road = shared_terrain(tm, terrain, road, soil_group, x_start, y_start,
                               _road_identity(resources, manifest))
     return wheel_stepper(model=tm, road=road, load=load,
-                         speed=max(speed, 0.0), max_step=max_step if max_step > 0 else None,
+                         speed=max(speed, 0.0), max_step=max_step if max_step != 0 else None,
                          frame=frame, start_time=start_time)
 
 

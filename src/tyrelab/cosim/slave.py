@@ -23,6 +23,7 @@ import math
 from xml.etree.ElementTree import Element, SubElement
 
 from pythonfmu import DefaultExperiment, Fmi2Causality, Fmi2Slave, Fmi2Variability, Integer, Real
+from pythonfmu.enums import Fmi2Status
 
 from .._version import __version__
 from ..errors import InputError
@@ -120,6 +121,8 @@ class TyrelabWheel(Fmi2Slave):
                                       OUTPUT_FRAMES[frame], speed, self._start_time,
                                       x_start=centre.x, y_start=centre.y,
                                       soil_group=int(getattr(self, "SOIL_GROUP", 0)))
+        # a wheel the host puts below the road or onto its rim: a warning in the host's log
+        self._stepper.warn = lambda message: self.log(message, Fmi2Status.warning)
         self._publish(self._stepper.loads(centre))
 
     def do_step(self, current_time, step_size):

@@ -26,9 +26,13 @@ from __future__ import annotations
 
 import copy
 import math
+import warnings
 
 from ..api import make_tyre_model
+from .. import limits
 from ..errors import InputError
+from ..guards import PhysicsWarning
+from ..road.terrain import ground_range
 from ..rig.soil_ground import KEEP_AHEAD, KEEP_BEHIND, on_fresh_ground
 from ..tyre.model import TyreModel
 from .kernel import C_AXIS_FRAME, ROAD_FRAME, CentreLoads, WheelCentre, advance
@@ -100,6 +104,16 @@ class WheelStepper:
         self._cover = getattr(ground, "cover", None)
         self._follow = getattr(ground, "follow", None)
         self._held = getattr(ground, "held", None)
+        # where the host's wheel leaves what the model holds (_check_pose): its centre below a
+        # rigid road's highest point (then looked up; a soil has no height here: a wheel sinks
+        # into it), or a deflection beyond the rim; each threshold is lifted once warned
+        self._height = getattr(ground, "height", None)
+        self._look_below = (float(ground_range(wheel.road)[1]) if self._height is not None
+                            else -math.inf)
+        self._rim_room, self._rim_how = limits.rim_deflection(model.tyre)
+        #: what a finding of :meth:`_check_pose` is given to: a PhysicsWarning by default; the
+        #: FMU's slave logs it through the host's logger instead
+        self.warn = _physics_warning
 
     @property
     def time(self) -> float:
@@ -145,7 +159,31 @@ class WheelStepper:
         n = self.sub_steps(dt)
         loads = advance(self.wheel, centre, n, dt / n, self._frame)
         self._time = time + dt
+        self._check_pose(centre, loads)
         return loads
+
+    def _check_pose(self, centre: WheelCentre, loads: CentreLoads) -> None:
+        """Warn, once per kind, where the host has put the wheel outside what the model holds,
+        as the rigs' :func:`~tyrelab.guards.check_run` warns (:class:`~tyrelab.guards.PhysicsWarning`;
+        an FMU logs it): its centre below the road (a vertical axis pointing down? z is up in
+        the road frame), where a contact model sees the road above the centre as if below it,
+        a deflection that falls as the wheel sinks and no contact at all below one radius; and a
+        deflection beyond the rim. Two comparisons per step; the road's height is looked up
+        (in Python) only when the centre is below the road's highest point."""
+        if centre.z < self._look_below:
+            ground = float(self._height(centre.x, centre.y))
+            if centre.z < ground:
+                self._look_below = -math.inf
+                self.warn(f"the wheel centre is below the road at t = {self._time:.6g} s: "
+                          f"z = {centre.z:.4g} m under the road's {ground:.4g} m at "
+                          f"(x, y) = ({centre.x:.4g}, {centre.y:.4g}) m; the loads are not "
+                          "physical (the road frame's z axis points up: ISO 8855, TYDEX)")
+        if loads.deflection > self._rim_room:
+            room, self._rim_room = self._rim_room, math.inf
+            self.warn(f"rim contact at t = {self._time:.6g} s: deflection "
+                      f"{loads.deflection * 1e3:.0f} mm is beyond the {room * 1e3:.0f} mm the "
+                      f"tyre has ({self._rim_how}); the model does not describe a tyre pressed "
+                      "onto its rim")
 
     def _move_ground(self, centre: WheelCentre, dt: float) -> None:
         """Move a ground that follows the wheel (the soil's patch) on once this step would take
@@ -207,7 +245,15 @@ class WheelStepper:
         if getattr(self._ground, "fresh_copy", None) is not None:
             wheel = on_fresh_ground(wheel._replace(contact=copy.deepcopy(wheel.contact)),
                                     self._ground)
-        return advance(wheel, _checked(centre), 1, 0.0, self._frame)
+        centre = _checked(centre)
+        loads = advance(wheel, centre, 1, 0.0, self._frame)
+        self._check_pose(centre, loads)
+        return loads
+
+
+def _physics_warning(message: str) -> None:
+    """A finding of :meth:`WheelStepper._check_pose`, as the rigs' guards give theirs."""
+    warnings.warn(message, PhysicsWarning, stacklevel=4)
 
 
 def _number(value, field: str, what: str | None = None) -> float:
