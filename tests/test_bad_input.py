@@ -379,7 +379,10 @@ def test_python_api_refuses_the_same(tmp_path):
     for kwargs, words in [({"speed": 1e-9}, "speed"), ({"duration": 1e-6}, "too short"),
                           ({"dt": 1e-9}, "time step"), ({"output_rate": 3000.0}, "faster"),
                           ({"road": "bump:1e9"}, "bump height"), ({"load": 1e9}, "onto its rim"),
-                          ({"options": "x"}, "a mapping of names to values")]:  # a ValueError once
+                          ({"options": "x"}, "a mapping of names to values"),   # a ValueError once
+                          # a flag for a number: float(True) is 1 (a 1 N load, a 1 s run once)
+                          ({"load": True}, "wheel load must be a number, got True"),
+                          ({"duration": True}, "duration must be a number, got True")]:
         with pytest.raises(InputError, match=words):
             tyrelab.simulate(**kwargs)
     with pytest.raises(InputError, match="does not exist"):

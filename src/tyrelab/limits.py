@@ -177,6 +177,8 @@ def check_number(value, field: str, low=None, high=None, unit: str = "", low_ope
     """
     name = what or field
     try:
+        if isinstance(value, bool):  # float(True) is 1.0: a flag given for a number
+            raise TypeError
         v = float(value)
     except (TypeError, ValueError):
         raise InputError(f"{name} must be a number, got {value!r}", field=field) from None
