@@ -62,6 +62,8 @@ def work(tmp_path_factory):
                        "FZW": np.full(5, 2e4)})
     write_signal(run, tmp / "run.parquet")
     (tmp / "text.csv").write_text("RUNTIME,DISTANCE,FZW,NOTE\n0,0,1,a\n0.1,0.3,2,b\n0.2,0.6,3,c\n")
+    # a press whose loads (1e15 N at 10 mm) fit a stiffness no tyre has
+    (tmp / "huge_press.csv").write_text("deflection_mm,load_N\n0,0\n10,1e15\n20,2e15\n")
     (tmp / "adir.parquet").mkdir()
     (tmp / "adir.png").mkdir()
     # property files (one damage each)
@@ -231,6 +233,10 @@ CASES = [
     (["static", "--tyre", "{d}/zero_inertia.tir"], 2, "WHEEL_IYY"),
     (["simulate", "--tyre", "{d}/empty_curve.tir", "-o", "{d}/o.parquet"], 2,
      "section [DEFLECTION_LOAD_CURVE] has no rows"),
+    # a fitted value that is not physical names the tests it came from, not the file it would go to
+    (["fit", "vertical", "{d}/huge_press.csv", "-o", "{d}/fitted.tir", "--no-report", "--radius", "671.5",
+      "--width", "438"], 2,
+     "huge_press.csv: the fit gives VERTICAL_STIFFNESS: 1e+17 N/m is not physical"),
 ]
 
 

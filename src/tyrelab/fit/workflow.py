@@ -390,5 +390,9 @@ def fit_campaign(campaign: Campaign, steps=STEPS, base=None, progress=None, skip
     tidy(tir, new=base is None and campaign.base is None)
     if tir.has("DIMENSION", "UNLOADED_RADIUS"):
         from ..tyre.params import check_physics
-        check_physics(tir)  # what is written must read back
+        try:
+            check_physics(tir)  # what is written must read back
+        except InputError as exc:  # the fitted values' fault, not the output file's: name the tests
+            field = f"{exc.field}: " if exc.field else ""
+            raise InputError(f"the fit gives {field}{exc.reason}", source=str(campaign.source)) from None
     return result
