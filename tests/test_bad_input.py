@@ -64,6 +64,7 @@ def work(tmp_path_factory):
     (tmp / "text.csv").write_text("RUNTIME,DISTANCE,FZW,NOTE\n0,0,1,a\n0.1,0.3,2,b\n0.2,0.6,3,c\n")
     # a press whose loads (1e15 N at 10 mm) fit a stiffness no tyre has
     (tmp / "huge_press.csv").write_text("deflection_mm,load_N\n0,0\n10,1e15\n20,2e15\n")
+    (tmp / "furlong.csv").write_text("deflection_furlong,load_N\n0,0\n1,3000\n2,7000\n")
     (tmp / "adir.parquet").mkdir()
     (tmp / "adir.png").mkdir()
     # property files (one damage each)
@@ -237,6 +238,8 @@ CASES = [
     (["fit", "vertical", "{d}/huge_press.csv", "-o", "{d}/fitted.tir", "--no-report", "--radius", "671.5",
       "--width", "438"], 2,
      "huge_press.csv: the fit gives VERTICAL_STIFFNESS: 1e+17 N/m is not physical"),
+    (["fit", "vertical", "{d}/furlong.csv", "-o", "{d}/fitted.tir", "--no-report"], 2,
+     "column 'deflection_furlong': 'furlong' is not a unit of deflection (m); name it like deflection_m"),
 ]
 
 

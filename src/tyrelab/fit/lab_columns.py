@@ -65,6 +65,22 @@ def _find(header: list[str], quantity: str, source=None, line=None) -> str | Non
     return found[0] if found else None
 
 
+#: a unit each SI unit's quantities are often written in, for the example of a message
+_EXAMPLE_UNIT = {"m": "mm", "N": "kN", "s": "ms"}
+
+
+def _unit_not_known(header: list[str], quantity: str, source, line) -> None:
+    """Raise when a header names ``quantity`` with a unit that is not one of its units
+    (``deflection_furlong``, ``load_mm``): the column is there, its unit is what is wrong."""
+    si = QUANTITIES[quantity][0]
+    for h in header:
+        toks = _tokens(h.strip())
+        if len(toks) > 1 and toks[0].lower() in QUANTITIES[quantity][1] and _unit_in(h, quantity) is None:
+            raise InputError(f"column '{h}': '{' '.join(toks[1:])}' is not a unit of {quantity} "
+                             f"({si}); name it like {toks[0]}_{si} or {toks[0]}_{_EXAMPLE_UNIT[si]}",
+                             source=source, line=line, field=quantity)
+
+
 def read_columns(path, required, optional=(), columns=None, units=None) -> tuple[dict, np.ndarray]:
     """Columns of a CSV file in SI: ``({quantity: array}, line of each row)``.
 
@@ -82,6 +98,8 @@ def read_columns(path, required, optional=(), columns=None, units=None) -> tuple
         name = columns.get(q) or _find(header, q, str(path), header_line)
         if name is None or name not in header:
             if q in required or q in columns:
+                if q not in columns:
+                    _unit_not_known(header, q, str(path), header_line)
                 what = f"column '{name}'" if name else \
                     f"a '{q}' column ({', '.join(QUANTITIES[q][1][:3])} ..., unit after '_')"
                 raise InputError(f"{what} is not in the header ({', '.join(header)})",
