@@ -382,6 +382,38 @@ def test_divergence_is_one_line_naming_step_and_parameter(tmp_path, capsys, monk
     assert not (tmp_path / "o.parquet").exists()
 
 
+def test_a_closed_bound_holds_to_rounding_and_no_further():
+    """The least towing speed the command line states, 0.036 km/h, is 0.036 / 3.6 =
+    0.009999999999999998 m/s, one ulp below MIN_SPEED: it was refused by its own bound."""
+    from tyrelab import limits
+
+    assert limits.check_speed(0.036 / 3.6) == 0.036 / 3.6
+    assert limits.check_speed(200 / 3.6) == 200 / 3.6
+    for kmh in (0.0359, 200.001):
+        with pytest.raises(InputError, match="out of range"):
+            limits.check_speed(kmh / 3.6)
+    assert limits.check_number(1e-300, "x", 0.0, 1.0, low_open=True) == 1e-300
+    with pytest.raises(InputError, match="out of range"):  # an open bound stays open
+        limits.check_number(0.0, "x", 0.0, 1.0, low_open=True)
+
+
+def test_a_diverged_run_is_told_from_a_light_tyre_ringing():
+    """No tyre carries 100 times its static load; a tyre barely touching the road (the ring
+    with tread blocks under 1 N) rings to a few hundred newtons while it settles, which is
+    no divergence: the factor applies to at least 1 kN."""
+    from tyrelab.rig.simulation import SimulationError, to_signal
+
+    def table(static, peak):
+        data = np.array([[0.0, static], [1e-3, peak], [2e-3, static]])
+        return to_signal(data, ("RUNTIME", "FZW"), {"static_wheel_load_N": static})
+
+    assert table(1.0, 354.0)["FZW"].max() == 354.0                 # ring-tp under 1 N
+    assert table(23.3e3, 2.3e6)["FZW"].max() == 2.3e6             # 98.7 x LC1: kept
+    for static, peak in ((23.3e3, 2.4e6), (1.0, 1.01e5)):
+        with pytest.raises(SimulationError, match="the simulation diverged"):
+            table(static, peak)
+
+
 def test_python_api_refuses_the_same(tmp_path):
     import tyrelab
     from tyrelab.errors import InputError

@@ -168,6 +168,11 @@ def _g(value) -> str:
     return f"{value:.6g}"
 
 
+#: relative rounding a value may have at a closed bound of :func:`check_number` (a unit
+#: conversion's last bits), and still be on it
+BOUND_ROUNDING = 1e-12
+
+
 def check_number(value, field: str, low=None, high=None, unit: str = "", low_open: bool = False,
                  what: str | None = None, scale: float = 1.0, given: str | None = None) -> float:
     """``value`` as a finite float inside ``[low, high]`` (``(low, ...`` with ``low_open``).
@@ -185,8 +190,11 @@ def check_number(value, field: str, low=None, high=None, unit: str = "", low_ope
     unit_txt = f" {unit}" if unit else ""
     if not math.isfinite(v):
         raise InputError(f"{name} must be a finite number, got {value!r}", field=field)
-    lo_bad = low is not None and (v <= low if low_open else v < low)
-    hi_bad = high is not None and v > high
+    # a closed bound holds to rounding: 0.036 km/h, the stated least speed, is
+    # 0.036 / 3.6 = 0.009999999999999998 m/s, below MIN_SPEED's 0.01 by one ulp
+    slack = BOUND_ROUNDING
+    lo_bad = low is not None and (v <= low if low_open else v < low - slack * abs(low))
+    hi_bad = high is not None and v > high + slack * abs(high)
     if lo_bad or hi_bad:
         if low is not None and high is not None:
             rng = f"{_g(low * scale)}{' <' if low_open else ' <='} {name} <= {_g(high * scale)}{unit_txt}"
