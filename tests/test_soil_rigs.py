@@ -34,6 +34,22 @@ def test_the_quarter_vehicle_starts_at_rest_in_equilibrium_on_soil():
     assert run.attrs["metadata"]["soil"] == "sandy loam"
 
 
+def test_the_trailer_starts_in_equilibrium_with_its_test_wheel_sunk_into_the_soil():
+    """The left wheel stays on rigid ground, so the frame rolls towards the test wheel sunk
+    into dry sand (1.8 deg), inclining both wheels and moving the test wheel's contact 2 cm
+    across. Settled upright where the frame did not put it, the test wheel started on soil
+    it had not pressed, carrying 74 % of its load. Settled where the frame holds it, each
+    wheel carries the static load to 0.1 % at the start, and creeping at 1 cm/s the test
+    wheel's load stays within 2 % over 0.3 s (the frame settles its last millimetre)."""
+    run = tyrelab.simulate(model="point", rig="trailer", terrain="dry-sand", road="flat",
+                           speed=0.01, duration=0.3, progress=False)
+    static = run.attrs["metadata"]["static_wheel_load_N"]
+    assert run["FZ"].iloc[0] == pytest.approx(static, rel=1e-3)
+    assert run["FZ_LEFT"].iloc[0] == pytest.approx(static, rel=1e-3)
+    assert run["ROLL"].iloc[0] > np.radians(1.0)            # the case: the frame does roll
+    assert np.all(np.abs(run["FZ"].to_numpy() / static - 1.0) < 0.02)
+
+
 def test_the_ring_settles_into_the_soil_before_it_starts():
     """The ring's loads depend on its belt's state, so the soil bin settles it at rest (damped)
     before the run: standing still on sandy loam its centre then moves by under 0.05 mm and

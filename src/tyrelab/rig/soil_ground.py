@@ -34,8 +34,9 @@ SETTLE_DAMPING = 1.0
 
 
 @nb.njit(cache=True)
-def _stand(wheel, x, y, z, mass, damping, dt, n_max, still):
-    """``(z, fz)``: the wheel standing still at (x, y) on its ground, its centre at ``z``.
+def _stand(wheel, x, y, z, ax, ay, az, mass, damping, dt, n_max, still):
+    """``(z, fz)``: the wheel standing still at (x, y) on its ground, its centre at ``z``, its
+    spin axis ``(ax, ay, az)`` (a unit vector; ``(0, 1, 0)`` upright).
 
     ``n_max`` = 0: the ground's vertical force [N] at ``z`` (dt = 0: the shear does not grow;
     the nodes' plastic sinkage does -- call on a copy of the ground to leave no rut).
@@ -46,11 +47,11 @@ def _stand(wheel, x, y, z, mass, damping, dt, n_max, still):
     One kernel for both, not two: each kernel that steps the wheel compiles the whole model
     again (the ring on soil: 20-50 s cold), and a settling needs both."""
     if n_max == 0:
-        return z, wheel_step(wheel, WheelPose(x, y, z, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0), 0.0).fz
+        return z, wheel_step(wheel, WheelPose(x, y, z, ax, ay, az, 0.0, 0.0, 0.0, 0.0), 0.0).fz
     vz = 0.0
     fz = 0.0
     for _ in range(n_max):
-        f = wheel_step(wheel, WheelPose(x, y, z, 0.0, 1.0, 0.0, 0.0, 0.0, vz, 0.0), dt)
+        f = wheel_step(wheel, WheelPose(x, y, z, ax, ay, az, 0.0, 0.0, vz, 0.0), dt)
         fz = f.fz
         vz += dt * (fz - mass * G - damping * vz) / mass
         z += dt * vz
@@ -59,10 +60,15 @@ def _stand(wheel, x, y, z, mass, damping, dt, n_max, still):
     return z, fz
 
 
-def _vertical_force(wheel, x: float, y: float, z: float) -> float:
+#: the spin axis of a wheel standing upright
+UPRIGHT = (0.0, 1.0, 0.0)
+
+
+def _vertical_force(wheel, x: float, y: float, z: float, axis=UPRIGHT) -> float:
     """The ground's vertical force [N] on the wheel standing still with its centre at
-    (x, y, z) (:func:`_stand` with no step)."""
-    return _stand(wheel, float(x), float(y), float(z), 0.0, 0.0, 0.0, 0, 0.0)[1]
+    (x, y, z) and its spin ``axis`` (:func:`_stand` with no step)."""
+    return _stand(wheel, float(x), float(y), float(z), *(float(a) for a in axis),
+                  0.0, 0.0, 0.0, 0, 0.0)[1]
 
 
 def on_fresh_ground(wheel, ground):
@@ -79,33 +85,36 @@ def ground_top(wheel):
 
 
 def settle(wheel, ground, load: float, x: float, radius: float, y: float = 0.0,
-           dynamic: bool = False, dt: float = 1e-3) -> float:
+           dynamic: bool = False, dt: float = 1e-3, axis=UPRIGHT, press: bool = True) -> float:
     """The centre height [m] at which the ground carries ``load`` [N] under the wheel standing
-    at (x, y), found by bisection between touching the highest ground and sunk to
-    :data:`BURIED` of its ``radius`` [m]; a deformable ground is then pressed there (the run
-    starts from it). A ``dynamic`` model (the ring, whose loads at a height depend on its
-    state) then settles at rest under the load, critically damped, stepped at ``dt`` [s]
-    (:data:`SETTLE_TIME`, :data:`SETTLE_SPEED`).
+    at (x, y) with its spin ``axis`` (a rig's frame may incline it), found by bisection
+    between touching the highest ground and sunk to :data:`BURIED` of its ``radius`` [m]; a
+    deformable ground is then pressed there (the run starts from it; with ``press`` False a
+    copy of it: a trial that leaves no rut). A ``dynamic`` model (the ring, whose loads at a
+    height depend on its state) then settles at rest under the load, critically damped,
+    stepped at ``dt`` [s] (:data:`SETTLE_TIME`, :data:`SETTLE_SPEED`).
     ``ground`` the wheel's Python ground (its ``fresh_copy`` makes the trials)."""
     top = ground_top(wheel)
     # the force falls as the wheel rises; the lowest trial keeps the centre off the ground (a
     # contact point at the centre has no direction)
     lo, hi = top + BURIED * radius, top + radius
-    if _vertical_force(on_fresh_ground(wheel, ground), x, y, lo) < load:
+    if _vertical_force(on_fresh_ground(wheel, ground), x, y, lo, axis) < load:
         raise InputError(f"the ground does not carry {load:.6g} N under this wheel even sunk to "
                          "its axle; a lighter load or a stiffer ground", field="load")
     while hi - lo > SETTLE_TOLERANCE:
         mid = 0.5 * (lo + hi)
-        if _vertical_force(on_fresh_ground(wheel, ground), x, y, mid) > load:
+        if _vertical_force(on_fresh_ground(wheel, ground), x, y, mid, axis) > load:
             lo = mid
         else:
             hi = mid
     z0 = 0.5 * (lo + hi)
-    _vertical_force(wheel, x, y, z0)
+    if not press:
+        wheel = on_fresh_ground(wheel, ground)
+    _vertical_force(wheel, x, y, z0, axis)
     if dynamic:
         mass = load / G
         stiffness = load / (radius / 20.0)
-        z0 = _stand(wheel, float(x), float(y), z0, mass,
+        z0 = _stand(wheel, float(x), float(y), z0, *(float(a) for a in axis), mass,
                     SETTLE_DAMPING * 2.0 * np.sqrt(stiffness * mass), float(dt),
                     int(SETTLE_TIME / dt), SETTLE_SPEED)[0]
     return z0
