@@ -53,6 +53,18 @@ def test_perpendicular_cleat_gives_no_lateral_force(xzl):
     assert np.abs(run["FY"]).max() < 1e-6 * run["FZW"].max()
 
 
+def test_inclination_is_the_frames_roll_of_the_axle(xzl):
+    """INCLANGL is the wheel plane's angle to the road's normal (TYDEX), here the level road's
+    z axis. The trailer's axle is its body's y axis, Ry(pitch) Rx(roll) (0, 1, 0): its
+    inclination is asin(cos(PITCH) sin(ROLL)), from the frame's own channels. Over an
+    oblique cleat the frame rolls; the point model's INCLANGL, measured from its contact
+    normal, which lies in the disc's own plane, was 0 throughout."""
+    run = Trailer(TyreModel(xzl), "LC1").run("cleat:50x50@45", 12 / 3.6, duration=3.0)
+    expected = np.arcsin(np.cos(run["PITCH"]) * np.sin(run["ROLL"]))
+    assert np.abs(expected).max() > np.radians(1.0)           # the case: the frame rolls
+    np.testing.assert_allclose(run["INCLANGL"], expected, rtol=0, atol=1e-12)
+
+
 def test_results_are_deterministic(xzl):
     a = Trailer(TyreModel(xzl), "LC2").run("bump:150", 8 / 3.6)
     b = Trailer(TyreModel(xzl), "LC2").run("bump:150", 8 / 3.6)

@@ -55,7 +55,8 @@ CHANNELS: dict[str, tuple[str, str]] = {
     "VY_WC": ("m/s", "wheel-centre velocity y, road frame"),
     "VZ_WC": ("m/s", "wheel-centre velocity z, road frame"),
     "ROTSPEED": ("rad/s", "wheel spin rate about its axis, positive rolling forward"),
-    "INCLANGL": ("rad", "inclination (camber) angle of the wheel plane to the road normal"),
+    "INCLANGL": ("rad", "inclination (camber) angle of the wheel plane to the road frame's z axis "
+                           "(the normal of a level road), positive when the wheel's top leans to its right"),
     "DEFLECT": ("m", "tyre radial deflection (positive in compression)"),
     "LONGSLIP": ("-", "longitudinal slip kappa (ISO/TYDEX W, > 0 driving)"),
     "SLIPANGL": ("rad", "slip angle alpha (ISO/TYDEX W)"),

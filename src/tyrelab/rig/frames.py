@@ -86,8 +86,10 @@ def wheel_row(o, t, dist, pose, f, cax, y_offset=0.0):
     o[WC.VY_WC] = pose.vy
     o[WC.VZ_WC] = pose.vz
     o[WC.ROTSPEED] = pose.omega
-    # inclination: angle of the wheel plane to the road normal (TYDEX, sin g = a . n)
-    o[WC.INCLANGL] = math.asin(max(-1.0, min(1.0, pose.ax * f.nx + pose.ay * f.ny + pose.az * f.nz)))
+    # inclination: angle of the wheel plane to the road frame's z axis, the road normal of the
+    # levelled road (TYDEX: to the road plane's normal; sin g = a . e_z). Not to the contact
+    # normal: a disc's lies in its own plane, so the point model's INCLANGL was always 0
+    o[WC.INCLANGL] = math.asin(max(-1.0, min(1.0, pose.az)))
     o[WC.DEFLECT] = f.deflection if f.deflection > 0.0 else 0.0
     o[WC.X_CP] = f.px
     o[WC.Y_CP] = f.py + y_offset
