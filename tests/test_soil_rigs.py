@@ -39,8 +39,9 @@ def test_the_trailer_starts_in_equilibrium_with_its_test_wheel_sunk_into_the_soi
     into dry sand (1.8 deg), inclining both wheels and moving the test wheel's contact 2 cm
     across. Settled upright where the frame did not put it, the test wheel started on soil
     it had not pressed, carrying 74 % of its load. Settled where the frame holds it, each
-    wheel carries the static load to 0.1 % at the start, and creeping at 1 cm/s the test
-    wheel's load stays within 2 % over 0.3 s (the frame settles its last millimetre)."""
+    wheel carries the static load to 0.1 % at the start (the left one too, settled on its
+    rigid ground at that inclination), and creeping at 1 cm/s the test wheel's load stays
+    within 2 % over 0.3 s (the frame settles its last millimetre)."""
     run = tyrelab.simulate(model="point", rig="trailer", terrain="dry-sand", road="flat",
                            speed=0.01, duration=0.3, progress=False)
     static = run.attrs["metadata"]["static_wheel_load_N"]
