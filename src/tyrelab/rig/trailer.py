@@ -293,11 +293,18 @@ class Trailer:
         # the left wheel on its level rigid ground, in the state it starts in (the trials
         # leave a ring's belt as it is: they do not step it)
         left = self.left.wheel(Flat().grid(), load, state=left_state)
-        x, y, axis, z_right = x0, 0.0, UPRIGHT, None
+        x, y, axis, z_right, roll = x0, 0.0, UPRIGHT, None, 0.0
         for _ in range(MAX_SETTLE_ROUNDS):
             # the trials static (the ring's dynamic settling, up to SETTLE_TIME of its steps,
             # comes once, at the end)
-            z = settle(wheel, ground, load, x, r0, y=y, dt=dt, axis=axis, press=False)
+            try:
+                z = settle(wheel, ground, load, x, r0, y=y, dt=dt, axis=axis, press=False)
+            except InputError as exc:
+                if roll == 0.0:
+                    raise
+                raise InputError(f"{exc.reason}, leaning {math.degrees(roll):.3g} deg as the "
+                                 "trailer's frame rolls towards it (its left wheel on rigid "
+                                 "ground)", field=exc.field) from None
             done = z_right is not None and abs(z - z_right) < 10 * SETTLE_TOLERANCE
             z_right = z
             pitch, roll = self._frame_angles(z_right, z_left)
