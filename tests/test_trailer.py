@@ -1,5 +1,8 @@
 """The towed test trailer (thesis 3.4, 5.2)."""
 
+import re
+import warnings
+
 import numpy as np
 import pytest
 
@@ -94,3 +97,30 @@ def test_left_wheel_model_is_the_one_given(xzl):
         Trailer(TyreModel(xzl, "point"), left=TyreModel(xzl.with_stiffness("linear"), "point"))
     with pytest.raises(InputError, match="trailer"):
         tyrelab.simulate(rig="rolling", left_wheel="point", duration=0.1)
+
+
+def test_a_road_with_a_grade_is_no_road_for_the_trailer():
+    """The trailer's hitch and left wheel stay on level ground: on a measured road that rises
+    1.2 m over 22 m (handmade_sloped.crg, from the OpenCRG distribution) its frame rolls to
+    follow the test wheel, 31 deg at 30 km/h ("overturned", with advice about obstacles).
+    A warning says why before the run. The medians of the run's first and last quarter, not
+    its range, tell a grade from obstacles and rough tracks between level ends, which are
+    the rig's work and say nothing."""
+    from pathlib import Path
+
+    import tyrelab
+    from tyrelab.guards import PhysicsWarning, check_level_for_trailer
+    from tyrelab.road.spec import road_from_spec
+
+    sloped = Path(__file__).parent / "data" / "roads" / "handmade_sloped.crg"
+    with warnings.catch_warnings(record=True) as found:
+        warnings.simplefilter("always")
+        tyrelab.simulate(model="point", road=str(sloped), speed=30 / 3.6, progress=False)
+    said = [str(w.message) for w in found if issubclass(w.category, PhysicsWarning)]
+    assert re.search(r"rises 1\.1\d m from the first quarter .* quarter-vehicle", said[0]), said
+    assert "overturned" in said[1]                      # what it explains
+    for name in ("pothole:500x2000x600", "belgian-paving", "fatigue-track", "corrugations-angled",
+                 "step:100", "iso8608:H"):
+        road = road_from_spec(name)
+        x0, x1 = road.extent()[:2]
+        assert check_level_for_trailer(road, x0, x1, 2.4) is None, name

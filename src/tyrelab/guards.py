@@ -2,10 +2,10 @@
 
 Two kinds of check, both outside the compiled kernels:
 
-* **before a run** (:func:`check_road_for_tyre`, :func:`check_load_range`):
-  an obstacle edge taller than the tyre's radius is refused
-  (:class:`~tyrelab.errors.InputError`); a static load above the property
-  file's ``FZMAX`` is warned about.
+* **before a run** (:func:`check_road_for_tyre`, :func:`check_load_range`,
+  :func:`check_level_for_trailer`): an obstacle edge taller than the tyre's radius
+  is refused (:class:`~tyrelab.errors.InputError`); a static load above the property
+  file's ``FZMAX`` and a road with a grade under the trailer are warned about.
 * **after a run** (:func:`check_run`), on the signal table: rim contact
   (deflection beyond the unloaded radius less the rim radius, or the wheel
   centre below the road), an overturned rig (trailer roll or pitch beyond
@@ -86,6 +86,41 @@ def check_road_for_tyre(road, tyre) -> None:
                          f"than the tyre's unloaded radius {r0:.4g} m; the models hold for "
                          f"obstacles up to {limit:.4g} m: use a smaller obstacle or a larger tyre",
                          field="road")
+
+
+#: a road whose height along the trailer's test-wheel path rises or falls by more than the
+#: height that rolls the frame this far [deg] between the run's first and last quarter is
+#: warned about: the trailer's hitch and left wheel stay on level ground
+GRADE_ROLL = 5.0
+
+
+def check_level_for_trailer(road, x0: float, x1: float, track: float) -> str | None:
+    """Warn when ``road``'s height along the trailer's test-wheel path (y = 0) from ``x0`` to
+    ``x1`` [m] rises or falls, from the median of the run's first quarter to that of its last,
+    by more than ``track`` sin(GRADE_ROLL) [m]: a grade, a step up or down, a long wave. The
+    towing vehicle's hitch and the left wheel stay on level ground, so the frame rolls to
+    follow the test wheel (on a 22 m road rising 1.2 m, 32 deg: "overturned", with advice
+    about obstacles). Medians, not a fitted line or the range: an obstacle or a rough track
+    between level ends (a pothole 0.5 m deep) leaves them where they were. Returns the
+    message, if any."""
+    xmin, xmax = road.extent()[:2]
+    x0, x1 = max(x0, xmin), min(x1, xmax)
+    if not x1 > x0:
+        return None
+    xs = np.linspace(x0, x1, 2001)
+    z = np.asarray(road.height(xs, np.zeros_like(xs)), dtype=float)
+    quarter = xs.size // 4
+    rise = float(np.median(z[-quarter:]) - np.median(z[:quarter]))
+    limit = track * math.sin(math.radians(GRADE_ROLL))
+    if abs(rise) <= limit:
+        return None
+    message = (f"road '{road.name}' {'rises' if rise > 0 else 'falls'} {abs(rise):.3g} m from the "
+               f"first quarter of the run's {x1 - x0:.3g} m to its last: the trailer's hitch and "
+               f"left wheel stay on level ground, so its frame rolls beyond {GRADE_ROLL:g} deg to "
+               "follow the test wheel; for a road with a grade or long waves use the "
+               "quarter-vehicle rig")
+    _warn(message)
+    return message
 
 
 def check_load_range(tyre, wheel_load: float) -> None:
