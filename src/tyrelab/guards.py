@@ -92,35 +92,48 @@ def check_road_for_tyre(road, tyre) -> None:
 #: height that rolls the frame this far [deg] between the run's first and last quarter is
 #: warned about: the trailer's hitch and left wheel stay on level ground
 GRADE_ROLL = 5.0
+#: ... and under the rolling rig, whose axle is held at a fixed height, by more than this
+#: fraction of the tyre's static deflection (the load changes by about as much)
+LEVEL_DEFLECTION = 0.5
 
 
-def check_level_for_trailer(road, x0: float, x1: float, track: float) -> str | None:
-    """Warn when ``road``'s height along the trailer's test-wheel path (y = 0) from ``x0`` to
-    ``x1`` [m] rises or falls, from the median of the run's first quarter to that of its last,
-    by more than ``track`` sin(GRADE_ROLL) [m]: a grade, a step up or down, a long wave. The
-    towing vehicle's hitch and the left wheel stay on level ground, so the frame rolls to
-    follow the test wheel (on a 22 m road rising 1.2 m, 32 deg: "overturned", with advice
-    about obstacles). Medians, not a fitted line or the range: an obstacle or a rough track
-    between level ends (a pothole 0.5 m deep) leaves them where they were. Returns the
-    message, if any."""
+def level_change(road, x0: float, x1: float) -> float:
+    """How far [m] ``road``'s height along y = 0 rises from ``x0`` to ``x1`` [m]: the median of
+    the path's last quarter less that of its first. A grade, a step up or down, a long wave;
+    not an obstacle or a rough track between level ends (a pothole 0.5 m deep leaves both
+    medians where they were, as a fitted line or the range would not)."""
     xmin, xmax = road.extent()[:2]
     x0, x1 = max(x0, xmin), min(x1, xmax)
     if not x1 > x0:
-        return None
+        return 0.0
     xs = np.linspace(x0, x1, 2001)
     z = np.asarray(road.height(xs, np.zeros_like(xs)), dtype=float)
     quarter = xs.size // 4
-    rise = float(np.median(z[-quarter:]) - np.median(z[:quarter]))
-    limit = track * math.sin(math.radians(GRADE_ROLL))
+    return float(np.median(z[-quarter:]) - np.median(z[:quarter]))
+
+
+def check_level(road, x0: float, x1: float, limit: float, why: str) -> str | None:
+    """Warn when ``road`` rises or falls by more than ``limit`` [m] along the run from ``x0`` to
+    ``x1`` [m] (:func:`level_change`), a rig that cannot follow it saying ``why``; returns the
+    message, if any."""
+    rise = level_change(road, x0, x1)
     if abs(rise) <= limit:
         return None
     message = (f"road '{road.name}' {'rises' if rise > 0 else 'falls'} {abs(rise):.3g} m from the "
-               f"first quarter of the run's {x1 - x0:.3g} m to its last: the trailer's hitch and "
-               f"left wheel stay on level ground, so its frame rolls beyond {GRADE_ROLL:g} deg to "
-               "follow the test wheel; for a road with a grade or long waves use the "
-               "quarter-vehicle rig")
+               f"first quarter of the run's {x1 - x0:.3g} m to its last: {why}; for a road with a "
+               "grade or long waves use the quarter-vehicle rig")
     _warn(message)
     return message
+
+
+def check_level_for_trailer(road, x0: float, x1: float, track: float) -> str | None:
+    """:func:`check_level` for the trailer, whose towing vehicle's hitch and left wheel stay on
+    level ground: its frame rolls to follow the test wheel, beyond :data:`GRADE_ROLL` when
+    the road rises by ``track`` sin(GRADE_ROLL) (on a 22 m road rising 1.2 m, 31 deg:
+    "overturned", with advice about obstacles)."""
+    return check_level(road, x0, x1, track * math.sin(math.radians(GRADE_ROLL)),
+                       "the trailer's hitch and left wheel stay on level ground, so its frame "
+                       f"rolls beyond {GRADE_ROLL:g} deg to follow the test wheel")
 
 
 def check_load_range(tyre, wheel_load: float) -> None:
