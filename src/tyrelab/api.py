@@ -68,7 +68,7 @@ def _default_duration(road, speed: float) -> float:
 
 
 def divergence_error(exc: Exception, tm: TyreModel, dt: float, wheel_load: float,
-              terrain=None) -> SimulationError:
+                     terrain=None) -> SimulationError:
     """A divergence as one line naming the step size and the likely parameter."""
     from .limits import stable_step, wheel_hop_omega
     limit, why = stable_step(tm, wheel_load)

@@ -28,8 +28,8 @@ import copy
 import math
 import warnings
 
-from ..api import make_tyre_model
 from .. import limits
+from ..api import make_tyre_model
 from ..errors import InputError
 from ..guards import PhysicsWarning
 from ..road.terrain import ground_range
