@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import math
 import os
+from typing import NamedTuple
 
 from .errors import InputError
 
@@ -223,9 +224,35 @@ def check_count(value, field: str, low: int, high: int, what: str | None = None)
     return int(value)
 
 
-def check_sampling_step(step, field: str = "step") -> float:
-    """A contact model's sampling step [m] along a section: a finite number > 0."""
-    return check_number(step, field, low=0.0, low_open=True, unit="m", what="sampling step")
+class Bound(NamedTuple):
+    """The bound of a model's option: ``what`` it is (for the message), ``low`` to ``high``
+    (None: no bound that side; ``low_open``: ``low`` itself excluded) in ``unit``; ``whole``
+    for a count (:func:`check_count`, which needs both ends)."""
+
+    what: str | None
+    low: float | None = None
+    high: float | None = None
+    unit: str = ""
+    whole: bool = False
+    low_open: bool = False
+
+
+#: a contact model's sampling step [m] along a section: a finite number > 0
+SAMPLING_STEP = Bound("sampling step", 0.0, unit="m", low_open=True)
+
+
+def bounded_options(options: dict, bounds: dict) -> dict:
+    """The options among ``options`` that ``bounds`` (name -> :class:`Bound`) bounds, checked
+    and converted; one given as None is left out (the model's default). An impossible value
+    is an :class:`InputError` whose field is the option's name."""
+    out = {}
+    for key, b in bounds.items():
+        value = options.get(key)
+        if value is None:
+            continue
+        out[key] = (check_count(value, key, b.low, b.high, b.what) if b.whole else
+                    check_number(value, key, b.low, b.high, b.unit, low_open=b.low_open, what=b.what))
+    return out
 
 
 def check_speed(speed, field: str = "speed") -> float:

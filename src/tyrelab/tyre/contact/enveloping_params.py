@@ -11,11 +11,12 @@ short.
 
 from __future__ import annotations
 
+from functools import partial
 from typing import NamedTuple
 
 import numpy as np
 
-from ...limits import MAX_CAMS, check_count, check_number, check_sampling_step
+from ...limits import MAX_CAMS, SAMPLING_STEP, Bound, bounded_options
 
 #: length of the ground's blocks whose bounds let cams skip road they cannot touch [m]
 BLOCK = 0.05
@@ -35,20 +36,13 @@ FIT_STEPS = ("vertical", "damping", "patch", "shape")
 CAM_LAYOUTS = ("grid", "outline")
 
 
-def cam_option_values(options: dict) -> dict:
-    """The bounded options of the enveloping models among ``options``, checked and converted:
-    ``n_width``, ``n_length`` 1 to :data:`~tyrelab.limits.MAX_CAMS` cams, ``step`` > 0 m,
-    ``min_patch_deflection`` >= 0 m (an :class:`InputError` on the option's name)."""
-    out = {}
-    for key, what in (("n_width", "cams across the width"), ("n_length", "cams along the length")):
-        if options.get(key) is not None:
-            out[key] = check_count(options[key], key, 1, MAX_CAMS, what)
-    if options.get("step") is not None:
-        out["step"] = check_sampling_step(options["step"])
-    if options.get("min_patch_deflection") is not None:
-        out["min_patch_deflection"] = check_number(options["min_patch_deflection"],
-                                                   "min_patch_deflection", low=0.0, unit="m")
-    return out
+#: the bounded options of the enveloping models (``cam_option_values``)
+CAM_BOUNDS = {"n_width": Bound("cams across the width", 1, MAX_CAMS, whole=True),
+              "n_length": Bound("cams along the length", 1, MAX_CAMS, whole=True),
+              "step": SAMPLING_STEP,
+              "min_patch_deflection": Bound(None, 0.0, unit="m")}
+#: the enveloping models' option values, checked (``ContactModel.check_values``)
+cam_option_values = partial(bounded_options, bounds=CAM_BOUNDS)
 
 
 class EnvelopingParams(NamedTuple):

@@ -44,6 +44,7 @@ a few operations per disc.
 from __future__ import annotations
 
 import math
+from functools import partial
 from typing import NamedTuple
 
 import numba as nb
@@ -51,7 +52,7 @@ import numpy as np
 
 from ...core.vec3 import unit, wheel_axes
 from ...errors import InputError
-from ...limits import MAX_DISCS, check_count, check_sampling_step
+from ...limits import MAX_DISCS, SAMPLING_STEP, Bound, bounded_options
 from ...road.terrain import terrain_height, terrain_range, terrain_zmax
 from ..model import TyreModel, contact_geometry_table
 from ..registry import ContactModel, register_contact
@@ -86,16 +87,10 @@ class VolumeParams(NamedTuple):
     profile_breaks: np.ndarray
 
 
-def volume_option_values(options: dict) -> dict:
-    """The bounded options of the volume model among ``options``, checked and converted:
-    ``discs`` at least 1 per half width, ``step`` > 0 m (an :class:`InputError` on the
-    option's name)."""
-    out = {}
-    if options.get("discs") is not None:
-        out["discs"] = check_count(options["discs"], "discs", 1, MAX_DISCS, "discs per half width")
-    if options.get("step") is not None:
-        out["step"] = check_sampling_step(options["step"])
-    return out
+#: the bounded options of the volume model: ``discs`` per half width, the sampling ``step``
+VOLUME_BOUNDS = {"discs": Bound("discs per half width", 1, MAX_DISCS, whole=True), "step": SAMPLING_STEP}
+#: the volume model's option values, checked (``ContactModel.check_values``)
+volume_option_values = partial(bounded_options, bounds=VOLUME_BOUNDS)
 
 
 def volume_params(tyre, grid, discs=None, step=DEFAULT_STEP, **options) -> VolumeParams:

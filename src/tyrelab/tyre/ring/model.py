@@ -12,12 +12,13 @@ bottom: both run :func:`~.kernel.ring_step`.
 from __future__ import annotations
 
 import math
+from functools import partial
 
 import numpy as np
 
 from ...errors import InputError
 from ...limits import (DYNAMIC_INTERNAL_STEP, MAX_LATERAL_SAMPLES, MAX_RING_BLOCKS, MAX_RING_SEGMENTS,
-                       MIN_RING_SEGMENTS, check_count, check_number)
+                       MIN_RING_SEGMENTS, Bound, bounded_options)
 from ..registry import ContactModel, register_contact
 from .kernel import ring_step
 from .parameters import ring_parameters, stable_step, tread_half_width
@@ -51,30 +52,15 @@ _OPTION_TYPES = {"n_segments": int, "n_blocks": int, "friction": float, "dt_max"
                  "pattern": object, "parameters": object, "relax": float, "lateral_samples": int}
 
 
-def ring_option_values(options: dict) -> dict:
-    """The bounded options of the ring models among ``options``, checked and converted:
-    ``n_segments`` and ``n_blocks`` within :data:`~tyrelab.limits.MIN_RING_SEGMENTS` ..
-    :data:`~tyrelab.limits.MAX_RING_SEGMENTS` and 1 .. :data:`~tyrelab.limits.MAX_RING_BLOCKS`,
-    ``friction`` >= 0, ``relax`` >= 0 1/s, ``lateral_samples`` 1 ..
-    :data:`~tyrelab.limits.MAX_LATERAL_SAMPLES` (an :class:`InputError` on the option's name).
-    ``dt_max`` depends on the parameters: :func:`ring_params` checks it."""
-    out = {}
-    if options.get("n_segments") is not None:
-        out["n_segments"] = check_count(options["n_segments"], "n_segments", MIN_RING_SEGMENTS,
-                                        MAX_RING_SEGMENTS, "ring segments")
-    if options.get("n_blocks") is not None:
-        out["n_blocks"] = check_count(options["n_blocks"], "n_blocks", 1, MAX_RING_BLOCKS,
-                                      "tread blocks per segment")
-    if options.get("friction") is not None:
-        out["friction"] = check_number(options["friction"], "friction", low=0.0,
-                                       what="friction coefficient")
-    if options.get("relax") is not None:
-        out["relax"] = check_number(options["relax"], "relax", low=0.0, unit="1/s",
-                                    what="relaxation rate")
-    if options.get("lateral_samples") is not None:
-        out["lateral_samples"] = check_count(options["lateral_samples"], "lateral_samples", 1,
-                                             MAX_LATERAL_SAMPLES, "lateral samples")
-    return out
+#: the bounded options of the ring models (``dt_max`` depends on the parameters:
+#: :func:`ring_params` checks it)
+RING_BOUNDS = {"n_segments": Bound("ring segments", MIN_RING_SEGMENTS, MAX_RING_SEGMENTS, whole=True),
+               "n_blocks": Bound("tread blocks per segment", 1, MAX_RING_BLOCKS, whole=True),
+               "friction": Bound("friction coefficient", 0.0),
+               "relax": Bound("relaxation rate", 0.0, unit="1/s"),
+               "lateral_samples": Bound("lateral samples", 1, MAX_LATERAL_SAMPLES, whole=True)}
+#: the ring models' option values, checked (``ContactModel.check_values``)
+ring_option_values = partial(bounded_options, bounds=RING_BOUNDS)
 
 
 def ring_params(tyre, grid=None, tread_pattern=False, n_segments=N_SEGMENTS, n_blocks=N_BLOCKS,
