@@ -83,6 +83,32 @@ def _numbers(text: str, spec: str, count_min: int, count_max: int) -> list[float
     return [float(p) for p in parts]
 
 
+#: the road names whose road is synthesised from a spectrum: ``iso8608:CLASS[@SEED]``,
+#: ``powerlaw:A,N[@SEED]``
+RANDOM_KINDS = ("iso8608", "powerlaw")
+
+
+def random_road_args(kind: str, args: str, text: str) -> tuple:
+    """``(spectrum, seed)`` of the random road named ``text`` (``kind:args``, a kind of
+    :data:`RANDOM_KINDS`): the ISO 8608 class letter or the power law's ``(A, N)``, and the
+    seed (default 0), read without building the road; an :class:`InputError` on ``road``."""
+    body, _, seed_txt = args.partition("@")
+    if seed_txt and not seed_txt.isdigit():
+        raise InputError(f"cannot read seed '{seed_txt}' in road '{text}'; expected a whole "
+                         "number >= 0", field="road")
+    seed = int(seed_txt) if seed_txt else 0
+    if kind == "iso8608":
+        if body.upper() not in tuple("ABCDEFGH"):
+            raise InputError(f"unknown ISO 8608 class '{body}' in road '{text}'; expected A to H",
+                             field="road")
+        return body.upper(), seed
+    parts = body.split(",")
+    if len(parts) != 2 or not all(re.fullmatch(_NUM, p) for p in parts) or float(parts[0]) <= 0:
+        raise InputError(f"cannot read '{body}' in road '{text}'; expected A,N with A > 0 "
+                         "(A in m^2/(cycles/m), N the road exponent)", field="road")
+    return (float(parts[0]), float(parts[1])), seed
+
+
 def road_from_spec(spec: str | Road, force: bool = False) -> Road:
     """A :class:`Road` from its name (see the module docstring).
 
@@ -127,27 +153,10 @@ def road_from_spec(spec: str | Road, force: bool = False) -> Road:
             vals = _numbers(args, text, 2, 3)
             width = vals[2] / 1e3 if len(vals) > 2 else None
             return ob.Pothole(depth=vals[0] / 1e3, length=vals[1] / 1e3, width=width, start=OBSTACLE_START)
-    if kind in ("iso8608", "powerlaw") and args:
+    if kind in RANDOM_KINDS and args:
         from .iso8608 import RandomRoad
-        body, _, seed_txt = args.partition("@")
-        seed = 0
-        if seed_txt:
-            if not seed_txt.isdigit():
-                raise InputError(f"cannot read seed '{seed_txt}' in road '{text}'; expected a whole "
-                                 "number >= 0", field="road")
-            seed = int(seed_txt)
-        if kind == "iso8608":
-            if body.upper() not in tuple("ABCDEFGH"):
-                raise InputError(f"unknown ISO 8608 class '{body}' in road '{text}'; expected A to H",
-                                 field="road")
-            spec_ = body.upper()
-        else:
-            parts = body.split(",")
-            if len(parts) != 2 or not all(re.fullmatch(_NUM, p) for p in parts) or float(parts[0]) <= 0:
-                raise InputError(f"cannot read '{body}' in road '{text}'; expected A,N with A > 0 "
-                                 "(A in m^2/(cycles/m), N the road exponent)", field="road")
-            spec_ = (float(parts[0]), float(parts[1]))
-        return RandomRoad(spec_, seed=seed, start=OBSTACLE_START, taper=2.0, force=force)
+        spectrum, seed = random_road_args(kind, args, text)
+        return RandomRoad(spectrum, seed=seed, start=OBSTACLE_START, taper=2.0, force=force)
     if text.lower() in _tracks():
         return built_track(text.lower())
     named = road_file(text)

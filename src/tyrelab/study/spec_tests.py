@@ -40,7 +40,7 @@ _DISCRETE_TRACKS = ("trapezoidal-bump",)
 def _road(ck: Checker, value, path) -> tuple[str, str]:
     """A road name checked without building it: ``(road for simulate, inferred group)``."""
     from ..road.formats import road_file
-    from ..road.spec import _NUM, _tracks, road_from_spec, road_names
+    from ..road.spec import _NUM, RANDOM_KINDS, _tracks, random_road_args, road_from_spec, road_names
 
     text = ck.string(value, path, "a road name").strip()
     if not text:
@@ -57,16 +57,11 @@ def _road(ck: Checker, value, path) -> tuple[str, str]:
         return f"{file}@{offset}" if offset else str(file), "rough tracks"
     kind, _, args = text.partition(":")
     kind = kind.lower()
-    if kind in ("iso8608", "powerlaw") and args:  # synthesised when built: checked here instead
-        body, _, seed = args.partition("@")
-        if seed and not seed.isdigit():
-            ck.fail(path, f"cannot read seed '{seed}' in road '{text}'; expected a whole number >= 0")
-        if kind == "iso8608" and body.upper() not in tuple("ABCDEFGH"):
-            ck.fail(path, f"unknown ISO 8608 class '{body}' in road '{text}'; expected A to H")
-        if kind == "powerlaw":
-            parts = body.split(",")
-            if len(parts) != 2 or not all(re.fullmatch(_NUM, p) for p in parts) or float(parts[0]) <= 0:
-                ck.fail(path, f"cannot read '{body}' in road '{text}'; expected A,N with A > 0")
+    if kind in RANDOM_KINDS and args:  # synthesised when built: its name is checked here instead
+        try:
+            random_road_args(kind, args, text)
+        except InputError as exc:
+            ck.fail(path, exc.reason)
         return text, "rough tracks"
     try:  # what is left is flat or an obstacle: small objects, no grid is built
         road_from_spec(text)
