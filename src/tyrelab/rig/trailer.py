@@ -294,7 +294,8 @@ class Trailer:
         half = 0.5 * self.geometry.track
         # the left wheel on its level rigid ground, in the state it starts in (the trials
         # leave a ring's belt as it is: they do not step it)
-        left = self.left.wheel(Flat().grid(), load, state=left_state)
+        level = Flat().grid()
+        left = self.left.wheel(level, load, state=left_state)
         x, y, axis, z_right, roll = x0, 0.0, UPRIGHT, None, 0.0
         for _ in range(MAX_SETTLE_ROUNDS):
             # the trials static (the ring's dynamic settling, up to SETTLE_TIME of its steps,
@@ -319,7 +320,7 @@ class Trailer:
                 break
             # the left wheel where its model carries the load inclined as the frame holds it (a
             # wide tyre's shoulder dips: not the disc's cos(roll))
-            z_left = settle(left, None, load, 0.0, self.left.tyre.unloaded_radius, axis=axis)
+            z_left = settle(left, level, load, 0.0, self.left.tyre.unloaded_radius, axis=axis)
         z_right = settle(wheel, ground, load, x, r0, y=y, dynamic=dynamic, dt=dt, axis=axis)
         return wheel, ground, z_right, z_left, meta
 
