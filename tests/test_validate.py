@@ -218,3 +218,89 @@ def test_summary_html_and_cli_csv_with_column_map(tmp_path, capsys):
     err = capsys.readouterr().err
     assert code == 2 and "sim.parquet" in err and "FY" in err
     assert not (tmp_path / "q.html").exists()
+
+
+def test_a_logger_on_the_opposite_axis_is_warned_and_read_with_a_minus(tmp_path, capsys):
+    """A load cell logging the road's force on the tyre along z down (ISO W-axis) gives FZ < 0.
+    Compared as given, the prediction is the exact negative of the measurement, so its mean is
+    off by 200 % of the measured mean. The comparison warns, naming the column map's '-FZ';
+    read with '-FZ', the same file matches the prediction exactly, without a warning."""
+    meas = cleat()
+    csv = tmp_path / "logger.csv"
+    csv.write_text("t_s,fz_kN\n" + "".join(f"{t!r},{-f / 1e3!r}\n" for t, f in
+                                          zip(meas["RUNTIME"], meas["FZ"])))
+    write_signal(meas, tmp_path / "sim.parquet")
+    sim = str(tmp_path / "sim.parquet")
+    plain, minus = tmp_path / "plain.csv", tmp_path / "minus.csv"
+    plain.write_text("t_s,RUNTIME,s\nfz_kN,FZ,kN\n")
+    minus.write_text("t_s,RUNTIME,s\nfz_kN,-FZ,kN\n")
+    code = main(["validate", sim, str(csv), "--column-map", str(plain),
+                 "--segments", "none", "--html", str(tmp_path / "a.html")])
+    out, err = capsys.readouterr()
+    assert code == 0 and "| mean_error_pct | % | -200 |" in out
+    assert "warning:" in err and "logger.csv: the measured FZ averages -3.03" in err
+    assert "'-FZ' in the column map" in err
+    code = main(["validate", sim, str(csv), "--column-map", str(minus),
+                 "--segments", "none", "--html", str(tmp_path / "b.html")])
+    out, err = capsys.readouterr()
+    assert code == 0 and "warning" not in err
+    from tyrelab.measure.io import read_run
+    res = compare_runs(meas, read_run(csv, column_map=minus))
+    assert res["SG_C"] == pytest.approx(0.0, abs=1e-9)
+    assert res["mean_error_pct"] == pytest.approx(0.0, abs=1e-9)
+    (tmp_path / "time.csv").write_text("t_s,-RUNTIME,s\nfz_kN,FZ,kN\n")
+    code = main(["validate", sim, str(csv), "--column-map", str(tmp_path / "time.csv")])
+    assert code == 2 and "'-RUNTIME'" in capsys.readouterr().err
+
+
+def test_a_signal_without_a_disturbance_names_the_file_and_the_way_out(tmp_path, capsys):
+    """A constant measurement has no disturbance for the automatic segmentation to find, and
+    no energy about its mean for the Sprague-Geers magnitude: both refusals name the file."""
+    m = cleat()
+    write_signal(m, tmp_path / "sim.parquet")
+    flat = make_signal({"RUNTIME": m["RUNTIME"], "FZ": np.full(len(m), 30e3)})
+    write_signal(flat, tmp_path / "flat.parquet")
+    args = ["validate", str(tmp_path / "sim.parquet"), str(tmp_path / "flat.parquet"),
+            "--html", str(tmp_path / "p.html")]
+    assert main(args) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "flat.parquet: FZ: --segments auto:" in err
+    assert "--segments none" in err
+    assert main(args + ["--segments", "none"]) == 2
+    err = capsys.readouterr().err
+    assert "sim.parquet vs" in err and "flat.parquet" in err and "the measurement equals" in err
+    assert not (tmp_path / "p.html").exists()
+
+
+def test_missing_measured_samples_say_why_the_psd_is_left_out(tmp_path, capsys):
+    """NaN samples dropped from the measurement leave an uneven time base, on which Welch's PSD
+    is not defined: the PSD metrics are absent and the notes say why, rather than vanish."""
+    m = cleat()
+    gappy = m.copy()
+    gappy.loc[100:149, "FZ"] = np.nan
+    write_signal(m, tmp_path / "sim.parquet")
+    write_signal(gappy, tmp_path / "gappy.parquet")
+    code = main(["validate", str(tmp_path / "sim.parquet"), str(tmp_path / "gappy.parquet"),
+                 "--html", str(tmp_path / "p.html")])
+    out = capsys.readouterr().out
+    assert code == 0 and "psd_lsd_dB" not in out
+    assert "no PSD metrics: 50 measured samples are missing (NaN)" in out
+
+
+def test_a_psd_of_fewer_samples_than_its_shortest_segment_is_one_welch_window():
+    """The Welch segment never exceeds the record (scipy would warn and shorten it): seven
+    samples asked for in two-second segments at 1 Hz are one periodic-Hann window, whose
+    one-sided PSD summed over its four bins (df = fs / 7) is, by the discrete Parseval
+    theorem, the windowed mean square of the mean-removed record."""
+    import warnings
+
+    from scipy.signal import get_window
+
+    from tyrelab.validate import psd
+    y = np.sin(np.arange(7) * 0.9)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        f, pxx = psd(y, fs=1.0, segment_seconds=2.0)
+    w, yd = get_window("hann", 7), y - y.mean()
+    assert f.size == 4
+    assert pxx.sum() / 7 == pytest.approx(np.sum((w * yd) ** 2) / np.sum(w ** 2), rel=1e-12)

@@ -83,6 +83,22 @@ def _shift(text: str):
     return value
 
 
+def _compare(aligned, segments, args) -> dict:
+    """:func:`~tyrelab.validate.compare.compare_aligned`; where the automatic segmentation finds
+    no disturbance in the measurement, the error names the file and the options that avoid it."""
+    from ..validate.compare import compare_aligned
+    try:
+        return compare_aligned(aligned, segments, slope=args.slope)
+    except InputError as exc:
+        if segments == "auto" and exc.field == "signal":
+            raise InputError(f"--segments auto: {exc.reason}; give --segments none (no split) or "
+                             "T0:T1[:T2] seconds", source=args.meas, field=args.channel) from None
+        if exc.source is None:  # a metric of the pair: name both files
+            raise InputError(exc.reason, source=f"{args.sim} vs {args.meas}",
+                             field=exc.field or args.channel) from None
+        raise
+
+
 def register(subparsers) -> None:
     p = subparsers.add_parser(
         "validate", help="compare a simulated run with a measurement (thesis chapter 5)",
@@ -121,7 +137,7 @@ def run(args: argparse.Namespace) -> int:
     from ..measure.io import read_run
     from ..report.validation_page import page_html, write_page
     from ..validate.align import align
-    from ..validate.compare import METRICS, compare_aligned, metric_row
+    from ..validate.compare import METRICS, metric_row
     from ..validate.tables import metrics_table, table_html, table_markdown_by_metric
 
     from ..io_atomic import check_output_path
@@ -140,7 +156,7 @@ def run(args: argparse.Namespace) -> int:
     if segments == "geometry":
         segments = _geometry_segments(args, meas)
     aligned = align(sim, meas, args.channel, shift, args.max_shift)
-    result = compare_aligned(aligned, segments, slope=args.slope)
+    result = _compare(aligned, segments, args)
     rows = {Path(args.sim).stem: metric_row(result)}
     notes = [f"channel {args.channel}; simulation shifted by {aligned.shift:.4g} s; "
              f"{aligned.t.size} compared samples, {aligned.dropped} dropped (NaN)"]
@@ -151,9 +167,10 @@ def run(args: argparse.Namespace) -> int:
                      f" ({seg.method})")
     if args.repeat:
         other = read_run(args.repeat, column_map=args.column_map)
-        rep = compare_aligned(align(other, meas, args.channel, shift, args.max_shift),
-                              segments if segments is not None else None, slope=args.slope)
+        rep = _compare(align(other, meas, args.channel, shift, args.max_shift), segments, args)
         rows["measured repeatability"] = metric_row(rep)
+    if "psd_skipped" in result["details"]:
+        notes.append(f"no PSD metrics: {result['details']['psd_skipped']}")
     table = metrics_table(rows)
     print(table_markdown_by_metric(table, {k: u for k, (u, _) in METRICS.items()}))
     for note in notes:

@@ -8,6 +8,10 @@ keep, which signal channel it is and in which unit it was logged::
 
 or, as a small CSV file read by :func:`read_column_map`, lines
 ``source,channel,unit`` (a header line ``source,channel,unit`` is optional).
+A channel written with a leading minus (``"-FZ"``) is logged with the opposite
+sign: a load cell whose axis points the other way from the TYDEX C-axis
+system's (z up, the road's force on the tyre), as an ISO W-axis logger's vertical
+force does. The column is negated when read.
 Values are converted to SI (:mod:`tyrelab.measure.units`); columns not in
 the map are ignored. Lines that start with ``#`` and blank lines are
 skipped; empty cells read as NaN.
@@ -119,6 +123,13 @@ def read_mapped_csv(path, column_map: dict, delimiter: str = ",",
     path = Path(path)
     if not path.is_file():
         raise InputError("no such file", source=str(path))
+    signs = {src: -1.0 if ch.startswith("-") else 1.0 for src, (ch, _) in column_map.items()}
+    for src, (ch, _) in column_map.items():
+        if ch == "-RUNTIME":
+            raise InputError("time cannot be logged with the opposite sign ('-RUNTIME'); "
+                             "a minus belongs to a force, moment or position channel",
+                             source=str(path), field=src)
+    column_map = {src: (ch.removeprefix("-"), unit) for src, (ch, unit) in column_map.items()}
     channels = [ch for ch, _ in column_map.values()]
     if len(set(channels)) != len(channels):
         raise InputError("two source columns map to the same channel", source=str(path))
@@ -140,7 +151,7 @@ def read_mapped_csv(path, column_map: dict, delimiter: str = ",",
     if not rows:
         raise InputError("no data rows", source=str(path))
     with np.errstate(over="ignore"):
-        si = {ch: to_si(data[ch], unit, source=str(path), field=src)
+        si = {ch: signs[src] * to_si(data[ch], unit, source=str(path), field=src)
               for src, (ch, unit) in column_map.items()}
     for src, (ch, _) in column_map.items():
         over = np.isinf(si[ch])

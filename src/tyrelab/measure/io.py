@@ -21,6 +21,12 @@ def read_run(path, column_map=None) -> pd.DataFrame:
     this project wrote).
     """
     path = Path(path)
+    df = _read(path, column_map)
+    df.attrs["path"] = str(path)  # what a later message about this run names
+    return df
+
+
+def _read(path: Path, column_map) -> pd.DataFrame:
     suffix = path.suffix.lower()
     if suffix == ".tdx":
         return read_tydex(path)

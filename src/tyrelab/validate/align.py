@@ -8,6 +8,13 @@ inside the simulated interval are compared (no extrapolation), and samples
 where either value is NaN (``NOTAVAIL`` in a TYDEX file) are dropped; the
 number dropped is reported.
 
+Both runs must follow one sign convention, the TYDEX C-axis system's (z up, the
+road's force on the tyre; ``docs/formats.md``). A measurement whose compared
+channel holds, on average, the opposite sign from the simulation's, each mean
+larger than its own scatter, was almost surely logged on an axis pointing the
+other way: :func:`check_signs` warns (:class:`SignWarning`) and names the
+column map's ``-CHANNEL`` that reads it. The metrics are computed as given.
+
 A shift can be estimated by cross-correlation (``shift="auto"``): the
 mean-removed signals are put on a uniform grid at the measurement's median
 step, the lag with the largest correlation within ``max_shift`` is taken and
@@ -19,11 +26,17 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+import warnings
+
 import numpy as np
 import pandas as pd
 from scipy.signal import correlate, correlation_lags
 
 from ..errors import InputError
+
+
+class SignWarning(UserWarning):
+    """A measured channel seems to follow the opposite sign convention from the simulation's."""
 
 
 @dataclass
@@ -115,13 +128,14 @@ def align(sim: pd.DataFrame, meas: pd.DataFrame, channel: str = "FZ",
     max_shift : float, optional
         Limit of the estimated shift in seconds.
     """
+    names = {id(sim): _named(sim, "simulation"), id(meas): _named(meas, "measurement")}
     for name, df in (("simulation", sim), ("measurement", meas)):
         for col in ("RUNTIME", channel):
             if col not in df.columns:
                 raise InputError(f"the {name} has no channel {col}", field=col,
-                                 source=df.attrs.get("metadata", {}).get("source"))
-    t_sim = check_time(sim["RUNTIME"].to_numpy(), source="simulation")
-    t_meas = check_time(meas["RUNTIME"].to_numpy(), source="measurement")
+                                 source=names[id(df)])
+    t_sim = check_time(sim["RUNTIME"].to_numpy(), source=names[id(sim)])
+    t_meas = check_time(meas["RUNTIME"].to_numpy(), source=names[id(meas)])
     y_sim = sim[channel].to_numpy(dtype=float)
     y_meas = meas[channel].to_numpy(dtype=float)
     if isinstance(shift, str):
@@ -135,4 +149,26 @@ def align(sim: pd.DataFrame, meas: pd.DataFrame, channel: str = "FZ",
         raise InputError("the simulation and the measurement do not overlap in time",
                          field="RUNTIME")
     dropped = int(np.sum(inside & ~np.isfinite(y_meas)))
+    check_signs(p[keep], y_meas[keep], channel, names[id(meas)])
     return Aligned(t_meas[keep], p[keep], y_meas[keep], float(shift), dropped, channel)
+
+
+def _named(df: pd.DataFrame, role: str) -> str:
+    """The run's file (``attrs["path"]``, set by :func:`~tyrelab.measure.io.read_run`), or
+    its metadata's source, or its role."""
+    return str(df.attrs.get("path") or df.attrs.get("metadata", {}).get("source") or role)
+
+
+def check_signs(p, m, channel: str, source: str) -> bool:
+    """Warn (:class:`SignWarning`) when the measured channel ``m`` and the prediction ``p``
+    have means of opposite sign, each larger than its own standard deviation: one of the
+    two was logged on an axis that points the other way. Returns True when it warned."""
+    mp, mm = float(np.mean(p)), float(np.mean(m))
+    if mp * mm < 0 and abs(mp) > float(np.std(p)) and abs(mm) > float(np.std(m)):
+        warnings.warn(f"{source}: the measured {channel} averages {mm:.4g} and the simulated "
+                      f"{mp:.4g}: opposite signs. tyrelab's channels follow the TYDEX C-axis "
+                      f"system (z up, the road's force on the tyre: FZ > 0 under load); a logger "
+                      f"column on an axis pointing the other way is read with '-{channel}' in "
+                      "the column map", SignWarning, stacklevel=3)
+        return True
+    return False

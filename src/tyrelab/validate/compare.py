@@ -128,6 +128,9 @@ def compare_aligned(aligned: Aligned, segments=None, slope: float = DEFAULT_SLOP
         fs = sample_rate(t)
     except InputError:
         fs = None  # non-uniform measured time base: no PSD
+        details["psd_skipped"] = (
+            f"{aligned.dropped} measured samples are missing (NaN), so the compared ones are not "
+            "evenly spaced" if aligned.dropped else "the measured time step is not uniform")
     if fs is not None:
         spec = compare_psd(p, m, fs, segment_seconds=min(t[-1] - t[0], 2.0))
         band = spec["0-infHz"]

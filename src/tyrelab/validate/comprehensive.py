@@ -50,9 +50,10 @@ def _integrals(p, m, t=None, baseline=None):
         i_mm = float(np.trapezoid(m * m, t))
         i_pp = float(np.trapezoid(p * p, t))
         i_mp = float(np.trapezoid(m * p, t))
-    if not (i_mm > 0.0 and i_pp > 0.0):
-        raise InputError("magnitude/phase error undefined: a signal is zero throughout "
-                         "(after removing the baseline)")
+    for energy, which in ((i_mm, "the measurement"), (i_pp, "the prediction")):
+        if not energy > 0.0:
+            raise InputError(f"magnitude/phase error undefined: {which} equals the baseline "
+                             "throughout (a constant signal)")
     return i_mm, i_pp, i_mp
 
 

@@ -44,7 +44,7 @@ def psd(y, fs: float, segment_seconds: float | None = None):
     """One-sided PSD by Welch's method [1]: (frequency, PSD in unit^2/Hz)."""
     y = np.asarray(y, dtype=float)
     nperseg = y.size if segment_seconds is None else int(round(segment_seconds * fs))
-    nperseg = max(8, min(y.size, nperseg))
+    nperseg = min(y.size, max(8, nperseg))  # never longer than the record
     return welch(y, fs=fs, window="hann", nperseg=nperseg, detrend="constant")
 
 
