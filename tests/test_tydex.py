@@ -135,6 +135,26 @@ def test_truncated_record_and_missing_sections(tmp_path):
         read_tydex(tmp_path / "absent.tdx")
 
 
+def test_a_file_cut_before_its_end_line_is_read_with_a_warning(tmp_path):
+    """A file that lost its closing **END (a copy or a write cut short) still holds whole
+    records; they are read, and the warning names the last record's line."""
+    path = tmp_path / "cut.tdx"
+    path.write_text(HAND.replace("**END\n", ""))
+    with pytest.warns(UserWarning, match=r"cut.tdx: no closing \*\*END.*3 records, the last on line 17"):
+        df = read_tydex(path)
+    np.testing.assert_allclose(df["FZ"], [35e3, 36e3, 34e3])
+
+
+def test_lower_case_channel_names_are_the_tydex_channels(tmp_path):
+    """'fz' spells the TYDEX channel FZ; a name tyrelab does not know keeps its own spelling."""
+    path = tmp_path / "lower.tdx"
+    path.write_text(HAND.replace("FZ        Vertical", "fz        Vertical")
+                    .replace("LONGVEL   Long", "longvelx  Long"))
+    df = read_tydex(path)
+    assert list(df.columns) == ["RUNTIME", "FZ", "longvelx", "SLIPANGL"]
+    np.testing.assert_allclose(df["FZ"], [35e3, 36e3, 34e3])
+
+
 def test_mapped_csv(tmp_path):
     path = tmp_path / "logger.csv"
     path.write_text("# exported by a logger\nTime [ms];Fz_hub (kN);junk\n"
@@ -183,7 +203,8 @@ def test_other_layouts_header_value_in_unit_columns_and_free_channel_lines(tmp_p
             + "FZ Vertical_force kN 2\n"
             + "**MEASURDATA\n"
             + "0.000     1.500\n"
-            + "0.001     1.750\n")
+            + "0.001     1.750\n"
+            + "**END\n")
     path = tmp_path / "other.tdx"
     path.write_text(text)
     df = read_tydex(path)

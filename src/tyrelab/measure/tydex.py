@@ -12,7 +12,11 @@ from 51 on. Other sections (``**MODELPARAMETERS`` ...) are skipped.
 Channel names are the TYDEX names, which the signal table already uses
 (RUNTIME, FX, FY, FZ, MX, MY, MZ in the C-axis system, FXW, FYW, FZW in the
 W-axis system, INCLANGL, ROTSPEED ...); so the mapping is the identity and
-channels the project does not know are kept under their own names.
+channels the project does not know are kept under their own names. A name
+written in lower case (``fz``) is read as the TYDEX channel it spells.
+
+A file without its closing ``**END`` is read, with a warning: it may have been
+cut short while it was written or copied.
 
 Values: a stored number ``raw`` of a channel means ``factor * raw + offset``
 in the channel's unit, which is then converted to SI
@@ -34,6 +38,7 @@ from __future__ import annotations
 
 import json
 import math
+import warnings
 from pathlib import Path
 
 import numpy as np
@@ -91,6 +96,8 @@ def _parse_entry(text: str, numeric: bool):
 def _channel(text: str, path, lineno: int) -> dict:
     """One ``**MEASURCHANNELS`` line -> name, description, unit, factor, offset."""
     name, desc, unit, rest = _parse_entry(text, numeric=True)
+    if name not in CHANNELS and name.upper() in CHANNELS:
+        name = name.upper()  # TYDEX names are upper case; 'fz' is FZ
     numbers = rest.split()
     for tok in numbers:
         if not _is_number(tok):
@@ -243,6 +250,9 @@ def read_tydex(path) -> pd.DataFrame:
     raw, record_lines = _records(sections["**MEASURDATA"], channels, path)
     if raw.shape[0] == 0:
         raise InputError("section **MEASURDATA holds no record", source=str(path))
+    if "**END" not in sections:
+        warnings.warn(f"{path}: no closing **END line: the file may be cut short; read "
+                      f"{raw.shape[0]} records, the last on line {record_lines[-1]}", stacklevel=2)
     data = {}
     with np.errstate(over="ignore", invalid="ignore"):
         for i, ch in enumerate(channels):
