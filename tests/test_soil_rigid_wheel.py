@@ -3,12 +3,14 @@
 The reference, written here from the textbook equations and nothing of tyrelab's soil
 code (Wong, Theory of Ground Vehicles, 2.5; Wong & Reece 1967), is a rigid wheel of
 radius R and width b carrying W in steady state at slip s, in contact over its front
-only (from the entry angle theta1 to the bottom):
+only (from the entry angle theta1 to the bottom). The wheel spins at omega: driven,
+R omega / V = 1 / (1 - s); braked (s < 0, Wong's skid with a minus sign), R omega / V = 1 + s,
+0 when locked:
 
     z(theta)     = R (cos theta - cos theta1)                  sinkage under the rim
     sigma(theta) = (kc / b + kphi) z^n                         Bekker
     j(theta)     = the shear displacement (below)
-    tau(theta)   = (c + sigma tan phi)(1 - exp(-j / K))        Janosi & Hanamoto
+    tau(theta)   = sign(j) (c + sigma tan phi)(1 - exp(-|j| / K))  Janosi & Hanamoto
     W  = b R integral (sigma cos + tau sin) dtheta              solved for theta1
     DP = b R integral (tau cos - sigma sin) dtheta              drawbar pull
     T  = b R^2 integral tau dtheta                              driving torque
@@ -17,8 +19,10 @@ The shear displacement is accumulated along the path of the *soil* point under t
 (the ground stands still; the rim slides over it at v_j = R omega - V cos theta while the
 point passes from theta1 to theta in dt = R cos theta dtheta / V):
 
-    j(theta) = R [(sin theta1 - sin theta) / (1 - s) - (theta1 - theta) / 2
+    j(theta) = R [(sin theta1 - sin theta) R omega / V - (theta1 - theta) / 2
                   - (sin 2 theta1 - sin 2 theta) / 4]
+
+(negative where a braked rim slides forward over the soil: the shear then holds it back)
 
 which is what the SCM bed accumulates per node. Wong & Reece's own j follows a *rim*
 element instead (dt = dtheta / omega): R [(theta1 - theta) - (1 - s)(sin theta1 - sin theta)];
@@ -43,21 +47,27 @@ import tyrelab
 from tyrelab.road.soil import load_soil
 
 LOAD, SPEED = 23.3e3, 1.0
-SLIPS = (0.0, 0.2, 0.6)
+#: braked (locked, half speed), free, driven. The braked slips are those at which the rim
+#: slides forward over the soil along the whole contact (R omega / V below cos theta1 on each
+#: soil): where the sliding reverses inside the contact the bed's shear, which acts against
+#: the current sliding with the distance slid so far, departs from the signed j above
+#: (docs/soil.md, "Limits")
+SLIPS = (-1.0, -0.5, 0.0, 0.2, 0.6)
 SOILS = ("lete-sand", "dry-sand", "sandy-loam")
 
 
 def wong_reece(soil, radius, width, load, slip, n_theta=4000):
     k = soil.kc / width + soil.kphi
     tanphi = math.tan(soil.friction_angle)
+    spin_ratio = 1.0 / (1.0 - slip) if slip >= 0.0 else 1.0 + slip   # R omega / V
 
     def integrals(theta1):
         th = np.linspace(0.0, theta1, n_theta)
         z = radius * (np.cos(th) - np.cos(theta1))
         sigma = k * np.clip(z, 0.0, None) ** soil.n
-        j = radius * ((np.sin(theta1) - np.sin(th)) / (1.0 - slip) - 0.5 * (theta1 - th)
+        j = radius * ((np.sin(theta1) - np.sin(th)) * spin_ratio - 0.5 * (theta1 - th)
                       - 0.25 * (np.sin(2.0 * theta1) - np.sin(2.0 * th)))
-        tau = (soil.cohesion + sigma * tanphi) * (1.0 - np.exp(-np.clip(j, 0.0, None) / soil.janosi_k))
+        tau = np.sign(j) * (soil.cohesion + sigma * tanphi) * (1.0 - np.exp(-np.abs(j) / soil.janosi_k))
         w = width * radius * np.trapezoid(sigma * np.cos(th) + tau * np.sin(th), th)
         dp = width * radius * np.trapezoid(tau * np.cos(th) - sigma * np.sin(th), th)
         torque = width * radius ** 2 * np.trapezoid(tau, th)

@@ -42,9 +42,10 @@ def register(sub):
                    help="the ground over the road: a built-in soil (lete-sand, dry-sand, sandy-loam, "
                         "clayey-soil, snow, chrono-demo), a soil file FILE.toml, or a plugin's terrain "
                         "(tyrelab models); the road is its initial surface")
-    p.add_argument("--slip", type=bounded_float("slip", 0.0, 0.99), default=None,
-                   metavar="S", help="single-wheel tester: the slip s = 1 - V / (R_e omega) "
-                        "(R_e: the model's free-rolling radius on hard ground), 0 to 0.99")
+    p.add_argument("--slip", type=bounded_float("slip", -1.0, 0.99), default=None,
+                   metavar="S", help="single-wheel tester: driving slip s = 1 - V / (R_e omega), 0 to "
+                        "0.99, or braking s = R_e omega / V - 1, -1 (locked) to 0 (R_e: the model's "
+                        "free-rolling radius on hard ground)")
     p.add_argument("--road", default=None,
                    help="road: flat, cleat:WxH[@ANGLE], bump:H, step:H, pothole:DxL[xW], a track name "
                         f"or FILE{'|'.join(road_suffixes())}[@V] (sizes in mm; default cleat:50x50, "

@@ -33,8 +33,9 @@ def register(sub):
                                                    scale=1 / 3.6), default=1.0, metavar="KMH",
                      help="carriage speed in km/h (default 3.6)")
     cur.add_argument("--slips", type=_slips, default=(0.0, 0.1, 0.2, 0.3, 0.4, 0.6), metavar="S,S,...",
-                     help="slips s = 1 - V/(R_e omega), R_e the free-rolling radius, comma-separated, "
-                          "each in [0, 0.99] "
+                     help="slips, comma-separated, each in [-1, 0.99]: driving s = 1 - V/(R_e omega), "
+                          "braking s = R_e omega/V - 1 (-1 locked), R_e the free-rolling radius; "
+                          "a list that starts with a minus is given as --slips=-1,-0.2,0 "
                           "(default 0,0.1,0.2,0.3,0.4,0.6)")
     cur.add_argument("--duration", type=bounded_float("duration", 0.5, 60.0, "s"), default=3.0, metavar="S",
                      help="simulated time of each run in s; the second half is averaged (default 3)")
@@ -50,8 +51,8 @@ def _slips(text: str) -> tuple[float, ...]:
         values = tuple(float(v) for v in text.split(","))
     except ValueError:
         raise argparse.ArgumentTypeError(f"expected slips separated by commas, got '{text}'") from None
-    if not values or not all(0.0 <= v <= 0.99 for v in values):
-        raise argparse.ArgumentTypeError(f"each slip must be in [0, 0.99], got '{text}'")
+    if not values or not all(-1.0 <= v <= 0.99 for v in values):
+        raise argparse.ArgumentTypeError(f"each slip must be in [-1, 0.99] (-1: locked), got '{text}'")
     return values
 
 

@@ -22,7 +22,7 @@ def plot_slip_curve(curve, title: str = ""):
     if len(groups) > 1:
         axes[0].legend(title="model")
     axes[0].axhline(0.0, color="0.5", lw=0.8)
-    axes[-1].set_xlabel("slip s = 1 - V / (R_e omega)")
+    axes[-1].set_xlabel("slip: driving s = 1 - V / (R_e omega), braking s = R_e omega / V - 1")
     if title:
         axes[0].set_title(title)
     fig.tight_layout()

@@ -70,7 +70,8 @@ def soil_figure(rows: pd.DataFrame, title: str, colours: dict):
     _layout(fig, title, "", "", height=760)
     for i, (_, axis, _) in enumerate(PANELS, start=1):
         fig.update_yaxes(title_text=axis, row=i, col=1)
-    fig.update_xaxes(title_text="slip s = 1 - V / (R_e omega) [-]", row=len(PANELS), col=1)
+    fig.update_xaxes(title_text="slip [-]: driving 1 - V / (R_e omega), braking R_e omega / V - 1",
+                     row=len(PANELS), col=1)
     fig.update_layout(hovermode="x unified", legend={"y": -0.08})
     return fig
 

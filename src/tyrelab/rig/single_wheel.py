@@ -2,8 +2,9 @@
 
 As in Wong's and Bekker's soil bins: the carriage moves forward at a prescribed speed
 ``V``, the wheel is driven at the spin that gives the prescribed slip
-``s = 1 - V / (R_e omega)`` (s = 1 spins in place), and the vertical load is a dead
-weight: the carriage
+``s = 1 - V / (R_e omega)`` (s = 1 spins in place) or braked to the skid
+``s = R_e omega / V - 1`` (negative; s = -1 is locked; :func:`wheel_spin`), and the
+vertical load is a dead weight: the carriage
 and wheel, of mass ``W / g``, are free to sink. It starts at rest in static
 equilibrium in the soil (the sinkage at which the soil carries ``W``), then drives.
 
@@ -88,6 +89,19 @@ def single_wheel_steps(wheel, mass, speed, omega, state, n_steps, dt, out_every,
     return row
 
 
+def wheel_spin(speed: float, rolling_radius: float, slip: float) -> float:
+    """The wheel's spin [rad/s] at carriage speed ``V`` [m/s] and ``slip`` (Wong 2008, 2.4).
+
+    Driving, ``0 <= s < 1``: ``s = 1 - V / (R_e omega)``, so ``omega = V / (R_e (1 - s))``
+    (s = 1 would spin in place). Braking, ``-1 <= s < 0``: the skid ``i_s = 1 - R_e omega / V``
+    with a minus sign, ``s = R_e omega / V - 1``, so ``omega = V (1 + s) / R_e`` (s = -1 is
+    the locked wheel). One axis for both: each is the tread's speed less the carriage's over
+    the larger of the two, as the soil wheel's ``kappa`` (``LONGSLIP``) is measured."""
+    if slip >= 0.0:
+        return speed / (rolling_radius * (1.0 - slip))
+    return speed * (1.0 + slip) / rolling_radius
+
+
 def rolling_radius(model, load: float, speed: float) -> float:
     """The effective rolling radius ``R_e`` [m] of ``model`` under ``load`` [N]: its free-rolling
     ``V / omega`` on a hard flat road at ``speed`` [m/s], at least :data:`ROLLING_RADIUS_SPEED`
@@ -120,7 +134,8 @@ def single_wheel(model, soil, load: float, speed: float, slip: float = 0.0, leng
     speed : float
         Carriage speed [m/s].
     slip : float
-        ``s = 1 - V / (R_e omega)``, 0 to below 1 (``R_e``: :func:`rolling_radius`).
+        Driving ``s = 1 - V / (R_e omega)``, 0 to below 1; braking ``s = R_e omega / V - 1``,
+        -1 (locked) to 0 (:func:`wheel_spin`; ``R_e``: :func:`rolling_radius`).
     length, width, spacing : float
         The soil bed [m] and its node spacing [m]; the bed starts 1 m behind the wheel.
     duration, dt, output_rate : float
@@ -133,8 +148,8 @@ def single_wheel(model, soil, load: float, speed: float, slip: float = 0.0, leng
         earlier ones left (the soil keeps its plastic sinkage).
     """
     from ..road.obstacles import Flat
-    if not 0.0 <= slip < 1.0:
-        raise InputError(f"slip must be in [0, 1), got {slip!r}", field="slip")
+    if not -1.0 <= slip < 1.0:
+        raise InputError(f"slip must be in [-1, 1), got {slip!r}", field="slip")
     if duration is not None:
         length = max(length, X_START + speed * duration + 2.0)
     road = road or Flat()
@@ -146,7 +161,7 @@ def single_wheel(model, soil, load: float, speed: float, slip: float = 0.0, leng
     if duration is None:
         duration = (x_end - X_START) / speed
     r_e = rolling_radius(model, load, speed)
-    omega = speed / (r_e * (1.0 - slip))
+    omega = wheel_spin(speed, r_e, slip)
     n_steps = int(round(duration / dt))
     out_every = max(1, int(round(1.0 / (output_rate * dt))))
     tables = []

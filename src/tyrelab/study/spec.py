@@ -45,7 +45,8 @@ Schema (km/h, kPa, mm at this edge, as the command line; SI in the parsed object
     name = "LETE sand slip curve"
     rig = "single-wheel"                # a rig on soil (Rig.terrain "soil"), driven at each slip
     terrain = "lete-sand"               # a built-in soil (tyrelab soil list) or a soil .toml path
-    slips = [0, 0.2, 0.4]               # s = 1 - V / (R_e omega), each in [0, 1)
+    slips = [0, 0.2, 0.4]               # driving s = 1 - V / (R_e omega) in [0, 1); braking
+                                        # s = R_e omega / V - 1 in [-1, 0) (-1: locked)
     speeds_kmh = [3.6]
     loads = [23300]
     duration = 3.0                      # [s] optional (default 3 s: the steady part is the last half)

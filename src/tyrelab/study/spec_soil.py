@@ -7,7 +7,7 @@ a study compares their runs as the thesis's rigid-road tests, so it keeps them
 there): a built-in soil's name (``tyrelab soil
 list``) or a soil file (TOML, relative to the spec's folder), read now so a bad
 soil stops the study before it starts. A rig that drives at a prescribed slip
-(the single-wheel tester) needs ``slips``, each in [0, 1); its test is a *soil
+(the single-wheel tester) needs ``slips``, each in [-1, 1); its test is a *soil
 test* (:attr:`tyrelab.study.records.TestSpec.is_soil_test`). Each model a test
 runs must run on its ground (:attr:`tyrelab.tyre.registry.ContactModel.terrains`).
 Every mistake is one :class:`~tyrelab.errors.InputError` naming file, line and
@@ -80,7 +80,8 @@ def check_terrain(ck: Checker, t: dict, path, rig) -> str | None:
 
 
 def check_slips(ck: Checker, t: dict, path, rig) -> tuple[float, ...]:
-    """The test's ``slips`` (each in [0, 1), no repeats); () for a rig without a slip."""
+    """The test's ``slips`` (each in [-1, 1), no repeats: braking to -1, locked, driving below 1,
+    spinning in place; :func:`tyrelab.rig.single_wheel.wheel_spin`); () for a rig without a slip."""
     from ..rig.registry import rigs
 
     takes_slip = "slip" in rig.options
@@ -97,13 +98,13 @@ def check_slips(ck: Checker, t: dict, path, rig) -> tuple[float, ...]:
     value = t["slips"]
     if not isinstance(value, list) or not value:
         what = describe_value(value) if not isinstance(value, list) else "an empty array"
-        ck.fail(key, f"expected a non-empty array of slips in [0, 1), got {what}")
+        ck.fail(key, f"expected a non-empty array of slips in [-1, 1), got {what}")
     slips = []
     for k, v in enumerate(value):
-        s = ck.number(v, key + (k,), "a slip s = 1 - V / (R_e omega) in [0, 1)", low=0.0, high=1.0,
-                      low_open=False)
+        s = ck.number(v, key + (k,), "a slip in [-1, 1) (driving s = 1 - V / (R_e omega), braking "
+                      "s = R_e omega / V - 1)", low=-1.0, high=1.0, low_open=False)
         if s >= 1.0:
-            ck.fail(key + (k,), f"expected a slip in [0, 1) (1 spins in place, at no speed), got {v!r}")
+            ck.fail(key + (k,), f"expected a slip in [-1, 1) (1 spins in place, at no speed), got {v!r}")
         if s in slips:
             ck.fail(key + (k,), f"duplicate slip {v!r}")
         slips.append(s)
