@@ -31,7 +31,7 @@ import time
 def _run(task: dict) -> tuple[str, float]:
     """The study worker's own call (:func:`tyrelab.study.runner.execute`); the signal stays here."""
     from tyrelab.study.runner import execute
-    status, result, wall = execute(task)
+    status, result, wall, _ = execute(task)
     if status != "done":
         raise RuntimeError(f"run {task['key']} failed: {result}")
     return task["key"], wall

@@ -345,3 +345,34 @@ def test_measured_csv_reference_with_a_column_map(tiny, tmp_path):
     # a column map without files is refused with its key
     with pytest.raises(InputError, match="column_map"):
         parse_spec(spec_text('{ model = "3D ENV nlk", column_map = "map.csv" }'), base=folder)
+
+
+def test_a_logger_on_the_opposite_axis_is_warned_once_and_read_with_a_minus(tiny, tmp_path):
+    """The same logger's load cell on an axis pointing down: every model's comparison warns of
+    the opposite sign (in the workers, where no one sees it); the study issues it once, naming
+    the file, and keeps it in each row. Its column map's '-FZ_HUB' reads it back to the run
+    exactly (the metrics of the plain logger, to 1e-4 %)."""
+    from tyrelab.study.runner import RunWarning
+    spec, store, keys, _ = tiny
+    folder = tmp_path / "down"
+    shutil.copytree(store.folder, folder)
+    (folder / "metrics.parquet").unlink()
+    meas = store.signal(keys[REF])
+    pd.DataFrame({"t_ms": meas["RUNTIME"] * 1e3, "fz_kN": -meas["FZ_HUB"] / 1e3}).to_csv(
+        folder / "logger.csv", index=False, float_format="%.9g")
+    (folder / "map.csv").write_text("t_ms,RUNTIME,ms\nfz_kN,FZ_HUB,kN\n")
+    keep_spec(folder, spec_text('{ files = ["logger.csv"], column_map = "map.csv" }'))
+    with pytest.warns(RunWarning) as caught:
+        m = Study(folder).metrics
+    assert len(caught) == 1, [str(w.message) for w in caught]
+    assert "logger.csv: the measured FZ_HUB has on average the opposite sign to the simulated one " \
+        "(negative against positive)" in str(caught[0].message)
+    assert (m["warnings"].str.contains("'-FZ_HUB' in the column map")).all()
+    (folder / "map.csv").write_text("t_ms,RUNTIME,ms\nfz_kN,-FZ_HUB,kN\n")
+    (folder / "metrics.parquet").unlink()
+    import warnings
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", RunWarning)
+        m = Study(folder).metrics
+    assert (m["warnings"] == "").all()
+    assert row(m, REF)["mRE_disturbance_pct"] == pytest.approx(0.0, abs=1e-4)

@@ -85,6 +85,34 @@ def test_failed_run_recorded_and_others_go_on(tmp_path):
         {"computed": 0, "skipped": 1, "failed": 1}
 
 
+def test_a_run_that_leaves_the_models_physics_is_named_kept_and_marked(tmp_path):
+    """A 100 x 300 mm cleat at 60 km/h throws the trailer's wheel off the road for 0.8 s: in
+    the worker, simulate warns (PhysicsWarning), where no user sees which run it was. The
+    warning comes back with the run: issued again here naming the run, kept in its record
+    and the index, and marked in the report's run matrix and listed under it."""
+    from tyrelab.report.study_sections import run_matrix
+    from tyrelab.study.runner import RunWarning
+    store = Store(tmp_path / "s")
+    hop = {"key": "hop", "spec": {"tyre": "xzl", "model": "OPC lk", "test": "big cleat",
+                                  "road": "cleat:100x300", "speed_kmh": 60.0, "load": "LC1"},
+           "simulate": dict(model="point", road="cleat:100x300", speed=60 / 3.6, load="LC1",
+                            duration=1.5), "kernels": "point"}
+    with pytest.warns(RunWarning) as caught:
+        counts = run_tasks([hop, TASKS[1]], store, workers=2, progress=False)
+    assert counts == {"computed": 2, "skipped": 0, "failed": 0}
+    said = [str(w.message) for w in caught]
+    assert len(said) == 1, said                         # the step run is within the physics
+    assert said[0].startswith("run xzl, OPC lk, big cleat, 60 km/h, LC1: the test wheel left "
+                              "the road for ")
+    record = store.record("hop")["warnings"]
+    assert record == said[0].split(": ", 1)[1] and store.record("b2")["warnings"] == ""
+    index = pd.read_parquet(store.folder / "index.parquet")
+    assert list(index.loc[index["key"] == "hop", "warnings"]) == [record]
+    html = run_matrix(index)
+    assert "class='warned'" in html and "&#9888;" in html
+    assert "Runs with warnings (1)" in html and "left the road" in html.split("warned-runs")[1]
+
+
 def test_a_record_without_its_table_is_not_finished(tmp_path):
     """What a killed study can leave -- a record saying done whose table is gone, a stale
     temporary file -- is not a result."""

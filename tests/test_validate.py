@@ -238,7 +238,8 @@ def test_a_logger_on_the_opposite_axis_is_warned_and_read_with_a_minus(tmp_path,
                  "--segments", "none", "--html", str(tmp_path / "a.html")])
     out, err = capsys.readouterr()
     assert code == 0 and "| mean_error_pct | % | -200 |" in out
-    assert "warning:" in err and "logger.csv: the measured FZ averages -3.03" in err
+    assert "warning:" in err and "logger.csv: the measured FZ has on average the opposite sign" in err
+    assert "(negative against positive)" in err
     assert "'-FZ' in the column map" in err
     code = main(["validate", sim, str(csv), "--column-map", str(minus),
                  "--segments", "none", "--html", str(tmp_path / "b.html")])

@@ -13,7 +13,8 @@ Sections, in order:
 1. **Header**: study name, date, package version, and the reference note in a
    banner (what every model is compared with: a measurement or another model).
 2. **Run matrix**: test conditions x models, each cell a run's status and wall
-   time; the failed runs with their error.
+   time; the failed runs with their error; the runs that warned of leaving the
+   models' physics (airborne, rim contact ...), marked and listed with their warnings.
 3. **Per test condition** (test, speed, load):
 
    * the models x metrics table with the best three per metric green, orange
@@ -89,7 +90,8 @@ from .study_sections import (COND, REPEATABILITY, compared_ok, esc, frame_html, 
 
 #: columns of ``study.index`` and ``study.metrics`` the report reads
 INDEX_COLUMNS = ["key", "tyre", "model", "contact", "stiffness", "test", "group", "road",
-                 "speed_kmh", "load", "rig", "dt", "status", "wall_time_s", "simulated_s", "error"]
+                 "speed_kmh", "load", "rig", "dt", "status", "wall_time_s", "simulated_s", "error",
+                 "warnings"]
 METRIC_COLUMNS = ["key", "reference", "tyre", "model", "contact", "test", "group", "road",
                   "speed_kmh", "load", "channel", "near_zero_samples", "compared_samples",
                   "disturbance_start_s", "disturbance_end_s", "response_start_s", "response_end_s",
@@ -101,7 +103,7 @@ _STYLE = """body{font-family:system-ui,sans-serif;max-width:75em;margin:auto;pad
 .reference-note{background:#fff3cd;border:2px solid #e0a800;padding:.6em 1em;font-weight:bold;margin:1em 0}
 table{border-collapse:collapse;margin:.6em 0}td,th{border:1px solid #aaa;padding:2px 7px;text-align:right}
 th{background:#f2f2f2}caption{caption-side:top;text-align:left;font-style:italic;padding:.3em 0}
-td.failed{background:#ffb3b3}td.done{background:#e6f5e6}td.text,th.text{text-align:left}
+td.failed{background:#ffb3b3}td.done{background:#e6f5e6}td.warned{background:#fff0b3}td.text,th.text{text-align:left}
 tr.repeatability th,tr.repeatability td{background:#eef3ff;font-style:italic}
 pre.error{white-space:pre-wrap;margin:0;text-align:left}.scroll{overflow-x:auto}figure{margin:1em 0}
 figcaption{font-size:.9em;color:#444}.meta{color:#555}

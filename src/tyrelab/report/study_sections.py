@@ -88,6 +88,7 @@ def run_matrix(index: pd.DataFrame) -> str:
         if not any(pd.isna(k) for k in key):
             cells_of.setdefault(key, []).append(r)
     has_error = "error" in index.columns
+    has_warnings = "warnings" in index.columns   # stores written before runs kept them: none
     for test, speed, load in dict.fromkeys(k[:-1] for k in cells_of):
         cells = []
         for c in cols:
@@ -95,11 +96,14 @@ def run_matrix(index: pd.DataFrame) -> str:
             if sel is None:
                 cells.append("<td class='text'>&ndash;</td>")
                 continue
+            warned = {id(r) for r in sel if has_warnings and as_text(r.warnings)}
             parts = [_slip_text(r) + (("&#10003; " + cell(r.wall_time_s) + " s") if r.status == "done"
-                                      else "&#10007; " + esc(r.status)) for r in sel]
+                                      else "&#10007; " + esc(r.status))
+                     + (" &#9888;" if id(r) in warned else "") for r in sel]
             bad = [r for r in sel if r.status != "done"]
-            tip = "; ".join(as_text(r.error) for r in bad if has_error and as_text(r.error))
-            cls = "failed" if bad else "done"
+            tip = "; ".join([as_text(r.error) for r in bad if has_error and as_text(r.error)]
+                            + [as_text(r.warnings) for r in sel if id(r) in warned])
+            cls = "failed" if bad else "warned" if warned else "done"
             cells.append(f"<td class='{cls}' title='{esc(tip)}'>" + "<br>".join(parts) + "</td>")
         out.append(f"<tr><th class='text'>{esc(test)}</th><td>{float(speed):g} km/h</td>"
                    f"<td>{esc(load_text(load))}</td>" + "".join(cells) + "</tr>")
@@ -118,7 +122,26 @@ def run_matrix(index: pd.DataFrame) -> str:
                        f"<td class='text'><pre class='error'>{esc(as_text(getattr(r, 'error', '')))}"
                        "</pre></td></tr>")
         out.append("</table>")
+    out.append(_warned_runs(index) if has_warnings else "")
     return "\n".join(out) + "</section>\n"
+
+
+def _warned_runs(index: pd.DataFrame) -> str:
+    """The runs that warned of leaving the models' physics (airborne, rim contact ...), with
+    what each said: their results are in the tables, to be read knowing it."""
+    warned = index[index["warnings"].map(as_text) != ""]
+    if not len(warned):
+        return ""
+    out = [f"<h3>Runs with warnings ({len(warned)}): &#9888; in the matrix</h3><p>Each is in the "
+           "tables below as computed; what it warned of says how far to trust it.</p>"
+           "<table class='warned-runs'><tr><th>key</th><th>tyre</th><th>model</th><th>test</th>"
+           "<th>speed</th><th>load</th><th>warnings</th></tr>"]
+    for r in warned.itertuples():
+        out.append(f"<tr><td class='text'>{esc(r.key)}</td><td class='text'>{esc(r.tyre)}</td>"
+                   f"<td class='text'>{esc(r.model)}</td><td class='text'>{esc(r.test)}</td>"
+                   f"<td>{float(r.speed_kmh):g} km/h</td><td>{esc(load_text(r.load))}</td>"
+                   f"<td class='text'><pre class='error'>{esc(as_text(r.warnings))}</pre></td></tr>")
+    return "".join(out) + "</table>"
 
 
 def compared_ok(rows: pd.DataFrame) -> pd.Series:

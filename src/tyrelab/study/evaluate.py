@@ -31,6 +31,7 @@ reference's own contact with the obstacle, the metrics -- is
 
 from __future__ import annotations
 
+import warnings
 from pathlib import Path
 
 import pandas as pd
@@ -42,6 +43,7 @@ from ..validate.thesis import TABLE_5_15_ROWS
 from .comparison import (CHANNEL, FALLBACK_CHANNEL, compare_to_reference, disturbance_segments,
                          obstacle_of)
 from .spec import GROUPS, RunSpec, StudySpec
+from .runner import RunWarning, warning_messages
 from .store import Store
 
 REPEATABILITY = "measured repeatability"
@@ -50,7 +52,7 @@ SEGMENT_COLUMNS = ["disturbance_start_s", "disturbance_end_s", "response_start_s
 LABEL_COLUMNS = ["key", "reference", "is_reference", "tyre", "model", "contact", "test",
                  "obstacle", "group", "road", "speed_kmh", "load", "channel"]
 COLUMNS = [*LABEL_COLUMNS, *METRICS, "near_zero_samples", "compared_samples", *SEGMENT_COLUMNS,
-           "segment_method", "n_response_peaks", "shift_s", "error"]
+           "segment_method", "n_response_peaks", "shift_s", "error", "warnings"]
 METRICS_FILE = "metrics.parquet"
 
 
@@ -133,19 +135,22 @@ class _Evaluator:
             sim_source=None) -> dict:
         """One row: ``sim_source`` (default the run's key) against ``source``."""
         row = _labels(run, key, label, is_reference)
-        try:
-            ref = self.reference_signal(source)
-            seg = self.segments(run, source)
-            row.update(_segment_columns(seg))
-            if sim_source is None:
-                sim = self.store.signal(key)
-            else:
-                sim = self.reference_signal(sim_source)
-            row.update(compare_to_reference(sim, ref, seg, "auto" if isinstance(source, Path)
-                                            else 0.0))
-            row["error"] = ""
-        except Exception as exc:  # recorded, not raised: the other runs go on
-            row["error"] = _error_text(exc)
+        with warnings.catch_warnings(record=True) as caught:  # kept with the row (a worker's)
+            warnings.simplefilter("always", UserWarning)
+            try:
+                ref = self.reference_signal(source)
+                seg = self.segments(run, source)
+                row.update(_segment_columns(seg))
+                if sim_source is None:
+                    sim = self.store.signal(key)
+                else:
+                    sim = self.reference_signal(sim_source)
+                row.update(compare_to_reference(sim, ref, seg, "auto" if isinstance(source, Path)
+                                                else 0.0))
+                row["error"] = ""
+            except Exception as exc:  # recorded, not raised: the other runs go on
+                row["error"] = _error_text(exc)
+        row["warnings"] = "\n".join(warning_messages(caught))
         return row
 
     def rows(self, run: RunSpec) -> list[dict]:
@@ -240,8 +245,12 @@ def evaluate_study(spec: StudySpec, store: Store, progress: bool = True,
         df[col] = df[col].astype(float)
     for col in ("near_zero_samples", "compared_samples", "n_response_peaks"):
         df[col] = df[col].astype("Int64")
-    for col in ("key", "reference", "error", "segment_method", "channel"):
+    for col in ("key", "reference", "error", "segment_method", "channel", "warnings"):
         df[col] = [v if isinstance(v, str) else "" for v in df[col]]
+    # what the comparisons warned of in the workers, here, each once (a measured file with
+    # the opposite sign is compared with every model)
+    for note in dict.fromkeys(n for text in df["warnings"] for n in text.splitlines() if n):
+        warnings.warn(note, RunWarning, stacklevel=2)
     df["is_reference"] = df["is_reference"].fillna(False).astype(bool)
     write_metrics(df, store.folder / METRICS_FILE)
     return df

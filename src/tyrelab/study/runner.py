@@ -17,7 +17,11 @@ a model's kernels at its first run of that model and keeps them for the
 rest; :class:`KernelWaves` orders the submissions so that each kind of kernel is
 compiled by one worker while the others run other kinds. A run that raises
 is recorded with its error; a worker that dies is recorded the same way
-(Dask's ``KilledWorker``); the other runs go on.
+(Dask's ``KilledWorker``); the other runs go on. The warnings a run raises in its
+worker (a :class:`~tyrelab.guards.PhysicsWarning`: airborne, rim contact ...) are
+sent back with it, kept in its record (``warnings``, one per line) and issued again
+here as a :class:`RunWarning` naming the run, so a user sees which run left the
+models' physics (a worker's own stderr would show them without the run).
 Ctrl-C cancels the runs in flight and stops the cluster; finished runs
 stay in the store. The simulations are deterministic, so the results do
 not depend on the number of workers or the order in which runs finish.
@@ -31,23 +35,54 @@ import os
 import signal
 import threading
 import time
+import warnings
 
 from .. import limits, stop
 from ..errors import InputError
 from .store import Store
 
 
+class RunWarning(UserWarning):
+    """A warning one of a study's runs raised in its worker, issued again where the study runs,
+    with the run it came from."""
+
+
 def execute(task: dict):
-    """Run one task in a worker; returns ``("done", signal, wall time)`` or
-    ``("failed", one-line error, wall time)``."""
+    """Run one task in a worker; returns ``("done", signal, wall time, warnings)`` or
+    ``("failed", one-line error, wall time, warnings)``, ``warnings`` the messages of the
+    warnings the run raised (each once, on one line)."""
     from ..api import simulate
     t0 = time.perf_counter()
-    try:
-        signal = simulate(**task["simulate"], progress=False)
-    except Exception as exc:  # recorded, not raised: the other runs go on
-        text = " ".join(str(exc).split()) or type(exc).__name__
-        return "failed", f"{type(exc).__name__}: {text}", time.perf_counter() - t0
-    return "done", signal, time.perf_counter() - t0
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always", UserWarning)
+        try:
+            signal = simulate(**task["simulate"], progress=False)
+        except Exception as exc:  # recorded, not raised: the other runs go on
+            text = " ".join(str(exc).split()) or type(exc).__name__
+            return "failed", f"{type(exc).__name__}: {text}", time.perf_counter() - t0, \
+                warning_messages(caught)
+    return "done", signal, time.perf_counter() - t0, warning_messages(caught)
+
+
+def warning_messages(caught) -> list[str]:
+    """The recorded user warnings' messages, each once, on one line."""
+    return list(dict.fromkeys(" ".join(str(w.message).split()) for w in caught
+                              if issubclass(w.category, UserWarning)))
+
+
+def run_label(spec: dict) -> str:
+    """A run in words, from its record: ``"run xzl, OPC lk, cleat 50x50, 12 km/h, LC1"`` (tyre,
+    model, test, speed, load; a soil test's slip)."""
+    parts = [str(spec[k]) for k in ("tyre", "model", "test") if spec.get(k) not in (None, "")]
+    if spec.get("test") in (None, "") and spec.get("road"):
+        parts.append(str(spec["road"]))
+    if spec.get("speed_kmh") is not None:
+        parts.append(f"{float(spec['speed_kmh']):g} km/h")
+    if spec.get("load") not in (None, ""):
+        parts.append(str(spec["load"]))
+    if spec.get("slip") is not None:
+        parts.append(f"s = {float(spec['slip']):g}")
+    return "run " + ", ".join(parts)
 
 
 def _client(scheduler: str | None, workers: int | None, connect_timeout: float = 30.0):
@@ -206,15 +241,17 @@ def run_tasks(tasks: list[dict], store: Store, workers: int | None = None,
                 finished.add(f)
             key = task["key"]
             try:
-                status, result, wall = future.result()
+                status, result, wall, notes = future.result()
             except Exception as exc:  # the worker died (KilledWorker) or the task was lost
-                status, result, wall = "failed", f"{type(exc).__name__}: {exc}", 0.0
+                status, result, wall, notes = "failed", f"{type(exc).__name__}: {exc}", 0.0, []
             if status == "done":
-                store.save(key, task["spec"], result, wall)
+                store.save(key, task["spec"], result, wall, notes)
                 counts["computed"] += 1
             else:
-                store.save_failure(key, task["spec"], result, wall)
+                store.save_failure(key, task["spec"], result, wall, notes)
                 counts["failed"] += 1
+            for note in notes:
+                warnings.warn(f"{run_label(task['spec'])}: {note}", RunWarning, stacklevel=2)
             done_cost += task.get("cost", 0.0)
             elapsed = time.perf_counter() - t_start
             left = elapsed * (total_cost - done_cost) / done_cost if done_cost > 0 else float("nan")

@@ -3,7 +3,7 @@
 Layout of a study folder::
 
     runs/<key>.parquet   the run's signal table (tyrelab.signal form)
-    runs/<key>.json      the run's record: its specification, status, wall time, error
+    runs/<key>.json      the run's record: its specification, status, wall time, error, warnings
     index.parquet        every record as one table (rebuilt from the records)
 
 ``key`` is derived from the run's complete specification (the study spec's
@@ -152,23 +152,26 @@ class Store:
         the spec's ``[study] store``), else :data:`DEFAULT_STORAGE`."""
         return self._storage or DEFAULT_STORAGE
 
-    def save(self, key: str, spec: dict, signal: pd.DataFrame, wall_time: float) -> None:
+    def save(self, key: str, spec: dict, signal: pd.DataFrame, wall_time: float,
+             warnings: list[str] = ()) -> None:
         """Store a finished run: its table first (in the form :attr:`storage`; a soil test's
-        run, whose record has a ``slip``, with :data:`SOIL_CHANNELS`), then its record."""
+        run, whose record has a ``slip``, with :data:`SOIL_CHANNELS`), then its record, with
+        the ``warnings`` the run raised (one per line)."""
         exact = SOIL_CHANNELS if spec.get("slip") is not None else ()
         write_run(signal, self.signal_path(key), self.storage, exact)
         _write_json(self.record_path(key), {**spec, "key": key, "status": DONE,
                                             "wall_time_s": float(wall_time),
                                             "simulated_s": float(signal["RUNTIME"].iloc[-1]
                                                                  - signal["RUNTIME"].iloc[0]),
-                                            "error": ""})
+                                            "error": "", "warnings": "\n".join(warnings)})
 
-    def save_failure(self, key: str, spec: dict, error: str, wall_time: float = 0.0) -> None:
+    def save_failure(self, key: str, spec: dict, error: str, wall_time: float = 0.0,
+                     warnings: list[str] = ()) -> None:
         """Record a failed run (no table)."""
         self.signal_path(key).unlink(missing_ok=True)
         _write_json(self.record_path(key), {**spec, "key": key, "status": FAILED,
                                             "wall_time_s": float(wall_time), "simulated_s": 0.0,
-                                            "error": str(error)})
+                                            "error": str(error), "warnings": "\n".join(warnings)})
 
     def write_text(self, name: str, text: str) -> Path:
         """Write a text file of the study folder atomically; returns its path."""

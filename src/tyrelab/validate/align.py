@@ -165,8 +165,9 @@ def check_signs(p, m, channel: str, source: str) -> bool:
     two was logged on an axis that points the other way. Returns True when it warned."""
     mp, mm = float(np.mean(p)), float(np.mean(m))
     if mp * mm < 0 and abs(mp) > float(np.std(p)) and abs(mm) > float(np.std(m)):
-        warnings.warn(f"{source}: the measured {channel} averages {mm:.4g} and the simulated "
-                      f"{mp:.4g}: opposite signs. tyrelab's channels follow the TYDEX C-axis "
+        signs = "negative against positive" if mm < 0 else "positive against negative"
+        warnings.warn(f"{source}: the measured {channel} has on average the opposite sign to the "
+                      f"simulated one ({signs}). tyrelab's channels follow the TYDEX C-axis "
                       f"system (z up, the road's force on the tyre: FZ > 0 under load); a logger "
                       f"column on an axis pointing the other way is read with '-{channel}' in "
                       "the column map", SignWarning, stacklevel=3)
