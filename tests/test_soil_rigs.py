@@ -51,6 +51,32 @@ def test_the_trailer_starts_in_equilibrium_with_its_test_wheel_sunk_into_the_soi
     assert np.all(np.abs(run["FZ"].to_numpy() / static - 1.0) < 0.02)
 
 
+def test_the_rigs_on_soil_report_the_sinkage_the_soil_bin_measures():
+    """SINKAGE, the tyre's contact point below the surface as laid: the soil bin's kernel
+    writes it from the bed's compiled heights; the trailer and the quarter vehicle take it
+    from the road laid under the soil, in Python. At rest on sandy loam the quarter vehicle's
+    wheel, settled as the bin's is, reads the bin's value to rounding; the trailer's, leaning
+    0.5 deg as its frame rolls, reads 1.1 mm less (its contact point is on the tread's centre
+    line, 200 mm from the shoulder that dips 1.7 mm). A flexible tyre's sinkage is not its
+    centre's depth less the radius, which holds its deflection too: the bin's metadata said
+    63.7 mm for these 21.7. On the rigid road there is no SINKAGE."""
+    kw = dict(model="point", terrain="sandy-loam", road="flat", speed=0.01, duration=0.3,
+              progress=False)
+    quarter = tyrelab.simulate(rig="quarter-vehicle", **kw)
+    trailer = tyrelab.simulate(rig="trailer", **kw)
+    load = quarter.attrs["metadata"]["static_wheel_load_N"]
+    bin_ = single_wheel(TyreModel(load_tyre(), "point"), "sandy-loam", load, 0.01, duration=0.3,
+                        progress=False)
+    assert quarter["SINKAGE"].iloc[0] == pytest.approx(bin_["SINKAGE"].iloc[0], rel=1e-9)
+    assert bin_.attrs["metadata"]["static_sinkage_m"] == bin_["SINKAGE"].iloc[0]
+    deflection = load_tyre().unloaded_radius - bin_["Z_WC"].iloc[0] - bin_["SINKAGE"].iloc[0]
+    assert deflection == pytest.approx(bin_["DEFLECT"].iloc[0], rel=1e-6)   # the rest is the tyre's
+    assert 0.0 < bin_["SINKAGE"].iloc[0] - trailer["SINKAGE"].iloc[0] < \
+        0.5 * load_tyre().width * np.sin(trailer["ROLL"].iloc[0])
+    assert "SINKAGE" not in tyrelab.simulate(model="point", road="flat", speed=1.0, duration=0.2,
+                                             progress=False)
+
+
 def test_the_ring_settles_into_the_soil_before_it_starts():
     """The ring's loads depend on its belt's state, so the soil bin settles it at rest (damped)
     before the run: standing still on sandy loam its centre then moves by under 0.05 mm and

@@ -74,7 +74,7 @@ CHANNELS: dict[str, tuple[str, str]] = {
     "Z_BODY": ("m", "quarter vehicle: sprung-mass height"),
     "VZ_BODY": ("m/s", "quarter vehicle: sprung-mass vertical velocity"),
     "F_SUSP": ("N", "quarter vehicle: suspension force (compression positive)"),
-    "SINKAGE": ("m", "soil: depth of the wheel's lowest point below the undisturbed surface"),
+    "SINKAGE": ("m", "soil: depth of the tyre's contact point below the surface as laid"),
     "TORQUE": ("N m", "single-wheel tester: driving torque the axle applies (positive driving)"),
 }
 

@@ -18,7 +18,7 @@ from ..road.spec import road_from_spec
 from ..tyre.model import TyreModel
 from . import _quarter_kernel as K
 from .simulation import drop_road, levelled_grid, run_chunks, to_signal
-from .soil_ground import Following
+from .soil_ground import Following, with_sinkage
 from .frames import G
 
 
@@ -135,4 +135,5 @@ class QuarterVehicle:
                 **(ground_meta or {}),
                 "static_wheel_load_N": self.wheel_load, "pressure_Pa": tyre.pressure, "dt_s": dt,
                 "output_rate_Hz": 1.0 / (out_every * dt)}
-        return to_signal(data, K.CHANNELS, meta)
+        data, channels = with_sinkage(data, K.CHANNELS, ground, K.QC)
+        return to_signal(data, channels, meta)

@@ -184,7 +184,10 @@ def single_wheel(model, soil, load: float, speed: float, slip: float = 0.0, leng
         meta = {"rig": "single-wheel", "tyre": model.tyre.name, "model": model.contact,
                 **ground_meta, "road": road.name, "speed_m_s": speed, "slip": slip,
                 "static_wheel_load_N": load, "pass": len(tables) + 1, "rolling_radius_m": r_e,
-                "static_sinkage_m": float(road.height(X_START, 0.0) - (z0 - radius)),
+                # the settled start's SINKAGE: the tyre's contact point below the surface (the
+                # centre's depth less the radius was the undeformed circle's, a flexible
+                # tyre's deflection too deep)
+                "static_sinkage_m": float(data[0, SC.SINKAGE]),
                 "soil_spacing_m": spacing, "dt_s": dt, "output_rate_Hz": 1.0 / (out_every * dt)}
         tables.append(to_signal(data, CHANNELS, meta))
     result = tables[0] if passes == 1 else tables

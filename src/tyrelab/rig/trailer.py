@@ -30,7 +30,7 @@ from ..road.obstacles import Flat
 from ..road.spec import road_from_spec
 from . import _trailer_kernel as K
 from .simulation import drop_road, levelled_grid, run_chunks, to_signal
-from .soil_ground import Following
+from .soil_ground import Following, with_sinkage
 from .frames import G
 
 #: on soil, the test wheel's sinkage and the frame's pitch and roll are found together in
@@ -382,4 +382,5 @@ class Trailer:
                 "load_case": str(self.load_case), "static_wheel_load_N": s.wheel_load,
                 "pressure_Pa": self.model.tyre.pressure, "dt_s": dt,
                 "output_rate_Hz": 1.0 / (out_every * dt)}
-        return to_signal(data, K.CHANNELS, meta)
+        data, channels = with_sinkage(data, K.CHANNELS, ground, K.TC, tp.road_y)
+        return to_signal(data, channels, meta)

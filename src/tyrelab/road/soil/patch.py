@@ -54,6 +54,14 @@ class SoilPatch:
         z = np.asarray(self.road.height(xs[:, None], self.ys[None, :]), dtype=np.float64)
         return z - self.level if self.level else z
 
+    def undisturbed(self, x, y) -> np.ndarray:
+        """The surface as laid [m] at ``(x, y)`` [m] (arrays broadcast): the road's height less
+        ``level``, which the nodes' undisturbed heights sample (:attr:`SoilSurface.h0` before
+        any wheel; here exact between them)."""
+        z = np.asarray(self.road.height(np.asarray(x, dtype=float), np.asarray(y, dtype=float)),
+                       dtype=np.float64)
+        return z - self.level
+
     def held(self) -> tuple[float, float]:
         """The stretch of the run held now: the first and last rows' x [m]."""
         nx = self.bed.h0.shape[0]
