@@ -104,6 +104,7 @@ _STYLE = """body{font-family:system-ui,sans-serif;max-width:75em;margin:auto;pad
 table{border-collapse:collapse;margin:.6em 0}td,th{border:1px solid #aaa;padding:2px 7px;text-align:right}
 th{background:#f2f2f2}caption{caption-side:top;text-align:left;font-style:italic;padding:.3em 0}
 td.failed{background:#ffb3b3}td.done{background:#e6f5e6}td.warned{background:#fff0b3}td.text,th.text{text-align:left}
+table.run-matrix td{white-space:nowrap}
 tr.repeatability th,tr.repeatability td{background:#eef3ff;font-style:italic}
 pre.error{white-space:pre-wrap;margin:0;text-align:left}.scroll{overflow-x:auto}figure{margin:1em 0}
 figcaption{font-size:.9em;color:#444}.meta{color:#555}
