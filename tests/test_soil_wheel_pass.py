@@ -43,7 +43,7 @@ def _worn():
     h0 = 0.0005 * rng.integers(0, 2, (201, 101))      # the surface the same, the rut 0.5 mm apart
     bed = soil_bed(load_soil("sandy-loam")[0], RoadGrid(-1.0, -1.0, 0.02, 0.02, h0))
     bed.ground.z[:] = -np.array([0.0, 0.029, 0.0295])[rng.integers(0, 3, bed.h0.shape)]
-    bed.j[:, ::2] = 0.02 * rng.integers(0, 3, bed.j[:, ::2].shape)
+    bed.j[:, ::2, 0] = 0.02 * rng.integers(0, 3, bed.j[:, ::2, 0].shape)
     return bed
 
 

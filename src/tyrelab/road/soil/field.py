@@ -24,7 +24,7 @@ import numpy as np
 
 from ...errors import InputError
 from .params import Soil
-from .scm import BED_SPACING, bed_record, check_bed_memory
+from .scm import BED_SPACING, bed_record, check_bed_memory, shear_displacement
 
 #: side of the square of soil held at once [m]: 601 x 601 nodes at 2 cm (12 MB); the wheel
 #: drives about 6 m between moves
@@ -63,10 +63,9 @@ class SoilField:
         """Fresh soil on the road's heights: the nodes from lattice index ``first``, ``shape``."""
         base = self._heights(first, shape)
         h0 = base.copy() if self.soil.bulldozing else base
-        zeros = np.zeros_like(base)
         return bed_record(self.soil, self.x_anchor + first[0] * self.spacing,
                           self.y_anchor + first[1] * self.spacing, self.spacing, self.spacing,
-                          base, h0, base.copy(), zeros, zeros.copy())
+                          base, h0, base.copy(), shear_displacement(base.shape), np.zeros_like(base))
 
     def held(self) -> tuple[float, float, float, float]:
         """The window held now: ``(x_lo, x_hi, y_lo, y_hi)`` of its outer nodes [m]."""

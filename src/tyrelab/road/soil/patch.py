@@ -20,7 +20,7 @@ import numpy as np
 
 from ..grid import RoadGrid
 from .params import Soil
-from .scm import bed_record, soil_bed
+from .scm import bed_record, shear_displacement, soil_bed
 
 #: the longest stretch of soil held at once [m] (a run's first chunk and its margins fit)
 PATCH_LENGTH = 30.0
@@ -86,7 +86,7 @@ class SoilPatch:
         base = np.concatenate([b.base[drop:], fresh])
         h0 = np.concatenate([b.h0[drop:], fresh]) if b.h0 is not b.base else base
         z = np.concatenate([b.ground.z[drop:], fresh])
-        j = np.concatenate([b.j[drop:], zeros])
+        j = np.concatenate([b.j[drop:], shear_displacement(fresh.shape)])
         sigma = np.concatenate([b.sigma[drop:], zeros])
         self.offset += drop
         self.bed = bed_record(self.soil, self.x_first + self.offset * self.spacing, b.y0, b.dx,

@@ -49,8 +49,9 @@ from .params import Soil
 #: the soil bed's node spacing [m]: halving it moves the pull of the XZL's rigid wheel on LETE
 #: sand at s = 0.2 by 0.15 % and its sinkage by 1.8 %, and costs four times the time
 BED_SPACING = 0.02
-#: memory of a soil node: undisturbed height, surface, shear displacement, stress
-BYTES_PER_NODE = 4 * 8
+#: memory of a soil node: undisturbed height, surface, shear displacement (two components),
+#: stress
+BYTES_PER_NODE = 5 * 8
 
 
 def check_bed_memory(nodes: int, bed: str, remedy: str, field: str) -> None:
@@ -71,7 +72,9 @@ class SoilSurface(NamedTuple):
     record (:class:`~tyrelab.road.grid.RoadSurface`) whose heights ``ground.z`` are ``h0``
     less each node's plastic sinkage (the rut) and whose bounds are those of ``h0`` (the
     soil only sinks) -- of ``base`` plus :data:`PILE_LIMIT` on a soil that bulldozes; ``j``
-    the shear displacement [m] accumulated in the current contact, ``sigma`` the last
+    (``(nx, ny, 2)``) the shear displacement [m] accumulated in the current contact, signed:
+    along the wheel's circumferential tangent ``a x n`` and along its axis ``a``
+    (:mod:`tyrelab.road.soil.wheel`); ``sigma`` the last
     normal stress [Pa] (> 0: in contact at the last step); ``zmax`` the highest of those
     bounds [m] (bounds the nodes a wheel can reach); ``base`` the surface as laid [m] (the
     same array as ``h0``, unless the soil bulldozes: soil pushed onto a node raises its
@@ -159,9 +162,13 @@ def soil_bed(soil: Soil, road_grid) -> SoilSurface:
     """A fresh soil bed over a road's grid (its heights the undisturbed surface)."""
     base = np.ascontiguousarray(road_grid.z, dtype=np.float64).copy()
     h0 = base.copy() if soil.bulldozing else base
-    zeros = np.zeros_like(base)
     return bed_record(soil, road_grid.x0, road_grid.y0, road_grid.dx, road_grid.dy, base, h0,
-                      base.copy(), zeros, zeros.copy())
+                      base.copy(), shear_displacement(base.shape), np.zeros_like(base))
+
+
+def shear_displacement(shape: tuple[int, int]) -> np.ndarray:
+    """The ``j`` of ``shape`` fresh nodes: none (both components zero)."""
+    return np.zeros(tuple(shape) + (2,))
 
 
 @nb.njit(cache=True)

@@ -2,8 +2,26 @@
 
 One pass over the soil bed's nodes under a wheel (:mod:`tyrelab.road.soil.scm` for the
 nodes' stresses): each node in contact carries its normal stress along the wheel
-surface's normal and its shear along the surface's tangent, against the sliding velocity
-(Wong & Reece 1967), on the surface element above its cell.
+surface's normal and its shear along the surface's tangent, on the surface element above
+its cell.
+
+The shear displacement ``j`` is signed (Wong & Reece 1967): each step adds the sliding
+velocity's parts along the surface's circumferential tangent ``a x n`` and along the axis
+``a``, times the step; the shear ``(c + sigma tan phi)(1 - exp(-|j| / K))`` acts against
+``j``. Where the sliding reverses inside the contact (a braked wheel whose rim slides
+backwards at entry and forwards below, a towed wheel sunk deep) the shear reverses only
+where ``j`` has come back through zero. Chrono's SCM accumulates the distance slid, whatever
+its direction, and turns the shear at once with the sliding; on dry sand a rigid wheel
+braked at s = -0.05 then pulled -8.7 kN against the signed integration's -1.0 kN, and a
+towed flexible wheel, whose flat slides by a hair either way, chattered by +-3.6 kN about
+its drag. While the sliding keeps its direction (every driven wheel) the two are the same.
+
+The tread moves round the axis as one band at ``omega min(flat, R)``: the rigid wheel's
+rim at ``omega R``; a flexible tyre's tread on its arcs as on its flat, at
+``omega (R - delta)``, the speed at which its contact point turns on a rigid road (the
+analytic models' loaded radius). A rim turning rigidly at ``omega R`` on the arcs would
+slide forwards over the soil wherever the flat does not, and a signed ``j`` would keep
+that as a pull at zero slip.
 
 The wheel's surface above a node depends on the node's position along the wheel's
 heading and across it. When the wheel's axis lies along the grid's rows (no camber, no
@@ -125,11 +143,14 @@ def surface_point(w, d0x, d0y):
         return SurfacePoint(True, la + zr * w.az, zr, True, w.dx, w.dy, w.dz,
                             w.vx + w.omega * w.flat * w.rx, w.vy + w.omega * w.flat * w.ry,
                             w.vz + w.omega * w.flat * w.rz)
-    # the outward normal (from the axis); the velocity v + omega a x p
+    # the outward normal (from the axis); the tread moves round the axis at the band's speed
+    # omega min(flat, R) (a x p is R long): the rigid wheel's rim at omega R, a flexible tyre's
+    # tread on its arcs as on its flat, one inextensible band
     nx, ny, nz = unit(q0x + zr * w.mx, q0y + zr * w.my, q0z + zr * w.mz)
     wx, wy, wz = cross(w.ax, w.ay, w.az, d0x, d0y, zr)
+    spin = w.omega * min(w.flat, w.radius) / w.radius
     return SurfacePoint(True, la + zr * w.az, zr, False, nx, ny, nz,
-                        w.vx + w.omega * wx, w.vy + w.omega * wy, w.vz + w.omega * wz)
+                        w.vx + spin * wx, w.vy + spin * wy, w.vz + spin * wz)
 
 
 @nb.njit(cache=True)
@@ -191,14 +212,14 @@ def wheel_loads(bed, cx, cy, cz, ax, ay, az, vx, vy, vz, omega, radius, width, f
         d0x = x - cx
         row = surface_point(w, d0x, 0.0) if along_rows else \
             SurfacePoint(False, 0.0, 0.0, False, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
-        un = tx = ty = tz = speed = a_s = 0.0
+        un = tx = ty = tz = vc = va = a_s = 0.0
         if along_rows:
-            un, tx, ty, tz, speed, a_s = _sliding(row, cell)
+            un, tx, ty, tz, vc, va, a_s = _sliding(row, cell, ax, ay, az)
         # the last node's state and stresses: along the rows a node in the same state as the
         # last one (uniform ground across the wheel, a straight rut) has the same stresses
         seen = False
-        h_seen = z_seen = j_seen = 0.0
-        sigma = sp_new = slope = jn = gx = gy = gz = 0.0
+        h_seen = z_seen = j_seen = ja_seen = 0.0
+        sigma = sp_new = slope = jn = jna = gx = gy = gz = 0.0
         for k in range(k0, k1 + 1):
             d0y = bed.y0 + k * bed.dy - cy
             if along_rows:
@@ -210,27 +231,30 @@ def wheel_loads(bed, cx, cy, cz, ax, ay, az, vx, vy, vz, omega, radius, width, f
             surface = bed.ground.z[i, k]
             if not p.touches or abs(lateral) > 0.5 * width or cz + p.zr >= surface:
                 if update:
-                    bed.j[i, k] = 0.0                        # a new contact starts afresh
+                    bed.j[i, k, 0] = 0.0                     # a new contact starts afresh
+                    bed.j[i, k, 1] = 0.0
                     bed.sigma[i, k] = 0.0
                 seen = False
                 continue
-            h, j = bed.h0[i, k], bed.j[i, k]
-            if not (seen and h == h_seen and surface == z_seen and j == j_seen):
+            h, j, ja = bed.h0[i, k], bed.j[i, k, 0], bed.j[i, k, 1]
+            if not (seen and h == h_seen and surface == z_seen and j == j_seen and ja == ja_seen):
                 if not along_rows:
-                    un, tx, ty, tz, speed, a_s = _sliding(p, cell)
+                    un, tx, ty, tz, vc, va, a_s = _sliding(p, cell, ax, ay, az)
                 s = h - (cz + p.zr)
                 sigma, sp_new, slope = node_stress(soil, modulus, s, h - surface)
                 sigma += soil.damping * max(0.0, un) if sigma > 0.0 else 0.0  # compressing: un > 0
-                jn = j + speed * dt
-                tau = (soil.cohesion + sigma * tanphi) * (1.0 - math.exp(-jn / soil.janosi_k)) \
+                jn, jna = j + vc * dt, ja + va * dt
+                jm = math.sqrt(jn * jn + jna * jna)
+                tau = (soil.cohesion + sigma * tanphi) * (1.0 - math.exp(-jm / soil.janosi_k)) \
                     if sigma > 0.0 and not (normal_only and p.on_flat) else 0.0
                 gx, gy, gz = -sigma * a_s * p.nx, -sigma * a_s * p.ny, -sigma * a_s * p.nz
-                if speed > 0.0:
-                    gx -= tau * a_s * tx / speed
-                    gy -= tau * a_s * ty / speed
-                    gz -= tau * a_s * tz / speed
+                if jm > 0.0:
+                    # against j = jn (a x n) + jna a, the tangents (tx, ty, tz) = a x n and a
+                    gx -= tau * a_s * (jn * tx + jna * ax) / jm
+                    gy -= tau * a_s * (jn * ty + jna * ay) / jm
+                    gz -= tau * a_s * (jn * tz + jna * az) / jm
                 seen = along_rows
-                h_seen, z_seen, j_seen = h, surface, j
+                h_seen, z_seen, j_seen, ja_seen = h, surface, j, ja
             fx += gx
             fy += gy
             fz += gz
@@ -249,7 +273,8 @@ def wheel_loads(bed, cx, cy, cz, ax, ay, az, vx, vy, vz, omega, radius, width, f
                 ci0, ci1, ck0, ck1 = min(ci0, i), max(ci1, i), min(ck0, k), max(ck1, k)
             if update:
                 bed.ground.z[i, k] = h - sp_new
-                bed.j[i, k] = jn
+                bed.j[i, k, 0] = jn
+                bed.j[i, k, 1] = jna
                 bed.sigma[i, k] = sigma
     if bulldozing and ci1 >= ci0:
         bulldoze(bed, ci0, ci1, ck0, ck1, pressed)
@@ -257,10 +282,15 @@ def wheel_loads(bed, cx, cy, cz, ax, ay, az, vx, vy, vz, omega, radius, width, f
 
 
 @nb.njit(cache=True)
-def _sliding(p, cell):
-    """At a surface point (:class:`SurfacePoint`): its velocity along the normal ``un`` (> 0
-    compressing the soil), its sliding velocity's tangent part ``t`` and speed [m/s], and the
-    area of the surface element above a node's ``cell`` [m^2]."""
+def _sliding(p, cell, ax, ay, az):
+    """At a surface point (:class:`SurfacePoint`) of a wheel with unit axis ``a``: its velocity
+    along the normal ``un`` (> 0 compressing the soil); the surface's circumferential tangent
+    ``t = a x n`` (a unit vector: the normal is square to the axis, on the cylinder and on
+    the flat); the sliding velocity's parts along ``t`` and along ``a`` [m/s] (the velocity
+    less its normal part is ``vc t + va a``); and the area of the surface element above a
+    node's ``cell`` [m^2]."""
     un = p.ux * p.nx + p.uy * p.ny + p.uz * p.nz
-    tx, ty, tz = p.ux - un * p.nx, p.uy - un * p.ny, p.uz - un * p.nz
-    return un, tx, ty, tz, math.sqrt(tx * tx + ty * ty + tz * tz), cell / max(abs(p.nz), MIN_COS)
+    tx, ty, tz = cross(ax, ay, az, p.nx, p.ny, p.nz)
+    vc = p.ux * tx + p.uy * ty + p.uz * tz
+    va = p.ux * ax + p.uy * ay + p.uz * az
+    return un, tx, ty, tz, vc, va, cell / max(abs(p.nz), MIN_COS)
