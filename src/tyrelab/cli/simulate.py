@@ -13,7 +13,13 @@ OPTIONS = {"speed": "--speed", "duration": "--duration", "dt": "--dt", "output_r
            "load": "--load", "pressure": "--pressure", "rig": "--rig", "left_wheel": "--left-wheel",
            "stiffness": "--stiffness", "tyre": "--tyre", "model": "--model", "road": "--road",
            "options": "--option", "handling": "--handling", "terrain": "--terrain",
-           "rig_options": "--slip", "slip": "--slip"}
+           "rig_options": "--slip/--torque", "slip": "--slip", "torque": "--torque"}
+
+
+def _rig_options(args) -> dict | None:
+    """The single-wheel tester's ``--slip`` and ``--torque`` as the rig's options (None: none)."""
+    options = {k: v for k, v in (("slip", args.slip), ("torque", args.torque)) if v is not None}
+    return options or None
 
 
 def register(sub):
@@ -46,6 +52,10 @@ def register(sub):
                    metavar="S", help="single-wheel tester: driving slip s = 1 - V / (R_e omega), 0 to "
                         "0.99, or braking s = R_e omega / V - 1, -1 (locked) to 0 (R_e: the model's "
                         "free-rolling radius on hard ground)")
+    p.add_argument("--torque", type=bounded_float("torque", -1e6, 1e6, "N m"), default=None,
+                   metavar="NM", help="single-wheel tester, instead of --slip: the driving torque in "
+                        "N m under which the wheel spins freely (negative brakes, 0 tows it); its "
+                        "slip is then the soil's answer (LONGSLIP)")
     p.add_argument("--road", default=None,
                    help="road: flat, cleat:WxH[@ANGLE], bump:H, step:H, pothole:DxL[xW], a track name "
                         f"or FILE{'|'.join(road_suffixes())}[@V] (sizes in mm; default cleat:50x50, "
@@ -90,7 +100,7 @@ def run(args) -> int:
                          handling=args.handling, rig=args.rig, left_wheel=args.left_wheel,
                          duration=args.duration, dt=args.dt, output_rate=args.rate, force=args.force,
                          options=model_options(args.option), terrain=args.terrain,
-                         rig_options=None if args.slip is None else {"slip": args.slip})
+                         rig_options=_rig_options(args))
     except InputError as exc:
         raise renamed(exc, OPTIONS, model_options(args.option)) from None
     write_signal(table, out)

@@ -180,9 +180,12 @@ def _carries_wheel_mass(model, wheel_load: float) -> None:
 
 def _single_wheel(req: RigRequest):
     from .single_wheel import single_wheel
+    if "slip" in req.options and "torque" in req.options:
+        raise InputError("the single-wheel tester takes a slip or a driving torque, not both",
+                         field="torque")
     return single_wheel(req.model, req.terrain, req.wheel_load, req.speed, slip=req.options.get("slip", 0.0),
                         duration=req.duration, dt=req.dt, output_rate=req.output_rate,
-                        progress=req.progress, road=req.road)
+                        progress=req.progress, road=req.road, torque=req.options.get("torque"))
 
 
 register_rig(Rig("trailer", _trailer, "the towed test trailer (thesis 3.4), two wheels", wheels=2,
@@ -198,5 +201,6 @@ register_rig(Rig("wheel-drop", _quarter_drop, "the quarter vehicle dropped the s
                  rolls=False, default_duration=2.0, channels="tyrelab.rig._quarter_kernel:CHANNELS",
                  check=_carries_wheel_mass))
 register_rig(Rig("single-wheel", _single_wheel, "a soil bin's single-wheel tester: prescribed speed "
-                 "and slip, dead-weight load", channels="tyrelab.rig.single_wheel:CHANNELS",
-                 options={"slip": float}, terrain="soil", default_road="flat"))
+                 "and slip or driving torque, dead-weight load",
+                 channels="tyrelab.rig.single_wheel:CHANNELS",
+                 options={"slip": float, "torque": float}, terrain="soil", default_road="flat"))

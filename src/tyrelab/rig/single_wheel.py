@@ -3,7 +3,9 @@
 As in Wong's and Bekker's soil bins: the carriage moves forward at a prescribed speed
 ``V``, the wheel is driven at the spin that gives the prescribed slip
 ``s = 1 - V / (R_e omega)`` (s = 1 spins in place) or braked to the skid
-``s = R_e omega / V - 1`` (negative; s = -1 is locked; :func:`wheel_spin`), and the
+``s = R_e omega / V - 1`` (negative; s = -1 is locked; :func:`wheel_spin`) -- or, given a
+driving ``torque`` instead, spins freely under it (its spin inertia, semi-implicit as the
+other rigs' wheels; 0: a towed wheel) and finds its own slip -- and the
 vertical load is a dead weight: the carriage
 and wheel, of mass ``W / g``, are free to sink. It starts at rest in static
 equilibrium in the soil (the sinkage at which the soil carries ``W``), then drives.
@@ -17,10 +19,13 @@ s = 0 rolls each model freely on hard ground, and slips compare across models.
 Channels: the wheel channels (``FX`` the drawbar pull, positive forward; ``FZ``;
 ``MY`` the soil's moment on the wheel about its axis; ``LONGSLIP``), plus ``SINKAGE``
 (depth of the wheel's lowest point below the undisturbed surface) and ``TORQUE``
-(the driving torque the axle applies, ``-MY``: the wheel's spin is held).
+(the driving torque the axle applies: ``-MY`` where the spin is held, the given torque
+where it is free).
 """
 
 from __future__ import annotations
+
+from typing import NamedTuple
 
 import numba as nb
 from numba.extending import overload
@@ -38,8 +43,9 @@ from .frames import G
 
 CHANNELS = WHEEL_CHANNELS + ("SINKAGE", "TORQUE")
 SC = named_index("SingleWheelChannelIndex", CHANNELS)
-#: the carriage's state: height of the wheel centre [m], its vertical speed [m/s], time [s]
-STATE = ("Z", "VZ", "T")
+#: the carriage's state: height of the wheel centre [m], its vertical speed [m/s], time [s],
+#: the wheel's spin [rad/s]
+STATE = ("Z", "VZ", "T", "W")
 S = named_index("SingleWheelStateIndex", STATE)
 #: where the carriage starts along the bin [m]
 X_START = 0.0
@@ -62,16 +68,19 @@ def _undisturbed(ground, x, y):
 
 
 @nb.njit(cache=True)
-def single_wheel_steps(wheel, mass, speed, omega, state, n_steps, dt, out_every, out, row0):
+def single_wheel_steps(wheel, mass, speed, drive, state, n_steps, dt, out_every, out, row0):
     """Drive ``n_steps`` from ``state`` (:data:`STATE`); rows of :data:`CHANNELS` into ``out``.
 
     The carriage's height follows the soil's vertical force against the dead weight
-    (semi-implicit Euler); x and the spin are prescribed. Returns the next free row.
+    (semi-implicit Euler); x is prescribed. ``drive`` (:class:`Drive`): the spin is held at
+    the state's, or with ``free`` turns under the driving ``torque`` [N m] and the soil's
+    moment about the axle, semi-implicitly in the moment's slope as the trailer's and the
+    quarter vehicle's wheels do. Returns the next free row.
     """
     cax = np.empty(6)
     row = row0
     for step in range(n_steps):
-        z, vz, t = state[S.Z], state[S.VZ], state[S.T]
+        z, vz, t, omega = state[S.Z], state[S.VZ], state[S.T], state[S.W]
         x = X_START + speed * t
         pose = WheelPose(x, 0.0, z, 0.0, 1.0, 0.0, speed, 0.0, vz, omega)
         f = wheel_step(wheel, pose, dt)
@@ -80,13 +89,25 @@ def single_wheel_steps(wheel, mass, speed, omega, state, n_steps, dt, out_every,
             wheel_row(o, t, x - X_START, pose, f, cax)
             o[SC.SINKAGE] = max(0.0, undisturbed(wheel.road, f.px, f.py) - f.pz) \
                 if f.fzw > 0.0 else 0.0
-            o[SC.TORQUE] = -o[WC.MY]
+            o[SC.TORQUE] = drive.torque if drive.free else -o[WC.MY]
             row += 1
         vz += dt * (f.fz - mass * G) / mass
         state[S.VZ] = vz
         state[S.Z] = z + dt * vz
         state[S.T] = t + dt
+        if drive.free:      # the soil's moment about the axle a = e_y is f.my
+            state[S.W] = omega + dt * (drive.torque + f.my) / (
+                drive.spin_inertia - dt * min(f.dspin_domega, 0.0))
     return row
+
+
+class Drive(NamedTuple):
+    """How the tester turns its wheel: held at its spin (``free`` False), or free under the
+    driving ``torque`` [N m] with the wheel's ``spin_inertia`` [kg m^2]."""
+
+    free: bool
+    torque: float
+    spin_inertia: float
 
 
 def wheel_spin(speed: float, rolling_radius: float, slip: float) -> float:
@@ -117,7 +138,7 @@ def rolling_radius(model, load: float, speed: float) -> float:
 def single_wheel(model, soil, load: float, speed: float, slip: float = 0.0, length: float = 10.0,
                  width: float = BED_WIDTH, spacing: float = BED_SPACING, duration: float | None = None,
                  dt: float = STEP, output_rate: float = 1000.0, progress: bool | None = None,
-                 road=None, passes: int = 1, return_bed: bool = False):
+                 road=None, passes: int = 1, return_bed: bool = False, torque: float | None = None):
     """Drive ``model`` through a soil bin; returns the signal table (a list of them, one per
     pass over the same bed, when ``passes`` > 1; with ``return_bed`` also the soil bed after,
     a :class:`~tyrelab.road.soil.scm.SoilSurface`).
@@ -136,6 +157,10 @@ def single_wheel(model, soil, load: float, speed: float, slip: float = 0.0, leng
     slip : float
         Driving ``s = 1 - V / (R_e omega)``, 0 to below 1; braking ``s = R_e omega / V - 1``,
         -1 (locked) to 0 (:func:`wheel_spin`; ``R_e``: :func:`rolling_radius`).
+    torque : float, optional
+        Instead of a slip: the driving torque [N m] (negative brakes; 0 tows the wheel) under
+        which the wheel spins freely from the free-rolling spin ``V / R_e``; its slip is
+        then what the soil lets it reach (``LONGSLIP``).
     length, width, spacing : float
         The soil bed [m] and its node spacing [m]; the bed starts 1 m behind the wheel.
     duration, dt, output_rate : float
@@ -150,6 +175,8 @@ def single_wheel(model, soil, load: float, speed: float, slip: float = 0.0, leng
     from ..road.obstacles import Flat
     if not -1.0 <= slip < 1.0:
         raise InputError(f"slip must be in [-1, 1), got {slip!r}", field="slip")
+    if torque is not None and not np.isfinite(torque):
+        raise InputError(f"torque must be a finite number of N m, got {torque!r}", field="torque")
     if duration is not None:
         length = max(length, X_START + speed * duration + 2.0)
     road = road or Flat()
@@ -161,7 +188,9 @@ def single_wheel(model, soil, load: float, speed: float, slip: float = 0.0, leng
     if duration is None:
         duration = (x_end - X_START) / speed
     r_e = rolling_radius(model, load, speed)
-    omega = wheel_spin(speed, r_e, slip)
+    omega = wheel_spin(speed, r_e, 0.0 if torque is not None else slip)
+    drive = Drive(torque is not None, float(torque or 0.0),
+                  float(max(model.tyre.wheel_spin_inertia, 1e-3)))
     n_steps = int(round(duration / dt))
     out_every = max(1, int(round(1.0 / (output_rate * dt))))
     tables = []
@@ -171,18 +200,20 @@ def single_wheel(model, soil, load: float, speed: float, slip: float = 0.0, leng
                         dt=dt)
         state = np.zeros(len(STATE))
         state[S.Z] = z0
+        state[S.W] = omega
 
         follow = Following(ground, X_START, speed, dt, radius)
 
         def advance(n, out, row, state=state, follow=follow):
             nonlocal wheel
             wheel = follow.wheel(wheel, n)
-            return single_wheel_steps(wheel, load / G, float(speed), omega, state, n, dt, out_every,
+            return single_wheel_steps(wheel, load / G, float(speed), drive, state, n, dt, out_every,
                                       out, row)
 
         data = run_chunks(advance, n_steps, out_every, len(CHANNELS), dt, progress)
         meta = {"rig": "single-wheel", "tyre": model.tyre.name, "model": model.contact,
-                **ground_meta, "road": road.name, "speed_m_s": speed, "slip": slip,
+                **ground_meta, "road": road.name, "speed_m_s": speed,
+                **({"slip": slip} if torque is None else {"torque_Nm": float(torque)}),
                 "static_wheel_load_N": load, "pass": len(tables) + 1, "rolling_radius_m": r_e,
                 # the settled start's SINKAGE: the tyre's contact point below the surface (the
                 # centre's depth less the radius was the undeformed circle's, a flexible
