@@ -19,16 +19,17 @@ lies below a node's current surface the node is in contact, at total sinkage
   smaller dimension, here the wheel's width;
 * a shear stress (Mohr-Coulomb strength, Janosi & Hanamoto 1961)::
 
-      tau = (c + sigma tan(phi)) (1 - exp(-j / K)),   j = integral of |v_t| dt
+      tau = (c + sigma tan(phi)) (1 - exp(-|j| / K)),   j = integral of v_t dt
 
   ``v_t`` the wheel surface's sliding velocity over the node, tangent to the
-  surface, accumulated while the node stays in contact (Wong & Reece 1967's
-  ``j(theta)`` for a rigid wheel in steady state).
+  surface, accumulated while the node stays in contact, signed (two components: along
+  the tread's circumferential tangent and the axis; Wong & Reece 1967's ``j(theta)``
+  for a rigid wheel in steady state).
 
 Each node's stresses act on the wheel surface element above it, whose area is the
 node's cell ``dx dy`` divided by the cosine of the surface's slope: the normal
-stress along the wheel surface's normal, the shear along its tangent against the
-sliding velocity -- as in Wong & Reece's analysis, so the horizontal part of the
+stress along the wheel surface's normal, the shear along its tangent against ``j``
+-- as in Wong & Reece's analysis, so the horizontal part of the
 normal stress is the compaction resistance in the drawbar pull. (Chrono's SCM
 applies the normal stress along the undisturbed terrain normal and the shear
 horizontally, which drops that resistance.) A wheel's pass over the nodes:
