@@ -83,9 +83,10 @@ def _shift(text: str):
     return value
 
 
-def _compare(aligned, segments, args) -> dict:
-    """:func:`~tyrelab.validate.compare.compare_aligned`; where the automatic segmentation finds
-    no disturbance in the measurement, the error names the file and the options that avoid it."""
+def _compare(aligned, segments, args, compared: str) -> dict:
+    """:func:`~tyrelab.validate.compare.compare_aligned` of the files ``compared`` (their
+    names); where the automatic segmentation finds no disturbance in the measurement, the
+    error names the file and the options that avoid it."""
     from ..validate.compare import compare_aligned
     try:
         return compare_aligned(aligned, segments, slope=args.slope)
@@ -94,8 +95,7 @@ def _compare(aligned, segments, args) -> dict:
             raise InputError(f"--segments auto: {exc.reason}; give --segments none (no split) or "
                              "T0:T1[:T2] seconds", source=args.meas, field=args.channel) from None
         if exc.source is None:  # a metric of the pair: name both files
-            raise InputError(exc.reason, source=f"{args.sim} vs {args.meas}",
-                             field=exc.field or args.channel) from None
+            raise InputError(exc.reason, source=compared, field=exc.field or args.channel) from None
         raise
 
 
@@ -156,7 +156,7 @@ def run(args: argparse.Namespace) -> int:
     if segments == "geometry":
         segments = _geometry_segments(args, meas)
     aligned = align(sim, meas, args.channel, shift, args.max_shift)
-    result = _compare(aligned, segments, args)
+    result = _compare(aligned, segments, args, f"{args.sim} vs {args.meas}")
     rows = {Path(args.sim).stem: metric_row(result)}
     notes = [f"channel {args.channel}; simulation shifted by {aligned.shift:.4g} s; "
              f"{aligned.t.size} compared samples, {aligned.dropped} dropped (NaN)"]
@@ -167,7 +167,8 @@ def run(args: argparse.Namespace) -> int:
                      f" ({seg.method})")
     if args.repeat:
         other = read_run(args.repeat, column_map=args.column_map)
-        rep = _compare(align(other, meas, args.channel, shift, args.max_shift), segments, args)
+        rep = _compare(align(other, meas, args.channel, shift, args.max_shift), segments, args,
+                       f"{args.repeat} vs {args.meas}")
         rows["measured repeatability"] = metric_row(rep)
     if "psd_skipped" in result["details"]:
         notes.append(f"no PSD metrics: {result['details']['psd_skipped']}")

@@ -4,8 +4,9 @@ As in Wong's and Bekker's soil bins: the carriage moves forward at a prescribed 
 ``V``, the wheel is driven at the spin that gives the prescribed slip
 ``s = 1 - V / (R_e omega)`` (s = 1 spins in place) or braked to the skid
 ``s = R_e omega / V - 1`` (negative; s = -1 is locked; :func:`wheel_spin`) -- or, given a
-driving ``torque`` instead, spins freely under it (its spin inertia, semi-implicit as the
-other rigs' wheels; 0: a towed wheel) and finds its own slip -- and the
+driving ``torque`` instead, spins freely under it (its spin inertia, stepped as the
+trailer's and the quarter vehicle's wheels are; 0: a towed wheel) and finds its own
+slip -- and the
 vertical load is a dead weight: the carriage
 and wheel, of mass ``W / g``, are free to sink. It starts at rest in static
 equilibrium in the soil (the sinkage at which the soil carries ``W``), then drives.
@@ -18,7 +19,7 @@ s = 0 rolls each model freely on hard ground, and slips compare across models.
 
 Channels: the wheel channels (``FX`` the drawbar pull, positive forward; ``FZ``;
 ``MY`` the soil's moment on the wheel about its axis; ``LONGSLIP``), plus ``SINKAGE``
-(depth of the wheel's lowest point below the undisturbed surface) and ``TORQUE``
+(depth of the tyre's contact point below the undisturbed surface) and ``TORQUE``
 (the driving torque the axle applies: ``-MY`` where the spin is held, the given torque
 where it is free).
 """
@@ -74,8 +75,10 @@ def single_wheel_steps(wheel, mass, speed, drive, state, n_steps, dt, out_every,
     The carriage's height follows the soil's vertical force against the dead weight
     (semi-implicit Euler); x is prescribed. ``drive`` (:class:`Drive`): the spin is held at
     the state's, or with ``free`` turns under the driving ``torque`` [N m] and the soil's
-    moment about the axle, semi-implicitly in the moment's slope as the trailer's and the
-    quarter vehicle's wheels do. Returns the next free row.
+    moment about the axle, as the trailer's and the quarter vehicle's wheels do (implicit in
+    the moment's slope ``dspin_domega`` where the model gives one; the wheels on soil give
+    none, so there the step is explicit: stable at 1 ms, measured). Returns the next free
+    row.
     """
     cax = np.empty(6)
     row = row0

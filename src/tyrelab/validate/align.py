@@ -24,9 +24,8 @@ values around the maximum.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-
 import warnings
+from dataclasses import dataclass
 
 import numpy as np
 import pandas as pd
@@ -128,14 +127,13 @@ def align(sim: pd.DataFrame, meas: pd.DataFrame, channel: str = "FZ",
     max_shift : float, optional
         Limit of the estimated shift in seconds.
     """
-    names = {id(sim): _named(sim, "simulation"), id(meas): _named(meas, "measurement")}
-    for name, df in (("simulation", sim), ("measurement", meas)):
+    sim_name, meas_name = _named(sim, "simulation"), _named(meas, "measurement")
+    for name, df, source in (("simulation", sim, sim_name), ("measurement", meas, meas_name)):
         for col in ("RUNTIME", channel):
             if col not in df.columns:
-                raise InputError(f"the {name} has no channel {col}", field=col,
-                                 source=names[id(df)])
-    t_sim = check_time(sim["RUNTIME"].to_numpy(), source=names[id(sim)])
-    t_meas = check_time(meas["RUNTIME"].to_numpy(), source=names[id(meas)])
+                raise InputError(f"the {name} has no channel {col}", field=col, source=source)
+    t_sim = check_time(sim["RUNTIME"].to_numpy(), source=sim_name)
+    t_meas = check_time(meas["RUNTIME"].to_numpy(), source=meas_name)
     y_sim = sim[channel].to_numpy(dtype=float)
     y_meas = meas[channel].to_numpy(dtype=float)
     if isinstance(shift, str):
@@ -149,7 +147,7 @@ def align(sim: pd.DataFrame, meas: pd.DataFrame, channel: str = "FZ",
         raise InputError("the simulation and the measurement do not overlap in time",
                          field="RUNTIME")
     dropped = int(np.sum(inside & ~np.isfinite(y_meas)))
-    check_signs(p[keep], y_meas[keep], channel, names[id(meas)])
+    check_signs(p[keep], y_meas[keep], channel, meas_name)
     return Aligned(t_meas[keep], p[keep], y_meas[keep], float(shift), dropped, channel)
 
 
