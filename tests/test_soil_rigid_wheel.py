@@ -160,3 +160,23 @@ def test_a_wheel_given_the_torque_of_a_slip_finds_that_slip(capsys, tmp_path):
         err = capsys.readouterr().err
         assert err.count("\n") == 1 and "--torque" in err, err
         assert not (tmp_path / "x.parquet").exists()
+
+
+def test_a_brake_beyond_the_soils_grip_locks_the_wheel_and_a_drive_beyond_it_spins_it_up():
+    """A brake stops a wheel; it does not turn it backwards. Given twice the torque the soil
+    can hold the wheel against (its moment locked is 9.8 kN m on LETE sand), the wheel stops
+    and stays locked, and pulls what the prescribed locked wheel (s = -1) pulls. (Taken as a
+    plain negative torque it spun backwards, at -606 rad/s after 3 s.) A driving torque past
+    the soil's shear spins the wheel up without end, which is warned of."""
+    from tyrelab.guards import PhysicsWarning
+    kw = dict(model="rigid", rig="single-wheel", terrain="lete-sand", load=LOAD, speed=SPEED,
+              duration=3.0, progress=False)
+    locked = tyrelab.simulate(rig_options={"slip": -1.0}, **kw)
+    held = -locked[locked["RUNTIME"] > 1.5]["MY"].mean()
+    assert held < 0.0                                  # the soil pushes a locked wheel forwards
+    braked = tyrelab.simulate(rig_options={"torque": 2.0 * held}, **kw)
+    assert braked["ROTSPEED"].min() >= 0.0 and braked["ROTSPEED"].iloc[-1] == 0.0
+    assert braked[braked["RUNTIME"] > 1.5]["FX"].mean() == pytest.approx(
+        locked[locked["RUNTIME"] > 1.5]["FX"].mean(), rel=0.01)
+    with pytest.warns(PhysicsWarning, match="spun up to a slip of 0.99"):
+        tyrelab.simulate(rig_options={"torque": -2.0 * held}, **kw)

@@ -99,8 +99,11 @@ def single_wheel_steps(wheel, mass, speed, drive, state, n_steps, dt, out_every,
         state[S.Z] = z + dt * vz
         state[S.T] = t + dt
         if drive.free:      # the soil's moment about the axle a = e_y is f.my
-            state[S.W] = omega + dt * (drive.torque + f.my) / (
+            w = omega + dt * (drive.torque + f.my) / (
                 drive.spin_inertia - dt * min(f.dspin_domega, 0.0))
+            # a brake (a negative torque) stops the wheel; it does not turn it backwards: at
+            # rest it holds up to its torque, and the soil turns the wheel on only past it
+            state[S.W] = max(w, 0.0) if drive.torque < 0.0 and omega >= 0.0 else w
     return row
 
 
@@ -224,8 +227,29 @@ def single_wheel(model, soil, load: float, speed: float, slip: float = 0.0, leng
                 "static_sinkage_m": float(data[0, SC.SINKAGE]),
                 "soil_spacing_m": spacing, "dt_s": dt, "output_rate_Hz": 1.0 / (out_every * dt)}
         tables.append(to_signal(data, CHANNELS, meta))
+        if torque is not None and torque > 0.0:
+            _warn_spin_up(tables[-1], torque)
     result = tables[0] if passes == 1 else tables
     return (result, wheel.road) if return_bed else result
+
+
+#: a wheel driven by a torque whose slip ends above this has spun up: the torque is more than
+#: the soil's shear carries (at s = 1 the wheel spins in place)
+SPIN_UP_SLIP = 0.95
+
+
+def _warn_spin_up(table, torque: float) -> None:
+    """Warn (:class:`~tyrelab.guards.PhysicsWarning`) when a driving torque spun the wheel up."""
+    import warnings
+
+    from ..guards import PhysicsWarning
+    slip = float(table["LONGSLIP"].iloc[-1])
+    if slip > SPIN_UP_SLIP:
+        warnings.warn(f"the driving torque {torque:.6g} N m is more than the soil's shear carries "
+                      f"under this load: the wheel spun up to a slip of {slip:.3g} "
+                      f"({table['ROTSPEED'].iloc[-1]:.4g} rad/s at the end) and keeps accelerating; "
+                      "a smaller torque, or a slip (--slip) for the pull at full slip",
+                      PhysicsWarning, stacklevel=3)
 
 
 #: the part of a slip-curve run whose mean is its steady state: the second half
