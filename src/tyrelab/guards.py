@@ -11,7 +11,8 @@ Two kinds of check, both outside the compiled kernels:
   centre below the road), an overturned rig (trailer roll or pitch beyond
   :data:`OVERTURN_ANGLE`), a wheel that left the road for longer than
   :data:`AIRBORNE_TIME` (not on the rolling rig, whose axle is held at a
-  fixed height), and a peak normal force far above ``FZMAX``.
+  fixed height), a peak normal force far above ``FZMAX``, and a wheel a driving
+  torque spun up (:data:`SPIN_UP_SLIP`).
 
 Each finding is one :class:`PhysicsWarning` line saying what happened, when,
 and what to change; the command line prints it as ``tyrelab: warning: ...``.
@@ -35,6 +36,9 @@ OVERTURN_ANGLE = 30.0
 #: the test wheel off the road (zero normal force) for longer than this [s] has left the
 #: road (a hop over a cleat at 42 km/h lasts a few tens of milliseconds)
 AIRBORNE_TIME = 0.5
+#: a wheel driven by a torque (the single-wheel tester's ``torque``) whose slip ends above
+#: this has spun up: the torque is more than the soil's shear carries (s = 1 spins in place)
+SPIN_UP_SLIP = 0.95
 
 
 class PhysicsWarning(UserWarning):
@@ -209,6 +213,15 @@ def check_run(table, tyre) -> list[str]:
                          f"than {limits.PEAK_LOAD_FACTOR:g} x FZMAX {fzm / 1e3:.4g} kN of {tyre.name}: "
                          "the tyre's coefficients do not reach that far: use a lower load, speed or "
                          "obstacle")
+    torque = float(table.attrs.get("metadata", {}).get("torque_Nm", 0.0))
+    if torque > 0.0 and "LONGSLIP" in table.columns:
+        slip = float(table["LONGSLIP"].iloc[-1])
+        if slip > SPIN_UP_SLIP:
+            found.append(f"the driving torque {torque:.6g} N m is more than the soil's shear "
+                         f"carries under this load: the wheel spun up to a slip of {slip:.3g} "
+                         f"({table['ROTSPEED'].iloc[-1]:.4g} rad/s at the end) and keeps "
+                         "accelerating; a smaller torque, or a slip (--slip) for the pull at "
+                         "full slip")
     for message in found:
         _warn(message)
     return found

@@ -111,7 +111,7 @@ class QuarterVehicle:
             speed=float(speed), sprung_mass=float(ms), unsprung_mass=float(mu),
             stiffness=float(self.suspension_stiffness), damping=float(self.suspension_damping),
             spring_free_length=float(self.spring_length + ms * G / self.suspension_stiffness),
-            spin_inertia=float(max(tyre.wheel_spin_inertia, 1e-3)), gravity=G,
+            spin_inertia=tyre.spin_inertia, gravity=G,
             x_start=float(x0_road))
         state = np.zeros(K.Q_SIZE)
         state[K.Q.ZU] = zu

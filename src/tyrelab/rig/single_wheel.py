@@ -195,8 +195,7 @@ def single_wheel(model, soil, load: float, speed: float, slip: float = 0.0, leng
         duration = (x_end - X_START) / speed
     r_e = rolling_radius(model, load, speed)
     omega = wheel_spin(speed, r_e, 0.0 if torque is not None else slip)
-    drive = Drive(torque is not None, float(torque or 0.0),
-                  float(max(model.tyre.wheel_spin_inertia, 1e-3)))
+    drive = Drive(torque is not None, float(torque or 0.0), model.tyre.spin_inertia)
     n_steps = int(round(duration / dt))
     out_every = max(1, int(round(1.0 / (output_rate * dt))))
     tables = []
@@ -227,29 +226,8 @@ def single_wheel(model, soil, load: float, speed: float, slip: float = 0.0, leng
                 "static_sinkage_m": float(data[0, SC.SINKAGE]),
                 "soil_spacing_m": spacing, "dt_s": dt, "output_rate_Hz": 1.0 / (out_every * dt)}
         tables.append(to_signal(data, CHANNELS, meta))
-        if torque is not None and torque > 0.0:
-            _warn_spin_up(tables[-1], torque)
     result = tables[0] if passes == 1 else tables
     return (result, wheel.road) if return_bed else result
-
-
-#: a wheel driven by a torque whose slip ends above this has spun up: the torque is more than
-#: the soil's shear carries (at s = 1 the wheel spins in place)
-SPIN_UP_SLIP = 0.95
-
-
-def _warn_spin_up(table, torque: float) -> None:
-    """Warn (:class:`~tyrelab.guards.PhysicsWarning`) when a driving torque spun the wheel up."""
-    import warnings
-
-    from ..guards import PhysicsWarning
-    slip = float(table["LONGSLIP"].iloc[-1])
-    if slip > SPIN_UP_SLIP:
-        warnings.warn(f"the driving torque {torque:.6g} N m is more than the soil's shear carries "
-                      f"under this load: the wheel spun up to a slip of {slip:.3g} "
-                      f"({table['ROTSPEED'].iloc[-1]:.4g} rad/s at the end) and keeps accelerating; "
-                      "a smaller torque, or a slip (--slip) for the pull at full slip",
-                      PhysicsWarning, stacklevel=3)
 
 
 #: the part of a slip-curve run whose mean is its steady state: the second half

@@ -173,29 +173,18 @@ def terrain_wheel(model, terrain, road, x0: float, x1: float, load: float,
     return wheel, ground, z0, meta
 
 
-def sinkage(ground, x, y, z, fzw):
-    """The ``SINKAGE`` channel [m] of a wheel on ``ground`` from its contact point ``(x, y, z)``
-    [m] in the ground's frame and its normal force ``fzw`` [N] (arrays): the contact point's
-    depth below the surface as laid where the wheel carries load, else 0 -- what the
-    single-wheel tester's kernel writes. None for a ground that does not say where its
-    surface was laid (no ``undisturbed(x, y)``: a rigid road, a plugin's terrain)."""
+def with_sinkage(data, channels, ground, index, road_y: float = 0.0):
+    """``(data, channels)`` with a ``SINKAGE`` column after the rig's own, or as they are where
+    the ground does not say where its surface was laid (no ``undisturbed(x, y)``: a rigid
+    road, a plugin's terrain). ``SINKAGE`` [m] is the test wheel's contact point below the
+    surface as laid where it carries load, else 0 -- what the single-wheel tester's kernel
+    writes; ``index`` the rig's channel index, ``road_y`` [m] where the wheel's ground lies
+    across from the rig's y."""
     undisturbed = getattr(ground, "undisturbed", None)
     if undisturbed is None:
-        return None
-    depth = np.asarray(undisturbed(x, y), dtype=float) - np.asarray(z, dtype=float)
-    return np.where(np.asarray(fzw) > 0.0, np.maximum(depth, 0.0), 0.0)
-
-
-def with_sinkage(data, channels, ground, index, road_y: float = 0.0):
-    """``(data, channels)`` with a ``SINKAGE`` column after the rig's own (:func:`sinkage` of
-    its test wheel; ``index`` the rig's channel index, ``road_y`` [m] where the wheel's ground
-    lies across from the rig's y), or as they are where the ground gives none."""
-    if ground is None:
         return data, channels
-    depth = sinkage(ground, data[:, index.X_CP], data[:, index.Y_CP] + road_y,
-                    data[:, index.Z_CP], data[:, index.FZW])
-    if depth is None:
-        return data, channels
+    depth = undisturbed(data[:, index.X_CP], data[:, index.Y_CP] + road_y) - data[:, index.Z_CP]
+    depth = np.where(data[:, index.FZW] > 0.0, np.maximum(depth, 0.0), 0.0)
     return np.column_stack([data, depth]), (*channels, "SINKAGE")
 
 

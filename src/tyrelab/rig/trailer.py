@@ -211,7 +211,7 @@ class Trailer:
             hitch_height=float(s.hitch_height), mass=float(s.mass),
             cg=np.ascontiguousarray(s.cg, np.float64),
             inertia=np.ascontiguousarray(s.inertia, np.float64),
-            spin_inertia=float(max(ty.wheel_spin_inertia, 1e-3)), wheel_mass=float(ty.wheel_mass),
+            spin_inertia=ty.spin_inertia, wheel_mass=float(ty.wheel_mass),
             gravity=G, road_y=0.5 * float(gm.track))
 
     def run(self, road: Road | str, speed: float, duration: float | None = None,

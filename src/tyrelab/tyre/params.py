@@ -16,6 +16,8 @@ from ..errors import InputError
 from .tir import TirFile, read_tir, write_tir
 from .vertical import DEFAULT_DAMPING_RAMP, VerticalLaw
 
+#: the least spin inertia [kg m^2] a rig turns a wheel with (:attr:`Tyre.spin_inertia`)
+MIN_SPIN_INERTIA = 1e-3
 #: vertical stiffness modes a user can ask for
 STIFFNESS_MODES = ("table", "linear")
 
@@ -130,6 +132,12 @@ class Tyre:
         return replace(self, stiffness=mode)
 
     # -- what the kernels take -------------------------------------------
+    @property
+    def spin_inertia(self) -> float:
+        """The spin inertia [kg m^2] a rig turns the wheel with: ``wheel_spin_inertia``, at
+        least :data:`MIN_SPIN_INERTIA` (a file that gives none; the spin step divides by it)."""
+        return float(max(self.wheel_spin_inertia, MIN_SPIN_INERTIA))
+
     @property
     def vertical_law(self) -> VerticalLaw:
         """The compiled-ready vertical law (rebuilt only when its inputs change)."""

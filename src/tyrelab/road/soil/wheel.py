@@ -73,7 +73,9 @@ class WheelShape(NamedTuple):
     ``v``, spin ``omega`` about ``a``, ``radius``, ``width``, cut flat at ``flat`` from the
     axis along ``d`` (``has_flat``), its in-plane down ``d`` and the flat tread's direction
     of motion ``r = a x d``; ``m = e_z - a_z a`` and ``mm = |m|^2`` (how the offset from the
-    axis changes with the height below the centre)."""
+    axis changes with the height below the centre); ``tread_spin`` the rate [rad/s] at which
+    the tread turns round the axis off the flat, ``omega min(flat, R) / R`` (one band at the
+    flat's speed; the rigid wheel's rim at ``omega``)."""
 
     cx: float
     cy: float
@@ -99,6 +101,7 @@ class WheelShape(NamedTuple):
     my: float
     mz: float
     mm: float
+    tread_spin: float
 
 
 class SurfacePoint(NamedTuple):
@@ -148,9 +151,8 @@ def surface_point(w, d0x, d0y):
     # tread on its arcs as on its flat, one inextensible band
     nx, ny, nz = unit(q0x + zr * w.mx, q0y + zr * w.my, q0z + zr * w.mz)
     wx, wy, wz = cross(w.ax, w.ay, w.az, d0x, d0y, zr)
-    spin = w.omega * min(w.flat, w.radius) / w.radius
-    return SurfacePoint(True, la + zr * w.az, zr, False, nx, ny, nz,
-                        w.vx + spin * wx, w.vy + spin * wy, w.vz + spin * wz)
+    return SurfacePoint(True, la + zr * w.az, zr, False, nx, ny, nz, w.vx + w.tread_spin * wx,
+                        w.vy + w.tread_spin * wy, w.vz + w.tread_spin * wz)
 
 
 @nb.njit(cache=True)
@@ -199,7 +201,8 @@ def wheel_loads(bed, cx, cy, cz, ax, ay, az, vx, vy, vz, omega, radius, width, f
     mx_, my_, mz_ = -az * ax, -az * ay, 1.0 - az * az
     w = WheelShape(cx, cy, cz, ax, ay, az, vx, vy, vz, omega, radius, width, flat,
                    flat < radius and -dz_ >= MIN_COS, dx_, dy_, dz_, rx_, ry_, rz_,
-                   mx_, my_, mz_, mx_ * mx_ + my_ * my_ + mz_ * mz_)
+                   mx_, my_, mz_, mx_ * mx_ + my_ * my_ + mz_ * mz_,
+                   omega * min(flat, radius) / radius)
     along_rows = ax == 0.0 and az == 0.0
     fx = fy = fz = mx = my = mz = 0.0
     normal = dnormal = 0.0
