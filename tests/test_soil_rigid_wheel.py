@@ -149,7 +149,8 @@ def test_a_wheel_given_the_torque_of_a_slip_finds_that_slip(capsys, tmp_path):
     steady = free[free["RUNTIME"] > 1.5]
     assert steady["LONGSLIP"].mean() == pytest.approx(0.2, abs=0.005)
     assert steady["FX"].mean() == pytest.approx(held[held["RUNTIME"] > 1.5]["FX"].mean(), rel=0.01)
-    assert (free["TORQUE"] == torque).all() and free.attrs["metadata"]["torque_Nm"] == torque
+    # steady, the soil's moment about the axle balances the torque applied (Newton, no spin-up)
+    assert -steady["MY"].mean() == pytest.approx(torque, rel=0.01)
     towed = tyrelab.simulate(rig_options={"torque": 0.0}, **kw)
     steady = towed[towed["RUNTIME"] > 1.5]
     assert abs(steady["MY"].mean()) < 0.01 * torque          # the soil turns it: no net moment
