@@ -65,7 +65,12 @@ def loop_branches(deflection, prominence=None) -> list[tuple[slice, int]]:
 
     Turning points are the extremes of the deflection standing out by at least
     ``prominence`` [m] (default a tenth of its range), so noise on a branch
-    does not cut it.
+    does not cut it. A turning sample belongs to the branch that reached it,
+    not to the one leaving it: where the hysteresis does not vanish as the
+    press slows (a tyre's rubber and cords: loading above unloading by a
+    share of the load), the sample at the top is a loading value, and read
+    as the unloading branch's own it set the table's deepest row to the
+    loading branch (+8 % on a stepped press with +-8 % hysteresis).
     """
     d = np.asarray(deflection, float)
     if prominence is None:
@@ -75,23 +80,31 @@ def loop_branches(deflection, prominence=None) -> list[tuple[slice, int]]:
     out = []
     for a, b in zip(cuts[:-1], cuts[1:]):
         if b - a >= 2:
-            out.append((slice(int(a), int(b) + 1), 1 if d[b] > d[a] else -1))
+            first = int(a) if a == 0 else int(a) + 1
+            out.append((slice(first, int(b) + 1), 1 if d[b] > d[a] else -1))
     return out
 
 
 def _branch_at(d, f, grid, half):
     """Load of one branch at each grid deflection: a parabola fitted to the samples within
     ``half`` of it (the branch's own noise averages out; a straight line would be biased by the
-    curve's bend, f'' E[u^2] / 2), else linear interpolation; NaN outside."""
+    curve's bend, f'' E[u^2] / 2), else linear interpolation; NaN more than ``half`` beyond
+    the branch's ends. Within ``half`` beyond an end a straight line through the window's
+    samples extrapolates (its bend bias over so short a reach is a few newtons): a branch
+    leaving a turning point does not hold the turning sample (:func:`loop_branches`)."""
     order = np.argsort(d, kind="stable")
     d, f = d[order], f[order]
     out = np.full(grid.size, np.nan)
     for j, g in enumerate(grid):
-        if g < d[0] - 1e-12 or g > d[-1] + 1e-12:
+        if g < d[0] - half or g > d[-1] + half:
             continue
-        near = np.abs(d - g) <= half
-        if np.count_nonzero(near) >= 6 and np.ptp(d[near]) > 0.5 * half:
+        near = np.abs(d - g) <= half * (1.0 + 1e-9)  # a sample on the window's edge, as on a stepped press
+        count, spread = np.count_nonzero(near), np.ptp(d[near]) if near.any() else 0.0
+        inside = d[0] <= g <= d[-1]
+        if inside and count >= 6 and spread > 0.5 * half:
             out[j] = np.polyfit((d[near] - g) / half, f[near], 2)[-1]
+        elif not inside and count >= 2 and spread > 0.0:
+            out[j] = np.polyfit((d[near] - g) / half, f[near], 1)[-1]
         else:
             out[j] = np.interp(g, d, f)
     return out
