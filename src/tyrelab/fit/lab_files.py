@@ -7,7 +7,7 @@ kind               file                                           quantities (co
 =================  =============================================  =========================
 load_deflection    CSV or TYDEX: a table, or the raw loading and  deflection, load [, time]
                    unloading time series of the plate press
-drop_test          CSV or TYDEX: rim (axle) height from release   time, displacement
+drop_test          CSV or TYDEX: rim (axle) height, held then let go time, displacement
 contact_patch      CSV: patch size vs deflection or load          deflection or load,
                                                                   length and/or width
 footprint_image    PNG bitmap, patch black on white, a 100 mm     (load or deflection in
@@ -73,8 +73,9 @@ class LoadDeflection(LabTest):
 
 @dataclass
 class DropTrace(LabTest):
-    """Trailer drop test (3.4.1): rim height ``displacement`` [m] (up positive) over ``time`` [s]
-    from the release, and the trailer that was dropped."""
+    """Trailer drop test (3.4.1): rim height ``displacement`` [m] (up positive) over ``time`` [s],
+    from the release or from before it while held (the fit finds the release:
+    :func:`tyrelab.fit.damping.drop_release`), and the trailer that was dropped."""
 
     time: np.ndarray = field(default_factory=lambda: np.zeros(0))
     displacement: np.ndarray = field(default_factory=lambda: np.zeros(0))
