@@ -120,8 +120,10 @@ def test_tyre_without_ring_section_is_an_input_error(tmp_path):
     from tyrelab.errors import InputError
     tyre = load_tyre("xzl-16.00R20", 300e3)
     other = dataclasses.replace(tyre, name="other")
-    with pytest.raises(InputError, match="FLEXIBLE_RING"):
+    with pytest.raises(InputError, match="FLEXIBLE_RING") as err:
         ring_params(other, None)
+    # the fix as a command the user can type, with the file's own name
+    assert "tyrelab fit ring CAMPAIGN --into xzl-16.00R20_300kPa.tir" in str(err.value)
 
 
 def test_an_unconverged_equilibrium_says_so(monkeypatch):

@@ -47,6 +47,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, fields
 from importlib import resources
+from pathlib import Path
 
 import numpy as np
 
@@ -197,7 +198,8 @@ def ring_parameters(tyre) -> RingParameters:
     key = {k.lower(): k for k in BUILT_IN_RING}.get(str(tyre.name).lower())
     if key is None:
         raise InputError(f"the ring model needs a [{SECTION}] section in the tyre's property "
-                         f"file (fit one with tyrelab.fit.ring)", source=tyre.tir.source,
+                         f"file (fit one from your tests: tyrelab fit ring CAMPAIGN --into "
+                         f"{Path(str(tyre.tir.source)).name})", source=tyre.tir.source,
                          field=SECTION)
     with resources.as_file(_ring_file(key)) as path:
         if not path.is_file():
