@@ -220,6 +220,7 @@ def test_a_wheel_put_below_the_road_or_onto_its_rim_is_warned_once_each():
     assert "z = -0.6 m under the road's 0 m" in str(found[0].message)
     assert "472 mm is beyond the 418 mm" in str(found[1].message)   # 471.5, rounded
     assert below.fz < 0                               # why it must be said: it pulls downwards
+    assert {w.filename for w in found} == {__file__}  # pointed at the host's call, not at tyrelab
 
 
 @pytest.mark.parametrize("call, match", [

@@ -45,8 +45,10 @@ class PhysicsWarning(UserWarning):
     """A run went outside the physics its models are valid for (rim contact, overturn ...)."""
 
 
-def _warn(message: str) -> None:
-    warnings.warn(message, PhysicsWarning, stacklevel=3)
+def physics_warning(message: str, stacklevel: int = 3) -> None:
+    """Issue ``message`` as a :class:`PhysicsWarning`, pointed ``stacklevel`` frames up (the
+    default: the caller of the check that found it)."""
+    warnings.warn(message, PhysicsWarning, stacklevel=stacklevel)
 
 
 def path_edge(road, width: float, spacing: float | None = None) -> tuple[float, float]:
@@ -126,7 +128,7 @@ def check_level(road, x0: float, x1: float, limit: float, why: str) -> str | Non
     message = (f"road '{road.name}' {'rises' if rise > 0 else 'falls'} {abs(rise):.3g} m from the "
                f"first quarter of the run's {x1 - x0:.3g} m to its last: {why}; for a road with a "
                "grade or long waves use the quarter-vehicle rig")
-    _warn(message)
+    physics_warning(message)
     return message
 
 
@@ -144,7 +146,7 @@ def check_load_range(tyre, wheel_load: float) -> None:
     """Warn when the static wheel load is above the property file's FZMAX."""
     fz = limits.fzmax(tyre)
     if fz is not None and wheel_load > fz:
-        _warn(f"the static wheel load {wheel_load / 1e3:.4g} kN is above FZMAX {fz / 1e3:.4g} kN "
+        physics_warning(f"the static wheel load {wheel_load / 1e3:.4g} kN is above FZMAX {fz / 1e3:.4g} kN "
               f"of {tyre.name}: its handling coefficients are extrapolated; use a load up to FZMAX")
 
 
@@ -223,5 +225,5 @@ def check_run(table, tyre) -> list[str]:
                          "accelerating; a smaller torque, or a slip (--slip) for the pull at "
                          "full slip")
     for message in found:
-        _warn(message)
+        physics_warning(message)
     return found

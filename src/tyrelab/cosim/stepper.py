@@ -26,12 +26,12 @@ from __future__ import annotations
 
 import copy
 import math
-import warnings
+from functools import partial
 
 from .. import limits
 from ..api import make_tyre_model
 from ..errors import InputError
-from ..guards import PhysicsWarning
+from ..guards import physics_warning
 from ..road.terrain import ground_range
 from ..rig.soil_ground import KEEP_AHEAD, KEEP_BEHIND, on_fresh_ground
 from ..tyre.model import TyreModel
@@ -113,7 +113,8 @@ class WheelStepper:
         self._rim_room, self._rim_how = limits.rim_deflection(model.tyre)
         #: what a finding of :meth:`_check_pose` is given to: a PhysicsWarning by default; the
         #: FMU's slave logs it through the host's logger instead
-        self.warn = _physics_warning
+        # a finding of _check_pose, as the rigs' guards give theirs, pointed at the host's call
+        self.warn = partial(physics_warning, stacklevel=4)
 
     @property
     def time(self) -> float:
@@ -249,11 +250,6 @@ class WheelStepper:
         loads = advance(wheel, centre, 1, 0.0, self._frame)
         self._check_pose(centre, loads)
         return loads
-
-
-def _physics_warning(message: str) -> None:
-    """A finding of :meth:`WheelStepper._check_pose`, as the rigs' guards give theirs."""
-    warnings.warn(message, PhysicsWarning, stacklevel=4)
 
 
 def _number(value, field: str, what: str | None = None) -> float:
