@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 from tyrelab.errors import InputError
-from tyrelab.fit.shape import fit_carcass_shape, fold_profile, shape_rms
+from tyrelab.fit.shape import fit_carcass_shape, fold_profile, profile_centre, shape_rms
 from tyrelab.tyre.contact.shape import resample_shape
 
 R0, HALF = 0.6715, 0.219
@@ -64,6 +64,22 @@ def test_one_half_or_both_and_the_asymmetry():
     assert both.profile.asymmetry == pytest.approx(0.0, abs=1e-12)
     skew = r + np.where(y < 0, 0.002, 0.0)         # the left half 2 mm proud
     assert fold_profile(y, skew, R0, HALF).asymmetry == pytest.approx(0.002 / R0, rel=0.01)
+
+
+@pytest.mark.parametrize("offset", [HALF, 0.3, -0.5])
+def test_a_section_scanned_from_one_side_is_centred_on_its_shoulders(offset):
+    """A laser run across the tyre from one sidewall gives y of one sign (0 to 438 mm) with the
+    crown in the middle. Read as distances from the centre line, the sidewall became the
+    crown: the [SHAPE] came out reversed (0.76 at the centre, 1.0 at the edge). Centred on the
+    shoulders' midpoint, it is the centred contour's table; a half from the centre line (crown
+    at y = 0) and a centred contour are not moved."""
+    y, r = _contour(TABLE_4_1)
+    centred = fit_carcass_shape(y, r, R0, HALF, points=8)
+    scanned = fit_carcass_shape(y + offset, r, R0, HALF, points=8)
+    assert scanned.profile.centre == pytest.approx(offset, abs=1e-9)
+    assert scanned.table == pytest.approx(centred.table, abs=1e-9)
+    right = y >= 0
+    assert profile_centre(y[right], r[right]) == 0.0 and profile_centre(y, r) == 0.0
 
 
 def test_noise_on_the_contour_degrades_gracefully():

@@ -42,6 +42,37 @@ class FoldedProfile(NamedTuple):
     half_width: float
     #: RMS [-] of the radius ratio between the two halves where both were measured (NaN: one side)
     asymmetry: float
+    #: the centre line's ``y`` [m] in the points as given (:func:`profile_centre`; 0: measured from it)
+    centre: float = 0.0
+
+
+def profile_centre(y, radius) -> float:
+    """The centre line's ``y`` [m] of a contour measured across the whole section from one side.
+
+    A scan across the tyre from one sidewall to the other gives ``y`` of one
+    sign (0 to W0, say) with the crown in the middle; read as distances from
+    the centre line, its sidewall would become the crown. Such a contour --
+    all ``y`` of one sign, and both of its ends below half way from the
+    lowest to the highest radius -- is centred on the midpoint of the two
+    places where it crosses that half-way level (the shoulders). Any other
+    contour (both signs, or one half with its crown at ``y = 0``) is taken as
+    measured from the centre line: 0.
+    """
+    y = np.asarray(y, float)
+    r = np.asarray(radius, float)
+    if y.size < 3 or not (np.all(y >= 0) or np.all(y <= 0)):
+        return 0.0
+    order = np.argsort(y, kind="stable")
+    y, r = y[order], r[order]
+    level = r.min() + 0.5 * (r.max() - r.min())
+    above = np.flatnonzero(r >= level)
+    if not (r[0] < level and r[-1] < level and above.size):
+        return 0.0
+    i, j = int(above[0]), int(above[-1])
+    # where the contour crosses the level, interpolated on each side
+    rise = y[i - 1] + (level - r[i - 1]) * (y[i] - y[i - 1]) / (r[i] - r[i - 1])
+    fall = y[j] + (level - r[j]) * (y[j + 1] - y[j]) / (r[j + 1] - r[j])
+    return float(0.5 * (rise + fall))
 
 
 def fold_profile(y, radius, unloaded_radius=None, half_width=None) -> FoldedProfile:
@@ -49,13 +80,16 @@ def fold_profile(y, radius, unloaded_radius=None, half_width=None) -> FoldedProf
 
     ``unloaded_radius`` defaults to the largest radius measured and
     ``half_width`` to the largest ``|y|``; points beyond the half width are
-    dropped.
+    dropped. A whole section scanned from one side is centred first
+    (:func:`profile_centre`).
     """
     y = np.asarray(y, float)
     r = np.asarray(radius, float)
     if y.shape != r.shape or y.size < 3 or not np.all(np.isfinite(y) & np.isfinite(r)) or np.any(r <= 0):
         raise InputError("a carcass profile needs at least 3 finite points with positive radii",
                          field="carcass_profile")
+    centre = profile_centre(y, r)
+    y = y - centre
     r0 = float(unloaded_radius) if unloaded_radius else float(r.max())
     hw = float(half_width) if half_width else float(np.abs(y).max())
     if not (r0 > 0 and hw > 0):
@@ -73,7 +107,7 @@ def fold_profile(y, radius, unloaded_radius=None, half_width=None) -> FoldedProf
             a = np.interp(grid, w[left][ol], r[left][ol] / r0)
             b = np.interp(grid, w[right][orr], r[right][orr] / r0)
             asym = float(np.sqrt(np.mean((a - b) ** 2)))
-    return FoldedProfile(np.minimum(w[keep], 1.0), r[keep] / r0, r0, hw, asym)
+    return FoldedProfile(np.minimum(w[keep], 1.0), r[keep] / r0, r0, hw, asym, centre)
 
 
 def hat_basis(width_ratio, n) -> np.ndarray:
@@ -112,7 +146,8 @@ def fit_carcass_shape(y, radius, unloaded_radius=None, half_width=None, points=N
     ----------
     y, radius : array_like
         Lateral position [m] from the centre line (either side) and radius
-        [m] from the spin axis of each contour point.
+        [m] from the spin axis of each contour point (a whole section scanned
+        from one side is centred first: :func:`profile_centre`).
     unloaded_radius, half_width : float, optional
         R0 and W0 / 2 [m] the ratios are taken of (default: the contour's own
         largest radius and |y|).

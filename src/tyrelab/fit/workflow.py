@@ -292,19 +292,25 @@ def fit_patch_step(campaign: Campaign, tir: TirFile) -> StepResult:
 
 def fit_shape_step(campaign: Campaign, tir: TirFile) -> StepResult:
     """The ``[SHAPE]`` table of the carcass profile(s) into ``tir``."""
-    from .shape import fit_carcass_shape, fold_profile, shape_rms
+    from .shape import fit_carcass_shape, fold_profile, profile_centre, shape_rms
     tests = [t for t in campaign.of(lf.CarcassProfile) if t.use == "fit"]
     if not tests:
         raise InputError("no carcass_profile test to fit", source=campaign.source, field="shape")
     r0 = tir.number("DIMENSION", "UNLOADED_RADIUS", None)
     w0 = tir.number("DIMENSION", "WIDTH", None)
-    y, r = [], []
+    y, r, moved = [], [], []
     for t in tests:
         if t.radius is None and not r0:
             raise InputError("a profile given as drop below the crown needs the unloaded radius",
                              source=t.source, field="drop")
-        y.append(t.y)
-        r.append(t.radius if t.radius is not None else r0 - t.drop)
+        radius = t.radius if t.radius is not None else r0 - t.drop
+        centre = profile_centre(t.y, radius)
+        if centre:
+            moved.append(f"shape: {t.name}: y runs {1e3 * t.y.min():.1f} to {1e3 * t.y.max():.1f} mm with "
+                         f"the crown between: measured from a side, centred on its shoulders' midpoint, "
+                         f"y = {1e3 * centre:.1f} mm")
+        y.append(t.y - centre)
+        r.append(radius)
     y, r = np.concatenate(y), np.concatenate(r)
     before = tir.table("SHAPE")
     shape = fit_carcass_shape(y, r, r0, 0.5 * w0 if w0 else None)
@@ -312,6 +318,7 @@ def fit_shape_step(campaign: Campaign, tir: TirFile) -> StepResult:
     tir.set(FIT_SECTION, "SHAPE_SOURCE", _names(tests))
     tir.set(FIT_SECTION, "SHAPE_RMS", shape.rms)
     res = StepResult("shape", data={"fit": shape, "before": before})
+    res.notes.extend(moved)
     res.rows.append(_row("shape", "SHAPE", f"{shape.table.shape[0]} points", "-", shape.rms, None,
                          _names(tests), "least-squares polyline, equal steps (4.3)"))
     if before is not None:
