@@ -19,21 +19,31 @@ from tyrelab.tyre.ring.parameters import ring_parameters
 TIMES = np.arange(0.0, 3.0, 1e-3)
 
 
-def _measured(tyre, rp, road, kmh, noise=0.0, seed=0):
-    template = CleatRun(road, kmh / 3.6, "LC1", pd.DataFrame({"RUNTIME": TIMES, "FZW": TIMES * 0 + 1}))
+def _measured(tyre, rp, road, kmh, noise=0.0, seed=0, times=TIMES, delay=None):
+    """The ring at ``rp`` as a measurement; with ``delay`` [s], logged on a clock of its own (the
+    wheel 5 m before the obstacle at ``delay`` on ``times``), else on the simulation's."""
+    template = CleatRun(road, kmh / 3.6, "LC1", pd.DataFrame({"RUNTIME": times, "FZW": times * 0 + 1}),
+                        delay)
     fzw = simulate_run(tyre, rp, template)
     fzw = fzw + noise * np.abs(fzw).max() * np.random.default_rng(seed).standard_normal(fzw.size)
-    return CleatRun(road, kmh / 3.6, "LC1", pd.DataFrame({"RUNTIME": TIMES, "FZW": fzw}))
+    return CleatRun(road, kmh / 3.6, "LC1", pd.DataFrame({"RUNTIME": times, "FZW": fzw}))
 
 
 def test_patch_damping_comes_back_from_one_cleat_run(xzl):
+    """The fitted run is logged as a real one is: its logger started 1.2 s before the
+    simulation's run-up would have, on a clock reading 100 s. The fit finds that delay
+    (within 1 ms) and the factor. Before, it compared the run on the simulation's clock:
+    the impact 1.2 s off."""
     rp = ring_parameters(xzl)
     truth = scaled_damping(rp, 1.6, 1.0)
-    fit = fit_ring_damping(xzl, [_measured(xzl, truth, "cleat:50x50", 12)],
+    logged = _measured(xzl, truth, "cleat:50x50", 12, times=100.0 + np.arange(0.0, 4.2, 1e-3),
+                       delay=101.2)
+    fit = fit_ring_damping(xzl, [logged],
                            held_out=[_measured(xzl, truth, "cleat:76.3x76.3", 12),
                                      _measured(xzl, truth, "cleat:50x50", 42)])
     assert fit.patch == pytest.approx(1.6, rel=0.01)
     assert fit.structure == 1.0
+    assert fit.table["shift_s"].tolist() == pytest.approx([101.2, 0.0, 0.0], abs=1e-3)
     assert (fit.table["rms_before_pct"] > 0.5).all()          # the start was visibly off
     fitted = fit.table["set"] == "fit"
     assert (fit.table["rms_after_pct"][fitted] < 0.05).all()  # the fitted run is matched

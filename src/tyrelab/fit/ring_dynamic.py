@@ -21,8 +21,10 @@ each resampled at the measurement's times and divided by the measurement's
 peak. The other runs are held out and reported with the same error before
 and after. Runs are the trailer with the ring on the test wheel and the
 point model (same vertical law) on the left wheel on flat ground, as the
-built-in campaign runs it; a measurement's time starts where a simulation's
-does (the wheel 5 m before the obstacle at the stated speed).
+built-in campaign runs it. A measurement's clock is its logger's: each run
+is first aligned to the ring at the starting parameters by cross-correlation
+of FZW (:func:`aligned`; the shift is reported), then held there while the
+factors change.
 
 Identifiability (measured on the XZL, LC1, 50 mm cleat at 12 km/h, the
 "measurement" made by the model itself with the factors 1.6 and 0.6): the
@@ -48,12 +50,16 @@ from ..errors import InputError
 
 class CleatRun(NamedTuple):
     """A measured trailer run: road name, towing speed [m/s], load case or wheel
-    load [N], and its signal table (``RUNTIME`` [s] and ``FZW`` [N] at least)."""
+    load [N], and its signal table (``RUNTIME`` [s] and ``FZW`` [N] at least);
+    ``shift`` [s] delays the simulation to meet the measurement (a simulation
+    starts with the wheel 5 m before the obstacle), None until :func:`aligned`
+    estimates it."""
 
     road: str
     speed: float
     load: str | float
     signal: pd.DataFrame
+    shift: float | None = None
 
 
 class RingDampingFit(NamedTuple):
@@ -76,22 +82,82 @@ def scaled_damping(rp, patch: float, structure: float):
                                cy=rp.cy * structure, cb=rp.cb * structure)
 
 
-def simulate_run(tyre, rp, run: CleatRun) -> np.ndarray:
-    """The ring's FZW [N] on the trailer for ``run``, at the measurement's times."""
+#: the simulation that finds a run's shift runs this much [s] longer than the measurement, so the
+#: obstacle is met even when the logger started after the simulation's 5 m run-up would have
+ALIGN_MARGIN = 3.0
+#: how far [s] the best alignment may move a run from its cross-correlation shift
+SHIFT_RANGE = 0.05
+
+
+def _trailer_run(tyre, rp, run: CleatRun, duration: float) -> pd.DataFrame:
     from ..rig.trailer import Trailer
     from ..tyre.model import TyreModel
 
-    t = run.signal["RUNTIME"].to_numpy(float)
     model = TyreModel(tyre, "ring", options={"parameters": rp})
     trailer = Trailer(model, run.load, left=TyreModel(tyre, "point"))
-    sim = trailer.run(run.road, run.speed, float(t[-1]) + 1e-3, progress=False)
+    return trailer.run(run.road, run.speed, duration, progress=False)
+
+
+def _fzw_at(sim: pd.DataFrame, t) -> np.ndarray:
+    """The simulation's FZW at times ``t`` of its own clock (before its start: its first
+    value, the trailer towed on flat)."""
     return np.interp(t, sim["RUNTIME"].to_numpy(), sim["FZW"].to_numpy())
 
 
-def run_error(tyre, rp, run: CleatRun) -> np.ndarray:
-    """Model minus measured FZW at the measurement's times, over the measured peak."""
+def simulate_run(tyre, rp, run: CleatRun) -> np.ndarray:
+    """The ring's FZW [N] on the trailer for ``run``, at the measurement's times less its
+    ``shift`` (none: 0)."""
+    t = run.signal["RUNTIME"].to_numpy(float) - (run.shift or 0.0)
+    return _fzw_at(_trailer_run(tyre, rp, run, max(float(t[-1]), 0.0) + 1e-3), t)
+
+
+def aligned(tyre, rp, run: CleatRun) -> CleatRun:
+    """``run`` with a starting ``shift``: the delay of the ring's run at ``rp`` with the largest
+    cross-correlation of FZW with the measurement (:func:`tyrelab.validate.align.estimate_shift`,
+    within the measurement's length and :data:`ALIGN_MARGIN`). A run that has one is returned
+    as it is. Only a start: the impact's place is geometric, but the damping shapes the
+    response after it, and so the correlation's peak (3.7 ms early for a patch damping 1.6
+    times the start's); :func:`run_error` aligns each parameter set at its best."""
+    from ..validate.align import estimate_shift
+
+    if run.shift is not None:
+        return run
+    t = run.signal["RUNTIME"].to_numpy(float)
+    span = float(t[-1] - t[0])
+    sim = _trailer_run(tyre, rp, run, span + ALIGN_MARGIN)
+    # on the logger's clock from its first sample, whatever that clock read
+    shift = estimate_shift(sim["RUNTIME"].to_numpy(), sim["FZW"].to_numpy(), t - t[0],
+                           run.signal["FZW"].to_numpy(float), max_shift=span + ALIGN_MARGIN)
+    return run._replace(shift=float(t[0] + shift))
+
+
+def aligned_error(tyre, rp, run: CleatRun) -> tuple[np.ndarray, float]:
+    """Model minus measured FZW at the measurement's times, over the measured peak, at the
+    shift within :data:`SHIFT_RANGE` of ``run.shift`` (none: 0) that makes its RMS least,
+    and that shift [s]. The measurement's clock is the logger's: each parameter set is
+    compared where it matches best, so a fit cannot trade damping for timing."""
+    from scipy.optimize import minimize_scalar
+
+    t = run.signal["RUNTIME"].to_numpy(float)
     measured = run.signal["FZW"].to_numpy(float)
-    return (simulate_run(tyre, rp, run) - measured) / np.abs(measured).max()
+    peak = np.abs(measured).max()
+    start = run.shift or 0.0
+    sim = _trailer_run(tyre, rp, run, max(float(t[-1]) - start + SHIFT_RANGE, 0.0) + 1e-3)
+
+    def error(shift):
+        return (_fzw_at(sim, t - shift) - measured) / peak
+
+    best = minimize_scalar(lambda s: float(np.mean(error(s) ** 2)), method="bounded",
+                           bounds=(start - SHIFT_RANGE, start + SHIFT_RANGE),
+                           options={"xatol": 1e-6})
+    shift = float(best.x)
+    return error(shift), shift
+
+
+def run_error(tyre, rp, run: CleatRun) -> np.ndarray:
+    """Model minus measured FZW at the measurement's times, over the measured peak, best
+    aligned (:func:`aligned_error`)."""
+    return aligned_error(tyre, rp, run)[0]
 
 
 def _check(runs, what):
@@ -145,6 +211,8 @@ def fit_ring_damping(tyre, runs, held_out=(), parameters=None, free=("patch",), 
     if not free or any(f not in ("patch", "structure") for f in free) or len(set(free)) != len(free):
         raise InputError(f"free must name 'patch' and/or 'structure', got {free}", field="free")
     rp0 = parameters if parameters is not None else ring_parameters(tyre)
+    runs = [aligned(tyre, rp0, run) for run in runs]
+    held_out = [aligned(tyre, rp0, run) for run in held_out]
 
     def factors(x):
         value = dict(zip(free, np.exp(x)))
@@ -166,14 +234,22 @@ def fit_ring_damping(tyre, runs, held_out=(), parameters=None, free=("patch",), 
 
 
 def run_table(tyre, before, after, runs=(), held_out=()) -> pd.DataFrame:
-    """Per run: road, speed, set ("fit" or "held out") and the RMS error of FZW in %
-    of the measured peak with ring parameters ``before`` and ``after``."""
+    """Per run: road, speed, set ("fit" or "held out"), the simulation's ``shift_s`` to the
+    measurement at ``after`` (:func:`aligned_error`, from :func:`aligned` at ``before`` where a
+    run has no shift) and the RMS error of FZW in % of the measured peak with ring parameters
+    ``before`` and ``after``, each at its own best alignment."""
     rows = []
     for label, group in (("fit", runs), ("held out", held_out)):
         for run in group:
-            e0 = run_error(tyre, before, run)
-            e1 = e0 if after is before else run_error(tyre, after, run)
+            run = aligned(tyre, before, run)
+            e0, shift = aligned_error(tyre, before, run)
+            if after is not before:
+                e1, shift = aligned_error(tyre, after, run)
+            else:
+                e1 = e0
             rows.append({"road": run.road, "speed_kmh": run.speed * 3.6, "set": label,
+                         "shift_s": shift,
                          "rms_before_pct": 100 * float(np.sqrt(np.mean(e0 ** 2))),
                          "rms_after_pct": 100 * float(np.sqrt(np.mean(e1 ** 2)))})
-    return pd.DataFrame(rows, columns=["road", "speed_kmh", "set", "rms_before_pct", "rms_after_pct"])
+    return pd.DataFrame(rows, columns=["road", "speed_kmh", "set", "shift_s", "rms_before_pct",
+                                       "rms_after_pct"])

@@ -244,10 +244,11 @@ def ring_table(step) -> str:
     runs = step.data.get("cleat_runs")
     if runs is not None and len(runs):
         out += ("<p>Trailer runs over cleats: RMS error of FZW in % of the measured peak, with the "
-                "drop test's patch damping (before) and after the runs' fit</p><table><tr><th>road</th>"
-                "<th>km/h</th><th>set</th><th>before</th><th>after</th></tr>")
+                "drop test's patch damping (before) and after the runs' fit, each where it matches "
+                "the run best in time; shift: the simulation's start on the run's clock</p><table><tr>"
+                "<th>road</th><th>km/h</th><th>set</th><th>shift s</th><th>before</th><th>after</th></tr>")
         out += "".join(f"<tr><td>{html.escape(r.road)}</td><td>{r.speed_kmh:.0f}</td><td>{r.set}</td>"
-                       f"<td>{r.rms_before_pct:.2f}</td><td>{r.rms_after_pct:.2f}</td></tr>"
+                       f"<td>{r.shift_s:.3f}</td><td>{r.rms_before_pct:.2f}</td><td>{r.rms_after_pct:.2f}</td></tr>"
                        for r in runs.itertuples()) + "</table>"
     return out
 
