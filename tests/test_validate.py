@@ -59,6 +59,20 @@ def test_auto_shift_removes_a_delay():
     assert shifted["mRE_disturbance_pct"] < 0.2 * plain["mRE_disturbance_pct"]
 
 
+def test_auto_shift_finds_a_run_logged_on_its_own_clock():
+    """A logger started 2.5 s before the simulation's run-up and ran on for 0.5 s after it, its
+    clock reading 50 s at its first sample: the shift is found (52.5 s, to 2 ms) and the
+    comparison is the aligned one's. Before, the search stopped at a quarter of the shorter
+    record from the clocks' zero: 'do not overlap in time'."""
+    sim = cleat()
+    late = cleat(duration=6.0, delay=2.5)
+    meas = make_signal({"RUNTIME": late["RUNTIME"].to_numpy() + 50.0, "FZ": late["FZ"].to_numpy()},
+                       {"name": "logged"})
+    res = compare_runs(sim, meas, segments="auto", shift="auto")
+    assert res["details"]["shift_s"] == pytest.approx(52.5, abs=0.002)
+    assert res["mRE_disturbance_pct"] == pytest.approx(0.0, abs=0.5)
+
+
 def test_repeatability_and_model_beside_it():
     a, b = cleat(), cleat(amp=20.5e3, ring=8.2e3)
     scatter = repeatability(a, b, segments="auto")

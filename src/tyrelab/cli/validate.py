@@ -119,9 +119,11 @@ def register(subparsers) -> None:
     p.add_argument("--x0", type=bounded_float("x0", -1e4, 1e4, "m"), default=0.0,
                    help="wheel-centre position at MEAS's first sample [m] (with --speed)")
     p.add_argument("--shift", default="0",
-                   help="seconds the simulation is delayed by, or 'auto' (cross-correlation)")
+                   help="seconds the simulation is delayed by, or 'auto' (cross-correlation; a "
+                        "logger's own clock and an early start are found)")
     p.add_argument("--max-shift", type=bounded_float("max-shift", 0.0, 1e4, "s"), default=None,
-                   help="limit of the auto shift [s]")
+                   help="limit of the auto shift [s] (default: any that leaves a quarter of the "
+                        "shorter record overlapping)")
     p.add_argument("--repeat", default=None,
                    help="a second measurement of the same test: report its scatter beside")
     p.add_argument("--column-map", default=None,

@@ -16,10 +16,11 @@ other way: :func:`check_signs` warns (:class:`SignWarning`) and names the
 column map's ``-CHANNEL`` that reads it. The metrics are computed as given.
 
 A shift can be estimated by cross-correlation (``shift="auto"``): the
-mean-removed signals are put on a uniform grid at the measurement's median
-step, the lag with the largest correlation within ``max_shift`` is taken and
-refined to a fraction of a step by a parabola through the three correlation
-values around the maximum.
+mean-removed signals, each on its own clock from its first sample, are put on
+a uniform grid at the measurement's median step, the lag with the largest
+correlation (within ``max_shift``, else any that leaves a quarter of the
+shorter record overlapping) is taken and refined to a fraction of a step by
+a parabola through the three correlation values around the maximum.
 """
 
 from __future__ import annotations
@@ -76,21 +77,30 @@ def estimate_shift(t_sim, y_sim, t_meas, y_meas, max_shift: float | None = None)
     """Time shift of the simulation that best matches the measurement.
 
     Returns ``s`` such that ``sim(t - s)`` has the largest cross-correlation
-    with ``meas(t)``; ``|s| <= max_shift`` (default: a quarter of the
-    shorter record).
+    with ``meas(t)``. Each record is taken on its own clock from its first
+    sample, so a logger's clock (any reading, 10:42:07 as seconds) costs
+    nothing; ``s`` is then on the measurement's clock. With ``max_shift``
+    ``|s| <= max_shift``; without, any ``s`` that leaves at least a quarter
+    of the shorter record overlapping (a logger started well before the
+    obstacle, or stopped well after it, is found).
     """
     t_sim, t_meas = check_time(t_sim), check_time(t_meas)
     dt = float(np.median(np.diff(t_meas)))
-    span = min(t_sim[-1] - t_sim[0], t_meas[-1] - t_meas[0])
-    if max_shift is None:
-        max_shift = 0.25 * span
-    lo, hi = min(t_sim[0], t_meas[0]), max(t_sim[-1], t_meas[-1])
-    grid = np.arange(lo, hi + 0.5 * dt, dt)
-    ys = _centred_on(grid, t_sim, y_sim)
-    ym = _centred_on(grid, t_meas, y_meas)
+    base = float(t_meas[0] - t_sim[0])  # the shift that lays the records' first samples together
+    span_sim, span_meas = float(t_sim[-1] - t_sim[0]), float(t_meas[-1] - t_meas[0])
+    grid = np.arange(0.0, max(span_sim, span_meas) + 0.5 * dt, dt)
+    ys = _centred_on(grid, t_sim - t_sim[0], y_sim)
+    ym = _centred_on(grid, t_meas - t_meas[0], y_meas)
     corr = correlate(ym, ys, mode="full")  # corr[lag] = sum ym[n + lag] * ys[n]
     lags = correlation_lags(ym.size, ys.size, mode="full")
-    allowed = np.abs(lags * dt) <= max_shift + 1e-12
+    if max_shift is None:
+        overlap = np.minimum(span_meas, lags * dt + span_sim) - np.maximum(0.0, lags * dt)
+        allowed = overlap >= 0.25 * min(span_sim, span_meas) - 1e-12
+    else:
+        allowed = np.abs(base + lags * dt) <= max_shift + 1e-12
+    if not allowed.any():
+        raise InputError(f"no shift within {max_shift:g} s lets the simulation and the measurement "
+                         "overlap", field="max_shift")
     k = int(np.argmax(np.where(allowed, corr, -np.inf)))
     frac = 0.0
     if 0 < k < corr.size - 1 and allowed[k - 1] and allowed[k + 1]:
@@ -98,7 +108,7 @@ def estimate_shift(t_sim, y_sim, t_meas, y_meas, max_shift: float | None = None)
         denom = a - 2 * b + c
         if denom < 0:
             frac = 0.5 * (a - c) / denom
-    return float((lags[k] + frac) * dt)
+    return float(base + (lags[k] + frac) * dt)
 
 
 def _centred_on(grid, t, y):
