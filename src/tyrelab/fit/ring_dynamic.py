@@ -113,11 +113,12 @@ def simulate_run(tyre, rp, run: CleatRun) -> np.ndarray:
 
 def aligned(tyre, rp, run: CleatRun) -> CleatRun:
     """``run`` with a starting ``shift``: the delay of the ring's run at ``rp`` with the largest
-    cross-correlation of FZW with the measurement (:func:`tyrelab.validate.align.estimate_shift`,
-    within the measurement's length and :data:`ALIGN_MARGIN`). A run that has one is returned
-    as it is. Only a start: the impact's place is geometric, but the damping shapes the
-    response after it, and so the correlation's peak (3.7 ms early for a patch damping 1.6
-    times the start's); :func:`run_error` aligns each parameter set at its best."""
+    cross-correlation of FZW with the measurement (:func:`tyrelab.validate.align.estimate_shift`;
+    the simulation runs :data:`ALIGN_MARGIN` longer than the measurement). A run that has one
+    is returned as it is. Only a start: the impact's place is geometric, but the damping
+    shapes the response after it, and so the correlation's peak (3.7 ms early for a patch
+    damping 1.6 times the start's); :func:`aligned_error` aligns each parameter set at its
+    best."""
     from ..validate.align import estimate_shift
 
     if run.shift is not None:
@@ -125,10 +126,9 @@ def aligned(tyre, rp, run: CleatRun) -> CleatRun:
     t = run.signal["RUNTIME"].to_numpy(float)
     span = float(t[-1] - t[0])
     sim = _trailer_run(tyre, rp, run, span + ALIGN_MARGIN)
-    # on the logger's clock from its first sample, whatever that clock read
-    shift = estimate_shift(sim["RUNTIME"].to_numpy(), sim["FZW"].to_numpy(), t - t[0],
-                           run.signal["FZW"].to_numpy(float), max_shift=span + ALIGN_MARGIN)
-    return run._replace(shift=float(t[0] + shift))
+    shift = estimate_shift(sim["RUNTIME"].to_numpy(), sim["FZW"].to_numpy(), t,
+                           run.signal["FZW"].to_numpy(float))
+    return run._replace(shift=float(shift))
 
 
 def aligned_error(tyre, rp, run: CleatRun) -> tuple[np.ndarray, float]:
