@@ -138,6 +138,44 @@ def test_a_hysteresis_that_stays_as_the_press_slows_averages_out_at_the_turns_to
     assert table.load[1:] == pytest.approx(truth[1:], rel=0.005)
 
 
+def test_the_rams_travel_before_the_touch_is_taken_off(xzl, tmp_path):
+    """A press logs its ram from where it starts, 20 mm above the plate: no load, then the
+    stepped loop (+-5 % hysteresis, 30 N of noise). The touch is found within 1 mm (the
+    sample step is 0.5 mm; the XZL's curve rises softly, 155 N at 1 mm, so the hinge is found
+    0.9 mm late) and the fit is the record's counted from touch: the linear stiffness within
+    2 %, the table within 3 % from 40 mm on (what 1 mm of touch moves it by). Before, the
+    20 mm of travel counted as deflection: 432 against 619 N/mm."""
+    from tyrelab.fit.lab_files import read_load_deflection
+    d, direction = _stepped_press(cycles=1)
+    f = xzl.vertical_law.static_load(d) * (1.0 + 0.05 * direction)
+    noise = np.random.default_rng(2).normal(0.0, 30.0, d.size + 40)
+    ram = np.r_[np.arange(0.0, 0.02, 0.0005), d + 0.02]
+    load = np.r_[np.zeros(40), f] + noise
+    (tmp_path / "ram.csv").write_text("deflection_mm,load_N\n" + "".join(
+        f"{1e3 * a:.3f},{b:.1f}\n" for a, b in zip(ram, load)))
+    press = read_load_deflection(tmp_path / "ram.csv")
+    assert press.touch == pytest.approx(0.02, abs=1e-3)
+    truth = linear_stiffness(d, f + noise[40:]).stiffness
+    assert linear_stiffness(press.deflection, press.load).stiffness == pytest.approx(truth, rel=0.02)
+    table = load_deflection_table(press.deflection, press.load, step=0.005)
+    rows = table.deflection >= 0.04
+    assert table.load[rows] == pytest.approx(xzl.vertical_law.static_load(table.deflection[rows]), rel=0.03)
+
+
+def test_a_static_cleat_press_is_counted_from_its_touch_too(xzl, tmp_path):
+    """The same for a cleat press (3.3.4), logged every millimetre from 15 mm above the cleat:
+    its deflection is counted from the touch, found within 1 mm."""
+    from tyrelab.fit.lab_files import read_static_cleat
+    d = np.arange(0.0, 0.081, 0.001)
+    ram = np.r_[np.arange(0.0, 0.015, 0.001), d + 0.015]
+    load = np.r_[np.zeros(15), 0.6 * xzl.vertical_law.static_load(d)]
+    (tmp_path / "cleat.csv").write_text("deflection_mm,load_N\n" + "".join(
+        f"{1e3 * a:.1f},{b:.1f}\n" for a, b in zip(ram, load)))
+    press = read_static_cleat(tmp_path / "cleat.csv", (0.051, 0.051))
+    assert press.touch == pytest.approx(0.015, abs=1e-3)
+    assert press.deflection[0] == pytest.approx(0.0, abs=1e-3) and press.load[0] < 0.01 * load.max()
+
+
 def test_noise_on_the_loop_degrades_the_table_gracefully(xzl):
     """Noise of 1 % of the largest load (540 N) on every sample: rows from 10 mm on within 2 %
     of the curve, and the table's RMS on the noisy record is the noise's own level."""

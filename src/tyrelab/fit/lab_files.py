@@ -60,7 +60,8 @@ class LabTest:
 
 @dataclass
 class LoadDeflection(LabTest):
-    """Flat-plate press (3.3.1): ``deflection`` [m] and ``load`` [N] per sample or table row."""
+    """Flat-plate press (3.3.1): ``deflection`` [m] from first touch and ``load`` [N] per sample
+    or table row."""
 
     deflection: np.ndarray = field(default_factory=lambda: np.zeros(0))
     load: np.ndarray = field(default_factory=lambda: np.zeros(0))
@@ -69,6 +70,9 @@ class LoadDeflection(LabTest):
     step: float = 0.005
     #: inflation pressure [Pa] of the press (None: the tyre's)
     pressure: float | None = None
+    #: the file's deflection [m] at first touch, taken off (:func:`~tyrelab.fit.vertical.first_touch`;
+    #: 0: the file counts from it)
+    touch: float = 0.0
 
 
 @dataclass
@@ -141,6 +145,8 @@ class StaticCleat(LabTest):
     load: np.ndarray = field(default_factory=lambda: np.zeros(0))
     cleat: tuple = (0.051, 0.051)
     direction: str = "lateral"
+    #: the file's deflection [m] at first touch of the cleat, taken off (as a plate press's)
+    touch: float = 0.0
 
 
 @dataclass
@@ -169,8 +175,9 @@ def read_load_deflection(path, columns=None, units=None, step=0.005, use="fit",
            "(deflection is counted from first touch, positive in compression)", "deflection")
     if not np.max(d) > 0:
         raise InputError("the deflection never rises above zero", source=str(path), field="deflection")
-    return LoadDeflection(str(path), use, note, d, f, data.get("time"), float(step),
-                          None if pressure is None else float(pressure))
+    d, f, t, touch = _from_touch(d, f, data.get("time"))
+    return LoadDeflection(str(path), use, note, d, f, t, float(step),
+                          None if pressure is None else float(pressure), touch)
 
 
 def read_drop_trace(path, columns=None, units=None, positive="up", **options) -> DropTrace:
@@ -279,9 +286,22 @@ def read_static_cleat(path, cleat, direction="lateral", columns=None, units=None
     """A static cleat press (:class:`StaticCleat`); ``cleat`` (width, height) [m]."""
     data, lines, kind = read_test_columns(path, ("deflection", "load"), (), columns, units)
     check_finite(path, lines, kind, data, ("deflection", "load"))
-    d = data["deflection"]
+    d, f = data["deflection"], data["load"]
     check_rows(path, lines, kind, d, d >= 0, "deflection {value:g} m is negative", "deflection")
-    return StaticCleat(str(path), use, note, d, data["load"], tuple(cleat), direction)
+    d, f, touch = _from_touch(d, f)
+    return StaticCleat(str(path), use, note, d, f, tuple(cleat), direction, touch)
+
+
+def _from_touch(d, f, *others):
+    """``d`` counted from first touch (:func:`~tyrelab.fit.vertical.first_touch`): the ram's
+    travel before the tyre met the plate or cleat taken off and its unloaded samples dropped,
+    from ``f`` and ``others`` (None stays None) alike; last, the travel taken off [m]."""
+    from .vertical import first_touch
+    touch = first_touch(d, f)
+    if not touch:
+        return (d, f, *others, 0.0)
+    keep = d >= touch
+    return (d[keep] - touch, f[keep], *(None if o is None else o[keep] for o in others), touch)
 
 
 def read_dynamic_cleat(path, use="held_out", note="", **options) -> DynamicCleat:

@@ -110,6 +110,10 @@ def fit_vertical_step(campaign: Campaign, tir: TirFile) -> StepResult:
     if len(tests) < len(every):
         res.notes.append(f"vertical: {len(every) - len(tests)} press(es) at other pressures are for the "
                          "ring only")
+    for t in (t for t in tests if t.touch):
+        res.notes.append(f"vertical: {t.name}: the load starts to rise at {1e3 * t.touch:.1f} mm of the "
+                         f"file's deflection (the ram's travel before the tyre met the plate); "
+                         f"deflection is counted from there")
     loop = [tb for tb in tables if tb.branches]
     if loop:
         res.notes.append(f"vertical: {sum(tb.branches for tb in loop)} loading/unloading branches "
@@ -344,6 +348,9 @@ def predict_cleats(campaign: Campaign, tir: TirFile) -> StepResult:
     for t in tests:
         width, height = t.cleat
         spec = f"cleat:{width * 1e3:g}x{height * 1e3:g}"
+        if t.touch:
+            res.notes.append(f"cleats: {t.name}: the load starts to rise at {1e3 * t.touch:.1f} mm of "
+                             f"the file's deflection; deflection is counted from there")
         pred = {}
         for m in models:
             loads = static_press(TyreModel(tyre, m), t.deflection, spec, t.direction)["load"].to_numpy()
