@@ -219,6 +219,26 @@ def test_tydex_press_and_modal_table(tmp_path):
     assert (row.frequency, row.damping) == pytest.approx((22.72, 0.0294))
 
 
+def test_a_modal_table_numbered_by_frequency_is_refused_on_its_line(tmp_path):
+    """An experimental modal analysis numbers modes by ascending frequency; the ring is fitted
+    to Table 3-3's numbers (2 vertical/longitudinal, 3 lateral). Table 3-3's own descriptions
+    and tyrelab's mode names each name their number; a row whose description names another
+    mode is refused on its line, before it could fit the lateral mode as the vertical one."""
+    from tyrelab.fit.lab_files import described_mode
+    from tyrelab.tyre.ring.modal import MODE_NAMES
+    table = (EXAMPLE / "modal.csv").read_text().splitlines()
+    rows = [r for r in table if r[:1].isdigit()]
+    assert [described_mode(r.split(",")[1]) for r in rows] == [1, 2, 3, 4, 5, 6]
+    assert {m: described_mode(name) for m, name in MODE_NAMES.items()} == {m: m for m in MODE_NAMES}
+    by_frequency = [table[1], "1,rigid-body movement in lateral direction,16.88,2.33,20.09,2.19",
+                    "2,rigid-body movement in longitudinal or vertical direction,22.72,2.94,33.51,2.01"]
+    (tmp_path / "modal.csv").write_text("\n".join(by_frequency) + "\n")
+    with pytest.raises(InputError, match=r"line 2: .*mode 1 is Table 3-3's in-plane rotation about "
+                                         r"the spin axis, but the row describes 'rigid-body movement "
+                                         r"in lateral direction', Table 3-3's mode 3"):
+        read_test("modal", tmp_path / "modal.csv")
+
+
 def _plate_as_cleat(tmp_path, deflections):
     """Table 3-2 at 300 kPa written as a 51 x 51 mm lateral cleat press: what a rigid disc gives
     on the cleat (its lowest point rests on the flat top: a disc on a plate)."""

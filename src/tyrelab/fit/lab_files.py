@@ -242,9 +242,33 @@ def read_carcass_profile(path, columns=None, units=None, use="fit", note="") -> 
 _MODAL = re.compile(r"^(freq|frequency|damping)_(hz|pct|%)?_?(\d+(?:\.\d+)?)kpa$", re.I)
 
 
+def described_mode(text: str) -> int | None:
+    """The Table 3-3 mode a row's description names (1 in-plane rotation about the spin axis,
+    2 vertical/longitudinal, 3 lateral, 4 out-of-plane rotation, 5 third in-plane, 6 third
+    out-of-plane), or None when it names none of them plainly."""
+    t = " ".join(text.lower().replace("-", " ").split())
+    out, inp = "out of plane" in t, "in plane" in t
+    if "third" in t:
+        return 6 if out else 5 if inp else None
+    if out:
+        return 4
+    if "lateral" in t:
+        return 3
+    if "vertical" in t or "longitudinal" in t:
+        return 2
+    if inp and ("rotation" in t or "spin" in t):
+        return 1
+    return None
+
+
 def read_modal(path, use="fit", note="") -> ModalResults:
     """Modal results in the form of thesis Table 3-3: a ``mode`` column and, per pressure,
-    ``freq_Hz_<p>kPa`` and ``damping_pct_<p>kPa`` (empty cells: not measured)."""
+    ``freq_Hz_<p>kPa`` and ``damping_pct_<p>kPa`` (empty cells: not measured). Modes are
+    numbered as Table 3-3 numbers them; a ``description`` that names another Table 3-3 mode
+    (:func:`described_mode`; a test numbered by ascending frequency, say) is refused on its
+    line, since the ring would be fitted to the wrong shapes."""
+    from ..tyre.ring.modal import MODE_NAMES
+
     path = Path(path)
     if not path.is_file():
         raise InputError("no such file", source=str(path))
@@ -253,6 +277,8 @@ def read_modal(path, use="fit", note="") -> ModalResults:
         raise InputError("a modal table needs a 'mode' column (Table 3-3)", source=str(path),
                          line=header_line, field="mode")
     mode_col = [h.lower() for h in header].index("mode")
+    described = [h.lower() for h in header].index("description") if "description" in [
+        h.lower() for h in header] else None
     cols = {}
     for i, h in enumerate(header):
         m = _MODAL.match(h.strip())
@@ -268,6 +294,12 @@ def read_modal(path, use="fit", note="") -> ModalResults:
         if not (np.isfinite(mode) and mode == int(mode) and mode >= 1):
             raise InputError(f"mode '{row[mode_col]}' is not a mode number", source=str(path), line=ln,
                              field="mode")
+        named = described_mode(row[described]) if described is not None and described < len(row) else None
+        if named is not None and named != int(mode) and int(mode) in MODE_NAMES:
+            raise InputError(f"mode {int(mode)} is Table 3-3's {MODE_NAMES[int(mode)]}, but the row "
+                             f"describes '{row[described].strip()}', Table 3-3's mode {named} "
+                             f"({MODE_NAMES[named]}): number the modes as Table 3-3 does",
+                             source=str(path), line=ln, field="mode")
         for p, ij in cols.items():
             f = _number(row[ij["f"]], path, ln, header[ij["f"]]) if ij["f"] < len(row) else np.nan
             c = _number(row[ij["c"]], path, ln, header[ij["c"]]) if ij["c"] < len(row) else np.nan
