@@ -126,6 +126,28 @@ def test_travel_axis_and_tread_blocks():
     assert fp.area == pytest.approx(0.75 * np.pi * a * b, rel=0.05)
 
 
+@pytest.mark.parametrize("turn", [12.0, -30.0])
+def test_a_print_turned_on_the_glass_is_measured_along_its_own_axes(turn):
+    """A rounded-square print (|x/a|^4 + |y/b|^4 <= 1, as a truck tyre's) photographed turned
+    ``turn`` degrees from the image's travel axis: its length and width within three pixels,
+    the turn within half a degree, the outline's extents the same. Along the image's axes a
+    20 deg turn read 414 x 423 mm for 368 x 381."""
+    a, b = 0.19, 0.16
+    t = np.radians(turn)
+
+    def inside(x, y):   # the print's own coordinates, turned by ``turn`` in the image
+        u, v = np.cos(t) * x + np.sin(t) * y, -np.sin(t) * x + np.cos(t) * y
+        return (u / a) ** 4 + (v / b) ** 4 <= 1.0
+
+    img = render_footprint(inside, 2.6 * a, 2.6 * a, scale=0.001)
+    fp = measure_footprint(img)
+    assert fp.length == pytest.approx(2 * a, abs=0.003)
+    assert fp.width == pytest.approx(2 * b, abs=0.003)
+    assert np.degrees(abs(fp.angle)) == pytest.approx(abs(turn), abs=0.5)
+    assert np.ptp(fp.outline[:, 0]) == pytest.approx(2 * a, abs=0.003)
+    assert np.ptp(fp.outline[:, 1]) == pytest.approx(2 * b, abs=0.003)
+
+
 def test_geometric_footprint_of_the_volume_model_round_trip(xzl):
     """The undeformed Table 4-1 carcass cut by the plate at 40 mm (the volume model's
     footprint, tyrelab.rig.static_press) drawn as a bitmap: its length and width come back."""

@@ -51,6 +51,9 @@ class Footprint(NamedTuple):
     line_pixels: float
     #: the patch's centre in the image (row, column) [pixels]
     centre: tuple = (0.0, 0.0)
+    #: the patch's own travel axis turned from the image's [rad] (row, column order; the
+    #: outline and the extents are along the patch's axes)
+    angle: float = 0.0
 
 
 def read_bitmap(path) -> np.ndarray:
@@ -167,6 +170,45 @@ def _outline(patch):
     return np.vstack([ring, ring[:1]]), float(hull.volume)
 
 
+def patch_axes(ring, travel="vertical"):
+    """The patch's own axes from its outline ``ring`` ((row, column) points [pixels]): the
+    smallest-area rectangle around it (rotating calipers: one side lies on a hull edge),
+    ``(along, across)`` unit vectors in (row, column), ``along`` the rectangle's axis nearest
+    the image's travel axis. A print photographed turned on the glass keeps its length and
+    width; a patch square to the image gets the image's axes exactly."""
+    pts = np.asarray(ring, float)
+    image_axis = np.array([1.0, 0.0]) if travel == "vertical" else np.array([0.0, 1.0])
+    best, axes = np.inf, None
+    for e in np.diff(pts, axis=0):
+        n = float(np.hypot(*e))
+        if n == 0:
+            continue
+        u = e / n
+        v = np.array([-u[1], u[0]])
+        area = float(np.ptp(pts @ u) * np.ptp(pts @ v))
+        if area < best * (1 - 1e-12):
+            best, axes = area, (u, v)
+    u, v = axes
+    along = u if abs(u @ image_axis) >= abs(v @ image_axis) else v
+    along = along if along @ image_axis >= 0 else -along
+    if abs(abs(along @ image_axis) - 1.0) < 1e-12:   # square to the image: its axes exactly
+        along = image_axis
+    # across: the column axis for vertical travel, the row axis for horizontal, turned alike
+    across = np.array([-along[1], along[0]]) if travel == "vertical" else np.array([along[1], -along[0]])
+    return along, across
+
+
+def outline_in_image(fp: Footprint, travel="vertical"):
+    """The outline of ``fp`` back in its image: ``(rows, columns)`` [pixels]."""
+    image_axis = np.array([1.0, 0.0]) if travel == "vertical" else np.array([0.0, 1.0])
+    turn = np.array([[np.cos(fp.angle), -np.sin(fp.angle)], [np.sin(fp.angle), np.cos(fp.angle)]])
+    along = turn @ image_axis
+    across = np.array([-along[1], along[0]]) if travel == "vertical" else np.array([along[1], -along[0]])
+    o = fp.outline / fp.scale
+    pts = np.asarray(fp.centre) + o[:, :1] * along + o[:, 1:] * across
+    return pts[:, 0], pts[:, 1]
+
+
 def measure_footprint(image, line_length=0.1, travel="vertical", threshold=0.5, min_pixels=4,
                       source=None) -> Footprint:
     """Length, width, area and outline of the patch in an image array (module docstring).
@@ -190,15 +232,17 @@ def measure_footprint(image, line_length=0.1, travel="vertical", threshold=0.5, 
     dark = (grey < threshold) & ~red
     patch, line = split_line(dark, red, min_pixels, source)
     scale, pixels = calibration_scale(line, line_length, source)
-    rows, cols = np.nonzero(patch)
-    along, across = (rows, cols) if travel == "vertical" else (cols, rows)
     ring, hull_area = _outline(patch)
-    centre = np.array([0.5 * (rows.min() + rows.max()), 0.5 * (cols.min() + cols.max())])
-    ring = (ring - centre) * scale
-    outline = ring if travel == "vertical" else ring[:, ::-1]
-    return Footprint(float(np.ptp(along) + 1) * scale, float(np.ptp(across) + 1) * scale,
+    along, across = patch_axes(ring, travel)
+    a, c = ring @ along, ring @ across      # the outline (pixel corners) on the patch's axes
+    mid_a, mid_c = 0.5 * (a.min() + a.max()), 0.5 * (c.min() + c.max())
+    centre = mid_a * along + mid_c * across
+    outline = np.column_stack([a - mid_a, c - mid_c]) * scale     # (along travel, across)
+    image_axis = np.array([1.0, 0.0]) if travel == "vertical" else np.array([0.0, 1.0])
+    angle = float(np.arctan2(image_axis[0] * along[1] - image_axis[1] * along[0], image_axis @ along))
+    return Footprint(float(np.ptp(a)) * scale, float(np.ptp(c)) * scale,
                      float(patch.sum()) * scale ** 2, hull_area * scale ** 2, outline, scale, pixels,
-                     (float(centre[0]), float(centre[1])))
+                     (float(centre[0]), float(centre[1])), angle)
 
 
 def read_footprint_image(path, line_length=0.1, travel="vertical", threshold=0.5) -> Footprint:

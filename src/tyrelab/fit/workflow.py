@@ -231,6 +231,11 @@ def fit_patch_step(campaign: Campaign, tir: TirFile) -> StepResult:
     b = 0.5 * np.concatenate([p.width for p in pts])
     src = ", ".join(dict.fromkeys(p.source for p in pts))
     res = StepResult("patch", data={"deflection": d, "half_length": a, "half_width": b, "R0": r0, "W0": w0})
+    for t in campaign.of(lf.FootprintImage):
+        turn = float(np.degrees(t.footprint.angle))
+        if abs(turn) >= 0.5:
+            res.notes.append(f"patch: {t.name}: the print is turned {turn:+.1f} deg from the image's "
+                             f"{t.travel} axis; its length and width are measured along its own axes")
     held = _patch_points(campaign, tir, "held_out")
     if held:
         hd = np.concatenate([p.deflection for p in held])

@@ -144,13 +144,13 @@ def footprint_figure(test) -> str:
     """A footprint image with the outline the extraction found (red)."""
     import matplotlib.pyplot as plt
 
-    from ..fit.footprint_image import read_bitmap
+    from ..fit.footprint_image import outline_in_image, read_bitmap
     img = read_bitmap(test.source)
     fp = test.footprint
     fig, ax = plt.subplots(figsize=(5.5, 5.5))
     ax.imshow(img, interpolation="nearest")
-    o = fp.outline if test.travel == "vertical" else fp.outline[:, ::-1]  # (row, column) offsets [m]
-    ax.plot(o[:, 1] / fp.scale + fp.centre[1], o[:, 0] / fp.scale + fp.centre[0], color="red", lw=1.2)
+    rows, cols = outline_in_image(fp, test.travel)
+    ax.plot(cols, rows, color="red", lw=1.2)
     ax.set_title(f"{test.name} [{test.use}]: {fp.length * 1e3:.0f} x {fp.width * 1e3:.0f} mm, "
                  f"{fp.area * 1e4:.0f} cm^2 inked, {fp.gross_area * 1e4:.0f} cm^2 in the outline",
                  fontsize=9)
