@@ -203,6 +203,21 @@ def test_bad_obj_files_name_the_line(tmp_path, text, line, fragment):
     assert info.value.source == str(path) and info.value.line == line
 
 
+def test_a_y_up_export_is_refused_saying_so(tmp_path):
+    """Blender and glTF write Y up: the flat road of a cleat mesh, read as tyrelab reads (z up),
+    is a vertical sheet. Refused naming the file and the likely cause, not read as walls."""
+    from tyrelab.road.mesh_files import read_obj, write_obj
+    mesh = cleat_mesh(0.05, 0.05)
+    path = write_obj(mesh, tmp_path / "cleat.obj")
+    lines = [f"v {x} {z} {-float(y)!r}" if line.startswith("v ") else line
+             for line in path.read_text().splitlines()
+             for x, y, z in [line.split()[1:4] if line.startswith("v ") else ("", "", "")]]
+    (tmp_path / "y_up.obj").write_text("\n".join(lines) + "\n")
+    with pytest.raises(InputError, match="no triangle faces up.*exported Y-up") as info:
+        read_obj(tmp_path / "y_up.obj")
+    assert info.value.source == str(tmp_path / "y_up.obj")
+
+
 def test_bad_mesh_arrays():
     v = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0]], float)
     with pytest.raises(InputError, match="does not exist"):

@@ -59,6 +59,10 @@ from ..limits import MAX_ROAD_HEIGHT
 from .base import Road
 from .grid import RoadGrid
 
+#: why a mesh of walls or of heights of many metres is usually a Y-up export
+Y_UP_HINT = ("is it exported Y-up, as Blender and glTF do? tyrelab reads x along the road, "
+             "y across and z up")
+
 #: finest grid spacing [m] the compiled grid of a mesh is refined to (sharp edges)
 MESH_SPACING = 0.005
 #: largest number of nodes of a compiled grid chosen by default (32 MB)
@@ -198,7 +202,7 @@ class MeshRoad(Road):
                       "non-finite coordinate")
         if np.abs(v[:, 2]).max() > MAX_ROAD_HEIGHT:
             raise bad(f"node {int(np.argmax(np.abs(v[:, 2]))) + 1} is {np.abs(v[:, 2]).max():.3g} m "
-                      f"from z = 0; road heights are at most {MAX_ROAD_HEIGHT:g} m")
+                      f"from z = 0; road heights are at most {MAX_ROAD_HEIGHT:g} m ({Y_UP_HINT})")
         if t.ndim != 2 or t.shape[1] != 3 or len(t) < 1 or not np.issubdtype(t.dtype, np.integer):
             raise bad(f"a mesh needs at least one triangle of 3 integer node indices; got {t.shape}")
         out = np.flatnonzero(((t < 0) | (t >= len(v))).any(axis=1))
@@ -222,7 +226,8 @@ class MeshRoad(Road):
         det = (b[:, 0] - a[:, 0]) * (c[:, 1] - a[:, 1]) - (c[:, 0] - a[:, 0]) * (b[:, 1] - a[:, 1])
         face = np.abs(det) > 1e-12 * scale2
         if not face.any():
-            raise bad("no triangle faces up: every triangle is vertical, the mesh has no surface")
+            raise bad("no triangle faces up: every triangle is vertical, the mesh has no surface "
+                      f"({Y_UP_HINT})")
         self._face = np.flatnonzero(face)
         a, b, c, det = a[face], b[face], c[face], det[face]
         self._a = a
