@@ -253,6 +253,15 @@ def test_bad_spec_names_line_and_key(tmp_path, case):
     fails(edit(line, new), tmp_path, err_line, field, *words)
 
 
+def test_a_model_the_tyre_cannot_run_is_refused_before_any_run(tmp_path):
+    """The ring on a tyre file without [FLEXIBLE_RING] (the HMMWV's Pac89 file): refused on the
+    model's contact line, naming the tyre and the fix, before any run. Before, the study started
+    and every ring run failed in its worker ("1 runs finished, 1 failed", exit 0)."""
+    text = edit(13, 'contact = "ring"', edit(9, "", edit(8, 'file = "hmmwv-pac89"')))
+    fails(text, tmp_path, 13, "model[1].contact", "tyre 'xzl' cannot run the ring model",
+          "[FLEXIBLE_RING]", "tyrelab fit ring CAMPAIGN --into")
+
+
 def test_arrays_over_lines_and_sub_tables_are_located(tmp_path):
     # an array element on its own line: the element's line
     text = edit(23, "speeds_kmh = [\n    12,  # first\n    -18,\n]")

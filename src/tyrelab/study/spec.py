@@ -187,7 +187,7 @@ def _tyres(ck: Checker, doc) -> tuple[TyreSpec, ...]:
 
 def _models(ck: Checker, doc, tyres) -> tuple[ModelSpec, ...]:
     from ..tyre.params import STIFFNESS_MODES
-    from ..tyre.registry import contact_models, handling_model, handling_models
+    from ..tyre.registry import contact_model, contact_models, handling_model, handling_models
 
     contacts, handlings = list(contact_models()), list(handling_models())
     models, seen = [], {}
@@ -196,6 +196,13 @@ def _models(ck: Checker, doc, tyres) -> tuple[ModelSpec, ...]:
         t = ck.table(raw, path, _MODEL_KEYS, required=("name", "contact"), what="a table [[model]]")
         name = ck.unique_label(t["name"], path + ("name",), seen, "model")
         contact = ck.choice(t["contact"], path + ("contact",), contacts, "contact model")
+        needs = contact_model(contact).check_tyre
+        for tyre_spec, tyre in tyres if needs is not None else ():  # what the model needs of a tyre
+            try:
+                needs(tyre)
+            except InputError as exc:
+                ck.fail(path + ("contact",), f"tyre '{tyre_spec.name}' cannot run the {contact} model: "
+                        f"{exc.reason}")
         stiffness = None
         if "stiffness" in t:
             stiffness = ck.choice(t["stiffness"], path + ("stiffness",), STIFFNESS_MODES, "stiffness")

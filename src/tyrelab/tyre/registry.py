@@ -121,6 +121,11 @@ class ContactModel:
         :class:`InputError` whose field is the option's name) before any work is
         started: :func:`check_options` calls it, so the command line and a study
         spec's check refuse the value, not the run; ``build`` checks again.
+    check_tyre : callable, optional
+        ``check_tyre(tyre)`` refuses a tyre that lacks what the model needs (an
+        :class:`InputError` saying what, e.g. the ring's ``[FLEXIBLE_RING]``) before
+        any work: a study spec's check calls it for each of its tyres, so a run does
+        not fail halfway through a campaign; ``build`` refuses it again.
     """
 
     name: str
@@ -139,6 +144,7 @@ class ContactModel:
     fit_steps: tuple = ()
     terrains: tuple = ("rigid",)
     check_values: Callable[[dict], Any] | None = None
+    check_tyre: Callable[[Any], Any] | None = None
 
     def __post_init__(self):
         if (self.geometry is None) == (self.step is None):

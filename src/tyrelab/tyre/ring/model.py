@@ -384,13 +384,14 @@ register_contact(ContactModel("ring", RingParams, _ring_build, step=ring_step,
                               static_options={"relax": RELAX_RATE},
                               footprint=ring_footprint_of, options=_OPTION_TYPES, cost=0.08,
                               terrains=("rigid", "soil"), check_values=ring_option_values,
+                              check_tyre=ring_parameters,
                               parameterization=_DATA, fit_steps=_FIT_STEPS,
                               summary="flexible ring (FTire class), evenly spaced tread blocks"))
 register_contact(ContactModel("ring-tp", RingParams, _ring_tp_build, step=ring_step,
                               initial_state=_ring_tp_state, equilibrium=_ring_tp_equilibrium,
                               static_options={"relax": RELAX_RATE}, footprint=ring_footprint_of,
                               options=_OPTION_TYPES, cost=0.085, terrains=("rigid", "soil"),
-                              check_values=ring_option_values,
+                              check_values=ring_option_values, check_tyre=ring_parameters,
                               parameterization=_DATA + " + tread pattern",
                               # no fit_steps: its pattern is a file the user gives, not fitted
                               summary="flexible ring with blocks on the tread pattern"))
