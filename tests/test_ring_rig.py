@@ -130,7 +130,9 @@ def test_footprint_and_png(xzl300, tmp_path):
     for key in ("x", "y", "pressure", "outline", "length", "width", "load"):
         assert key in res
     assert res["force"].sum() == pytest.approx(res["load"], rel=0.05)
-    assert abs(res["load"] - 40e3) < 0.15 * 40e3
+    # the footprint of 40 kN carries 40 kN: the ring is pressed to its own deflection of the
+    # load, not to the table's (where it carried 39.5 kN)
+    assert res["load"] == pytest.approx(40e3, rel=2e-3)
     assert res["outline"].shape[1] == 2 and np.allclose(res["outline"][0], res["outline"][-1])
     path = plot_footprint(res, tmp_path / "fp.png")
     assert path.stat().st_size > 1000

@@ -74,7 +74,8 @@ def _run(args) -> int:
             check_wheel_load(load, tyre, field="FNOMIN (the default --load)")
         result = footprint(model, load)
         plot_footprint(result, out)
-        print(f"{out}: footprint at {load / 1e3:.1f} kN")
+        print(f"{out}: footprint at {result['load'] / 1e3:.1f} kN, {1e3 * result['deflection']:.1f} mm "
+              f"deflection, {1e3 * result['length']:.0f} x {1e3 * result['width']:.0f} mm")
         return 0
     room, how = rim_deflection(tyre)
     if args.max_deflection >= room:
