@@ -349,6 +349,24 @@ def test_drop_traces_logged_from_before_the_release_give_the_damper(tmp_path, xz
     assert result.steps["damping"].rows[0]["held_out"]["lc2.csv"] < 1.5e-4
 
 
+def test_a_drop_trace_logged_down_positive_is_named_with_its_fix(tmp_path, xzl):
+    """A displacement logged down positive never falls: one line naming the file and the
+    manifest key that reads it; with that key, the damper comes back."""
+    from tyrelab.fit.damping import simulated_drop
+    t = np.arange(0.0, 3.0, 1e-3)
+    z = simulated_drop(xzl, t, "LC1")
+    (tmp_path / "down.csv").write_text("time_s,z_m\n" + "".join(f"{a:.3f},{-b:.7f}\n" for a, b in zip(t, z)))
+    body = '[tyre]\nunloaded_radius = "671.5 mm"\nwidth = "438 mm"\n' + LD + \
+        '[[test]]\nkind = "drop_test"\nfile = "down.csv"\nload_case = "LC1"\n'
+    with pytest.raises(InputError) as err:
+        fit_campaign(read_campaign(_campaign(tmp_path, body)))
+    assert str(err.value).startswith(str(tmp_path / "down.csv") + ": ")
+    assert 'positive = "down"' in str(err.value) and "\n" not in str(err.value)
+    (tmp_path / "campaign.toml").write_text(body + 'positive = "down"\n')
+    result = fit_campaign(read_campaign(tmp_path))
+    assert result.tir.number("VERTICAL", "VERTICAL_DAMPING") == pytest.approx(2660.0, rel=0.005)
+
+
 def test_static_cleats_are_predicted_by_the_ring_once_identified(tmp_path, xzl):
     """A base file with a [FLEXIBLE_RING] (the shipped XZL ring): its static cleat press is one
     of the held-out predictions. On the plate's loads written as a cleat press (see above) the

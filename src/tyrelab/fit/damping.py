@@ -211,7 +211,8 @@ def drop_release(time, displacement) -> float:
     drop = top - float(smooth[deepest])
     if not drop > 0:
         raise InputError("the trace never falls below where it starts: no drop to find (is the "
-                         "displacement up positive? a column map's '-' reverses it)", field="drop test")
+                         "rim height up positive? a trace logged down positive is read with "
+                         "positive = \"down\" in its [[test]])", field="drop test")
     q = int(np.flatnonzero(smooth[:deepest + 1] < top - RELEASE_SHARE * drop)[0])
     dt = float(np.median(np.diff(t)))
     lo = int(np.searchsorted(t, t[q] - RELEASE_WINDOW))

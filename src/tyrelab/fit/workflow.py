@@ -133,9 +133,19 @@ def _trailer_pendulum(trace: lf.DropTrace, tyre):
     return geometry, inertia, lever
 
 
+def _fit_trace(trace: lf.DropTrace, tyre, geometry, **options):
+    """:func:`~tyrelab.fit.damping.fit_drop_trace` of a campaign's trace; a trace it refuses is
+    named by its file."""
+    from .damping import fit_drop_trace
+    try:
+        return fit_drop_trace(trace.time, trace.displacement, tyre, trace.load_case, geometry, **options)
+    except InputError as exc:
+        raise InputError(exc.reason, source=trace.source, field=exc.field) from None
+
+
 def fit_damping_step(campaign: Campaign, tir: TirFile) -> StepResult:
     """Tyre damping from drop tests by the rig fit (written) and the pendulum (compared)."""
-    from .damping import drop_test_damping, fit_drop_trace, lowpass
+    from .damping import drop_test_damping, lowpass
     tests = campaign.of(lf.DropTrace)
     fit = [t for t in tests if t.use == "fit"]
     if not fit:
@@ -145,7 +155,7 @@ def fit_damping_step(campaign: Campaign, tir: TirFile) -> StepResult:
     rig, pend = [], []
     for t in fit:
         geometry, inertia, lever = _trailer_pendulum(t, tyre)
-        r = fit_drop_trace(t.time, t.displacement, tyre, t.load_case, geometry)
+        r = _fit_trace(t, tyre, geometry)
         after = t.time >= r.release  # the pendulum's cycles start after the release (3.4.1)
         p = drop_test_damping(t.time[after], lowpass(t.time, t.displacement, t.lowpass)[after], inertia,
                               lever, t.wheels)
@@ -168,8 +178,7 @@ def fit_damping_step(campaign: Campaign, tir: TirFile) -> StepResult:
     for t in (t for t in tests if t.use == "held_out"):
         geometry, _, _ = _trailer_pendulum(t, refitted)
         # the trace's zero and its release are its own, fitted as in the fit; the tyre is not
-        held[t.name] = fit_drop_trace(t.time, t.displacement, refitted, t.load_case, geometry,
-                                      fit_stiffness=False, fit_damping=False).rms
+        held[t.name] = _fit_trace(t, refitted, geometry, fit_stiffness=False, fit_damping=False).rms
     res.rows.append(_row("damping", "VERTICAL_DAMPING", c, "N s/m", rms, held or None, _names(fit),
                          "trailer drop test simulated and fitted to the trace (3.4.1)"))
     res.rows.append(_row("damping", "pendulum damping (not written)", c_pend, "N s/m", None, None,
