@@ -349,6 +349,16 @@ def test_drop_traces_logged_from_before_the_release_give_the_damper(tmp_path, xz
     assert result.steps["damping"].rows[0]["held_out"]["lc2.csv"] < 1.5e-4
 
 
+def test_a_press_without_load_is_named_by_its_file(tmp_path):
+    """A press whose load never rises (a channel not wired): one line naming the file."""
+    (tmp_path / "flat.csv").write_text("deflection_mm,load_N\n0,0\n10,0\n20,0\n30,0\n")
+    (tmp_path / "campaign.toml").write_text('[tyre]\nunloaded_radius = "671.5 mm"\nwidth = "438 mm"\n'
+                                            '[[test]]\nkind = "load_deflection"\nfile = "flat.csv"\n')
+    with pytest.raises(InputError, match="no load above zero") as err:
+        fit_campaign(read_campaign(tmp_path), steps=("vertical",))
+    assert str(err.value).startswith(str(tmp_path / "flat.csv") + ": ")
+
+
 def test_a_drop_trace_logged_down_positive_is_named_with_its_fix(tmp_path, xzl):
     """A displacement logged down positive never falls: one line naming the file and the
     manifest key that reads it; with that key, the damper comes back."""

@@ -73,10 +73,10 @@ def _press(tests) -> np.ndarray:
     """One press curve ``(n, 2)`` from tests at one pressure: each test's table
     (mean of loading and unloading, :func:`~tyrelab.fit.vertical.load_deflection_table`),
     rows above zero deflection, in order of deflection."""
-    from .vertical import load_deflection_table
+    from .vertical import press_table
     rows = []
     for t in tests:
-        tb = load_deflection_table(t.deflection, t.load, t.step)
+        tb = press_table(t)
         rows.append(np.column_stack([tb.deflection, tb.load]))
     press = np.concatenate(rows)
     press = press[press[:, 0] > 0]

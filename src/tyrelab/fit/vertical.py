@@ -254,6 +254,15 @@ def load_deflection_table(deflection, load, step=0.005) -> LoadDeflectionTable:
     return LoadDeflectionTable(rows_d, monotone, loading, unloading, branches, raised)
 
 
+def press_table(test) -> LoadDeflectionTable:
+    """:func:`load_deflection_table` of a campaign's plate press (a
+    :class:`~tyrelab.fit.lab_files.LoadDeflection`); a record it refuses is named by its file."""
+    try:
+        return load_deflection_table(test.deflection, test.load, test.step)
+    except InputError as exc:
+        raise InputError(exc.reason, source=test.source, field=exc.field) from None
+
+
 def hysteresis(table: LoadDeflectionTable) -> float:
     """Largest half difference of the loading and unloading branches [N] (0 for a table)."""
     gap = 0.5 * np.abs(table.loading - table.unloading)

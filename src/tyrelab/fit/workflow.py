@@ -73,7 +73,7 @@ class FitResult:
 def fit_vertical_step(campaign: Campaign, tir: TirFile) -> StepResult:
     """Linear stiffness and load-deflection table (:mod:`tyrelab.fit.vertical`) into ``tir``."""
     from .ring_step import at_tyre_pressure
-    from .vertical import hysteresis, linear_stiffness, load_deflection_table, table_rms
+    from .vertical import hysteresis, linear_stiffness, press_table, table_rms
     every = campaign.of(lf.LoadDeflection)
     tests = at_tyre_pressure(every, tir.number("OPERATING_CONDITIONS", "INFLPRES", None))
     fit = [t for t in tests if t.use == "fit"]
@@ -83,7 +83,7 @@ def fit_vertical_step(campaign: Campaign, tir: TirFile) -> StepResult:
     d = np.concatenate([t.deflection for t in fit])
     f = np.concatenate([t.load for t in fit])
     lin = linear_stiffness(d, f)
-    tables = [load_deflection_table(t.deflection, t.load, t.step) for t in fit]
+    tables = [press_table(t) for t in fit]
     rows_d = tables[0].deflection
     inside = [np.where(rows_d <= tb.deflection[-1] + 1e-9, np.interp(rows_d, tb.deflection, tb.load),
                        np.nan) for tb in tables]
