@@ -82,6 +82,14 @@ def test_noise_on_the_lengths_degrades_pa_gracefully():
     assert abs(rms2.mean() - (n - p) / n) < 4 * standard_error
 
 
+def test_lengths_that_shrink_with_deflection_are_refused():
+    """Patch lengths that fall as the tyre is pressed (columns swapped, say: 250, 240, 230 mm at
+    20, 30, 40 mm) have no physical eq. 2.3: the least squares give PA1 = -5.2, a patch that
+    shrinks from 24 mm on and is negative past 96 mm. Refused, saying why; before, written."""
+    with pytest.raises(InputError, match="does not grow with deflection.*250 mm at 20 mm to 230 mm at 40 mm"):
+        fit_contact_length([0.02, 0.03, 0.04], [0.125, 0.12, 0.115], 0.6715)
+
+
 def test_width_table_and_line():
     d = np.array([0.02, 0.04, 0.04, 0.06])
     b = np.array([0.18, 0.19, 0.20, 0.20])

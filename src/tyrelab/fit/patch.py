@@ -81,6 +81,17 @@ def fit_contact_length(deflection, half_length, unloaded_radius) -> LengthFit:
     if c1 == 0:
         raise InputError("the half lengths give PA1 = 0; eq. 2.3 cannot describe them", field="PA1")
     pa1, pa2 = float(c1), float(c2 / c1)
+    # a patch grows as the tyre is pressed: eq. 2.3 must rise over the deflections measured
+    grid = np.linspace(0.0, float(d.max()), 201)[1:]
+    law = contact_half_length(grid, pa1, pa2, unloaded_radius)
+    bad = np.flatnonzero((law <= 0) | (np.diff(np.r_[0.0, law]) < 0))
+    if bad.size:
+        lo, hi = int(np.argmin(d)), int(np.argmax(d))
+        raise InputError(f"eq. 2.3 fitted to these sizes (PA1 = {pa1:.4g}, PA2 = {pa2:.4g}) gives a contact "
+                         f"length that does not grow with deflection (from {1e3 * grid[bad[0]]:.0f} mm on): "
+                         f"the lengths measured go from {2e3 * a[lo]:.0f} mm at {1e3 * d[lo]:.0f} mm to "
+                         f"{2e3 * a[hi]:.0f} mm at {1e3 * d[hi]:.0f} mm; is the deflection (or load) "
+                         "column the right one?", field="contact length")
     rms = float(np.sqrt(np.mean((contact_half_length(d, pa1, pa2, unloaded_radius) - a) ** 2)))
     return LengthFit(pa1, pa2, rms, int(d.size))
 

@@ -224,6 +224,14 @@ def _patch_points(campaign: Campaign, tir: TirFile, use: str) -> list[_PatchFile
     return out
 
 
+def _named(fit, source, *args):
+    """``fit(*args)``; what it refuses is named by the files it was given (``source``)."""
+    try:
+        return fit(*args)
+    except InputError as exc:
+        raise InputError(exc.reason, source=source, field=exc.field) from None
+
+
 def fit_patch_step(campaign: Campaign, tir: TirFile) -> StepResult:
     """PA1, PA2 (eq. 2.3), PB1-PB3 (eq. 2.4) and the half-width table into ``tir``."""
     from ..tyre.contact.patch_laws import DEFAULTS
@@ -267,7 +275,7 @@ def fit_patch_step(campaign: Campaign, tir: TirFile) -> StepResult:
 
     ok = np.isfinite(a)
     if ok.any():
-        fl = fit_contact_length(d[ok], a[ok], r0)
+        fl = _named(fit_contact_length, src, d[ok], a[ok], r0)
         tir.set("CONTACT_PATCH", "PA1", fl.pa1)
         tir.set("CONTACT_PATCH", "PA2", fl.pa2)
         tir.set(FIT_SECTION, "CONTACT_LENGTH_RMS_M", fl.rms)
@@ -288,7 +296,7 @@ def fit_patch_step(campaign: Campaign, tir: TirFile) -> StepResult:
                              src,
                              "half width vs deflection (4.4's recommendation)"))
         if np.unique(np.round(d[ok], 6)).size >= 2:
-            wf = fit_contact_width(d[ok], b[ok], r0, w0)
+            wf = _named(fit_contact_width, src, d[ok], b[ok], r0, w0)
             for k, v in zip(("PB1", "PB2", "PB3"), wf[:3]):
                 tir.set("CONTACT_PATCH", k, v)
             tir.set(FIT_SECTION, "CONTACT_WIDTH_RMS_M", wf.rms)
