@@ -24,6 +24,7 @@ import numpy as np
 from scipy.signal import find_peaks
 
 from ..errors import InputError
+from .search import refine_minimum
 
 
 class DropTestDamping(NamedTuple):
@@ -187,16 +188,16 @@ def drop_release(time, displacement) -> float:
     A logger runs before the release, so a trace may begin with the trailer
     held at rest. From rest the rim falls as ``z = z_rest - a (t - t_r)^2 / 2``
     (it starts with no speed; the tyre's force is still small), and before
-    ``t_r`` it stays at ``z_rest``. For each candidate ``t_r`` (a quarter of
-    a sample apart, from 50 ms before the window on) this is linear in
-    ``z_rest`` and ``a``, solved by least squares; the candidate with the
-    smallest residual is the release. The window is the samples from
-    :data:`RELEASE_WINDOW` before the rim has fallen :data:`RELEASE_SHARE`
-    of the whole drop up to that point (read on an 21-sample running median,
-    so noise does not set it).
+    ``t_r`` it stays at ``z_rest``. For each candidate ``t_r`` (from 50 ms
+    before the window on) this is linear in ``z_rest`` and ``a``, solved by
+    least squares; the candidate with the smallest residual, to a quarter of
+    a sample (:func:`~tyrelab.fit.search.refine_minimum`), is the release.
+    The window is the samples from :data:`RELEASE_WINDOW` before the rim has
+    fallen :data:`RELEASE_SHARE` of the whole drop up to that point (read on
+    a 21-sample running median, so noise does not set it).
 
     On the trailer's simulated drop with 0.1 (0.5) mm of noise the estimate
-    is within 2.5 (6) ms; :func:`fit_drop_trace` fits the release exactly.
+    is within 2.6 (6) ms; :func:`fit_drop_trace` fits the release exactly.
     """
     from scipy.ndimage import median_filter
 
@@ -217,16 +218,18 @@ def drop_release(time, displacement) -> float:
     dt = float(np.median(np.diff(t)))
     lo = int(np.searchsorted(t, t[q] - RELEASE_WINDOW))
     tw, zw = t[lo:q + 1], z[lo:q + 1]
-    candidates = np.arange(tw[0] - 0.05, tw[-1], 0.25 * dt)
-    h = 0.5 * np.clip(tw[None, :] - candidates[:, None], 0.0, None) ** 2
-    n, sh, shh = tw.size, h.sum(axis=1), (h * h).sum(axis=1)
-    sz, shz = zw.sum(), h @ zw
-    det = n * shh - sh * sh
-    ok = det > 1e-30 * np.maximum(n * shh, 1e-300)
-    rest = np.where(ok, (shh * sz - sh * shz) / np.where(ok, det, 1.0), sz / n)
-    rate = np.where(ok, (sh * sz - n * shz) / np.where(ok, det, 1.0), 0.0)  # a, falling
-    sse = ((rest[:, None] - rate[:, None] * h - zw[None, :]) ** 2).sum(axis=1)
-    return float(candidates[int(np.argmin(sse))])
+
+    def sse(candidates):
+        h = 0.5 * np.clip(tw[None, :] - candidates[:, None], 0.0, None) ** 2
+        n, sh, shh = tw.size, h.sum(axis=1), (h * h).sum(axis=1)
+        sz, shz = zw.sum(), h @ zw
+        det = n * shh - sh * sh
+        ok = det > 1e-30 * np.maximum(n * shh, 1e-300)
+        rest = np.where(ok, (shh * sz - sh * shz) / np.where(ok, det, 1.0), sz / n)
+        rate = np.where(ok, (sh * sz - n * shz) / np.where(ok, det, 1.0), 0.0)  # a, falling
+        return ((rest[:, None] - rate[:, None] * h - zw[None, :]) ** 2).sum(axis=1)
+
+    return refine_minimum(sse, tw[0] - 0.05, tw[-1], 0.25 * dt)
 
 
 class RigDropFit(NamedTuple):

@@ -20,6 +20,7 @@ import numpy as np
 from scipy.signal import find_peaks
 
 from ..errors import InputError
+from .search import refine_minimum
 
 #: largest number of rows of a load-deflection table (ADAMS/Tire: 100 points, thesis 2.3.1)
 MAX_TABLE_ROWS = 100
@@ -75,12 +76,13 @@ def first_touch(deflection, load) -> float:
     loading samples below 15 % of the peak load the touch ``d0`` is fitted as
     a hinge: ``F = 0`` before it, ``F = a (d - d0) + b (d - d0)^2`` after (a
     tyre's curve starts nearly straight; ``b`` holds its first bend). For each
-    candidate ``d0`` (a quarter of a sample step apart) ``a`` and ``b`` follow
-    by linear least squares; the candidate with the smallest residual is the
-    touch. The unloaded samples pin it from one side, the rising ones from
-    the other. A touch under :data:`TOUCH_TRAVEL` (or :data:`TOUCH_SHARE` of
-    the deepest deflection) is the record's own noise: 0. A table's rows (as
-    Table 3-2) are used alike. On the XZL's curve, which rises softly (155 N
+    candidate ``d0`` ``a`` and ``b`` follow by linear least squares; the
+    candidate with the smallest residual, to a quarter of a sample step
+    (:func:`~tyrelab.fit.search.refine_minimum`), is the touch. The unloaded
+    samples pin it from one side, the rising ones from the other. A touch
+    under :data:`TOUCH_TRAVEL` (or :data:`TOUCH_SHARE` of the deepest
+    deflection) is the record's own noise: 0. A table's rows (as Table 3-2)
+    are used alike. On the XZL's curve, which rises softly (155 N
     at 1 mm), a 0.5 mm stepped press 20 mm above the plate gives the touch
     0.9 mm late.
     """
@@ -105,18 +107,20 @@ def first_touch(deflection, load) -> float:
     step = float(np.median(steps[steps > 0])) if np.any(steps > 0) else 0.0
     if not step > 0:
         return 0.0
-    candidates = np.arange(float(dl.min()), float(dl.max()), 0.25 * step)
-    u = np.clip(dl[None, :] - candidates[:, None], 0.0, None)       # (candidates, samples)
-    u2 = u * u
-    s11, s12, s22 = (u * u).sum(1), (u * u2).sum(1), (u2 * u2).sum(1)
-    r1, r2 = u @ fl, u2 @ fl
-    det = s11 * s22 - s12 * s12
-    ok = det > 1e-30 * np.maximum(s11 * s22, 1e-300)
-    a = np.where(ok, (s22 * r1 - s12 * r2) / np.where(ok, det, 1.0), 0.0)
-    b = np.where(ok, (s11 * r2 - s12 * r1) / np.where(ok, det, 1.0), 0.0)
-    sse = ((a[:, None] * u + b[:, None] * u2 - fl[None, :]) ** 2).sum(1)
-    sse[~ok] = np.inf
-    touch = float(candidates[int(np.argmin(sse))])
+
+    def sse(candidates):
+        u = np.clip(dl[None, :] - candidates[:, None], 0.0, None)       # (candidates, samples)
+        u2 = u * u
+        s11, s12, s22 = (u * u).sum(1), (u * u2).sum(1), (u2 * u2).sum(1)
+        r1, r2 = u @ fl, u2 @ fl
+        det = s11 * s22 - s12 * s12
+        ok = det > 1e-30 * np.maximum(s11 * s22, 1e-300)
+        a = np.where(ok, (s22 * r1 - s12 * r2) / np.where(ok, det, 1.0), 0.0)
+        b = np.where(ok, (s11 * r2 - s12 * r1) / np.where(ok, det, 1.0), 0.0)
+        out = ((a[:, None] * u + b[:, None] * u2 - fl[None, :]) ** 2).sum(1)
+        return np.where(ok, out, np.inf)
+
+    touch = refine_minimum(sse, float(dl.min()), float(dl.max()), 0.25 * step)
     if touch < max(TOUCH_TRAVEL, TOUCH_SHARE * float(np.max(d))):
         return 0.0
     return touch
