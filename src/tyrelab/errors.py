@@ -8,6 +8,8 @@ an ordinary exception with the same message.
 
 from __future__ import annotations
 
+from contextlib import contextmanager
+
 
 class InputError(ValueError):
     """Bad input from a user: a file, a field, a command-line value.
@@ -48,3 +50,15 @@ def named(known: dict, name: str, what: str, field: str):
     if name not in known:
         raise InputError(f"unknown {what} '{name}', expected one of {', '.join(known)}", field=field)
     return known[name]
+
+
+@contextmanager
+def naming(source):
+    """Within it, an :class:`InputError` that names no file is raised again naming ``source``
+    (the file, or files, the data it refused came from), its field and reason kept."""
+    try:
+        yield
+    except InputError as exc:
+        if exc.source is not None:
+            raise
+        raise InputError(exc.reason, source=source, field=exc.field) from None

@@ -19,7 +19,7 @@ from typing import NamedTuple
 import numpy as np
 from scipy.signal import find_peaks
 
-from ..errors import InputError
+from ..errors import InputError, naming
 from .search import refine_minimum
 
 #: largest number of rows of a load-deflection table (ADAMS/Tire: 100 points, thesis 2.3.1)
@@ -261,10 +261,8 @@ def load_deflection_table(deflection, load, step=0.005) -> LoadDeflectionTable:
 def press_table(test) -> LoadDeflectionTable:
     """:func:`load_deflection_table` of a campaign's plate press (a
     :class:`~tyrelab.fit.lab_files.LoadDeflection`); a record it refuses is named by its file."""
-    try:
+    with naming(test.source):
         return load_deflection_table(test.deflection, test.load, test.step)
-    except InputError as exc:
-        raise InputError(exc.reason, source=test.source, field=exc.field) from None
 
 
 def hysteresis(table: LoadDeflectionTable) -> float:

@@ -34,7 +34,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from ..errors import InputError
+from ..errors import InputError, naming
 from ..tyre.tir import TirFile
 from . import lab_files as lf
 from .campaign import Campaign
@@ -137,10 +137,8 @@ def _fit_trace(trace: lf.DropTrace, tyre, geometry, **options):
     """:func:`~tyrelab.fit.damping.fit_drop_trace` of a campaign's trace; a trace it refuses is
     named by its file."""
     from .damping import fit_drop_trace
-    try:
+    with naming(trace.source):
         return fit_drop_trace(trace.time, trace.displacement, tyre, trace.load_case, geometry, **options)
-    except InputError as exc:
-        raise InputError(exc.reason, source=trace.source, field=exc.field) from None
 
 
 def fit_damping_step(campaign: Campaign, tir: TirFile) -> StepResult:
@@ -224,14 +222,6 @@ def _patch_points(campaign: Campaign, tir: TirFile, use: str) -> list[_PatchFile
     return out
 
 
-def _named(fit, source, *args):
-    """``fit(*args)``; what it refuses is named by the files it was given (``source``)."""
-    try:
-        return fit(*args)
-    except InputError as exc:
-        raise InputError(exc.reason, source=source, field=exc.field) from None
-
-
 def fit_patch_step(campaign: Campaign, tir: TirFile) -> StepResult:
     """PA1, PA2 (eq. 2.3), PB1-PB3 (eq. 2.4) and the half-width table into ``tir``."""
     from ..tyre.contact.patch_laws import DEFAULTS
@@ -275,7 +265,8 @@ def fit_patch_step(campaign: Campaign, tir: TirFile) -> StepResult:
 
     ok = np.isfinite(a)
     if ok.any():
-        fl = _named(fit_contact_length, src, d[ok], a[ok], r0)
+        with naming(src):
+            fl = fit_contact_length(d[ok], a[ok], r0)
         tir.set("CONTACT_PATCH", "PA1", fl.pa1)
         tir.set("CONTACT_PATCH", "PA2", fl.pa2)
         tir.set(FIT_SECTION, "CONTACT_LENGTH_RMS_M", fl.rms)
@@ -296,7 +287,8 @@ def fit_patch_step(campaign: Campaign, tir: TirFile) -> StepResult:
                              src,
                              "half width vs deflection (4.4's recommendation)"))
         if np.unique(np.round(d[ok], 6)).size >= 2:
-            wf = _named(fit_contact_width, src, d[ok], b[ok], r0, w0)
+            with naming(src):
+                wf = fit_contact_width(d[ok], b[ok], r0, w0)
             for k, v in zip(("PB1", "PB2", "PB3"), wf[:3]):
                 tir.set("CONTACT_PATCH", k, v)
             tir.set(FIT_SECTION, "CONTACT_WIDTH_RMS_M", wf.rms)
