@@ -24,7 +24,7 @@ import numpy as np
 from scipy.signal import find_peaks
 
 from ..errors import InputError
-from .search import refine_minimum
+from .search import refine_minimum, two_term_sse
 
 
 class DropTestDamping(NamedTuple):
@@ -219,15 +219,9 @@ def drop_release(time, displacement) -> float:
     lo = int(np.searchsorted(t, t[q] - RELEASE_WINDOW))
     tw, zw = t[lo:q + 1], z[lo:q + 1]
 
-    def sse(candidates):
+    def sse(candidates):   # z_rest, then the fall a (t - t_r)^2 / 2 from the release on
         h = 0.5 * np.clip(tw[None, :] - candidates[:, None], 0.0, None) ** 2
-        n, sh, shh = tw.size, h.sum(axis=1), (h * h).sum(axis=1)
-        sz, shz = zw.sum(), h @ zw
-        det = n * shh - sh * sh
-        ok = det > 1e-30 * np.maximum(n * shh, 1e-300)
-        rest = np.where(ok, (shh * sz - sh * shz) / np.where(ok, det, 1.0), sz / n)
-        rate = np.where(ok, (sh * sz - n * shz) / np.where(ok, det, 1.0), 0.0)  # a, falling
-        return ((rest[:, None] - rate[:, None] * h - zw[None, :]) ** 2).sum(axis=1)
+        return two_term_sse(np.ones((1, tw.size)), h, zw)
 
     return refine_minimum(sse, tw[0] - 0.05, tw[-1], 0.25 * dt)
 

@@ -20,7 +20,7 @@ import numpy as np
 from scipy.signal import find_peaks
 
 from ..errors import InputError, naming
-from .search import refine_minimum
+from .search import refine_minimum, two_term_sse
 
 #: largest number of rows of a load-deflection table (ADAMS/Tire: 100 points, thesis 2.3.1)
 MAX_TABLE_ROWS = 100
@@ -108,17 +108,9 @@ def first_touch(deflection, load) -> float:
     if not step > 0:
         return 0.0
 
-    def sse(candidates):
+    def sse(candidates):   # the hinge a u + b u^2, u = d - d0 past the touch, 0 before it
         u = np.clip(dl[None, :] - candidates[:, None], 0.0, None)       # (candidates, samples)
-        u2 = u * u
-        s11, s12, s22 = (u * u).sum(1), (u * u2).sum(1), (u2 * u2).sum(1)
-        r1, r2 = u @ fl, u2 @ fl
-        det = s11 * s22 - s12 * s12
-        ok = det > 1e-30 * np.maximum(s11 * s22, 1e-300)
-        a = np.where(ok, (s22 * r1 - s12 * r2) / np.where(ok, det, 1.0), 0.0)
-        b = np.where(ok, (s11 * r2 - s12 * r1) / np.where(ok, det, 1.0), 0.0)
-        out = ((a[:, None] * u + b[:, None] * u2 - fl[None, :]) ** 2).sum(1)
-        return np.where(ok, out, np.inf)
+        return two_term_sse(u, u * u, fl)
 
     touch = refine_minimum(sse, float(dl.min()), float(dl.max()), 0.25 * step)
     if touch < max(TOUCH_TRAVEL, TOUCH_SHARE * float(np.max(d))):
