@@ -170,6 +170,17 @@ def _outline(patch):
     return np.vstack([ring, ring[:1]]), float(hull.volume)
 
 
+def _image_axis(travel: str) -> np.ndarray:
+    """The image's travel axis as a (row, column) unit vector."""
+    return np.array([1.0, 0.0]) if travel == "vertical" else np.array([0.0, 1.0])
+
+
+def _across(along: np.ndarray, travel: str) -> np.ndarray:
+    """The axis across ``along``: the column axis for vertical travel, the row axis for
+    horizontal, turned alike."""
+    return np.array([-along[1], along[0]]) if travel == "vertical" else np.array([along[1], -along[0]])
+
+
 def patch_axes(ring, travel="vertical"):
     """The patch's own axes from its outline ``ring`` ((row, column) points [pixels]): the
     smallest-area rectangle around it (rotating calipers: one side lies on a hull edge),
@@ -177,7 +188,7 @@ def patch_axes(ring, travel="vertical"):
     the image's travel axis. A print photographed turned on the glass keeps its length and
     width; a patch square to the image gets the image's axes exactly."""
     pts = np.asarray(ring, float)
-    image_axis = np.array([1.0, 0.0]) if travel == "vertical" else np.array([0.0, 1.0])
+    image_axis = _image_axis(travel)
     best, axes = np.inf, None
     for e in np.diff(pts, axis=0):
         n = float(np.hypot(*e))
@@ -193,19 +204,15 @@ def patch_axes(ring, travel="vertical"):
     along = along if along @ image_axis >= 0 else -along
     if abs(abs(along @ image_axis) - 1.0) < 1e-12:   # square to the image: its axes exactly
         along = image_axis
-    # across: the column axis for vertical travel, the row axis for horizontal, turned alike
-    across = np.array([-along[1], along[0]]) if travel == "vertical" else np.array([along[1], -along[0]])
-    return along, across
+    return along, _across(along, travel)
 
 
 def outline_in_image(fp: Footprint, travel="vertical"):
     """The outline of ``fp`` back in its image: ``(rows, columns)`` [pixels]."""
-    image_axis = np.array([1.0, 0.0]) if travel == "vertical" else np.array([0.0, 1.0])
     turn = np.array([[np.cos(fp.angle), -np.sin(fp.angle)], [np.sin(fp.angle), np.cos(fp.angle)]])
-    along = turn @ image_axis
-    across = np.array([-along[1], along[0]]) if travel == "vertical" else np.array([along[1], -along[0]])
+    along = turn @ _image_axis(travel)
     o = fp.outline / fp.scale
-    pts = np.asarray(fp.centre) + o[:, :1] * along + o[:, 1:] * across
+    pts = np.asarray(fp.centre) + o[:, :1] * along + o[:, 1:] * _across(along, travel)
     return pts[:, 0], pts[:, 1]
 
 
@@ -238,7 +245,7 @@ def measure_footprint(image, line_length=0.1, travel="vertical", threshold=0.5, 
     mid_a, mid_c = 0.5 * (a.min() + a.max()), 0.5 * (c.min() + c.max())
     centre = mid_a * along + mid_c * across
     outline = np.column_stack([a - mid_a, c - mid_c]) * scale     # (along travel, across)
-    image_axis = np.array([1.0, 0.0]) if travel == "vertical" else np.array([0.0, 1.0])
+    image_axis = _image_axis(travel)
     angle = float(np.arctan2(image_axis[0] * along[1] - image_axis[1] * along[0], image_axis @ along))
     return Footprint(float(np.ptp(a)) * scale, float(np.ptp(c)) * scale,
                      float(patch.sum()) * scale ** 2, hull_area * scale ** 2, outline, scale, pixels,
