@@ -146,8 +146,9 @@ def check_load_range(tyre, wheel_load: float) -> None:
     """Warn when the static wheel load is above the property file's FZMAX."""
     fz = limits.fzmax(tyre)
     if fz is not None and wheel_load > fz:
-        physics_warning(f"the static wheel load {wheel_load / 1e3:.4g} kN is above FZMAX {fz / 1e3:.4g} kN "
-              f"of {tyre.name}: its handling coefficients are extrapolated; use a load up to FZMAX")
+        physics_warning(f"the static wheel load {wheel_load / 1e3:.4g} kN is above FZMAX "
+                        f"{fz / 1e3:.4g} kN of {tyre.name}: its handling coefficients are extrapolated; "
+                        "use a load up to FZMAX")
 
 
 def _longest_run(mask: np.ndarray) -> tuple[int, int]:

@@ -111,9 +111,9 @@ class WheelStepper:
         self._look_below = (float(ground_range(wheel.road)[1]) if self._height is not None
                             else -math.inf)
         self._rim_room, self._rim_how = limits.rim_deflection(model.tyre)
-        #: what a finding of :meth:`_check_pose` is given to: a PhysicsWarning by default; the
-        #: FMU's slave logs it through the host's logger instead
-        # a finding of _check_pose, as the rigs' guards give theirs, pointed at the host's call
+        #: what a finding of :meth:`_check_pose` is given to: a PhysicsWarning by default, as the
+        #: rigs' guards give theirs, pointed at the host's call; the FMU's slave logs it through
+        #: the host's logger instead
         self.warn = partial(physics_warning, stacklevel=4)
 
     @property

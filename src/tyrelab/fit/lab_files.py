@@ -273,12 +273,12 @@ def read_modal(path, use="fit", note="") -> ModalResults:
     if not path.is_file():
         raise InputError("no such file", source=str(path))
     header, header_line, rows = _table(path, ",")
-    if "mode" not in [h.lower() for h in header]:
+    lower = [h.lower() for h in header]
+    if "mode" not in lower:
         raise InputError("a modal table needs a 'mode' column (Table 3-3)", source=str(path),
                          line=header_line, field="mode")
-    mode_col = [h.lower() for h in header].index("mode")
-    described = [h.lower() for h in header].index("description") if "description" in [
-        h.lower() for h in header] else None
+    mode_col = lower.index("mode")
+    described = lower.index("description") if "description" in lower else None
     cols = {}
     for i, h in enumerate(header):
         m = _MODAL.match(h.strip())

@@ -22,9 +22,10 @@ peak. The other runs are held out and reported with the same error before
 and after. Runs are the trailer with the ring on the test wheel and the
 point model (same vertical law) on the left wheel on flat ground, as the
 built-in campaign runs it. A measurement's clock is its logger's: each run
-is first aligned to the ring at the starting parameters by cross-correlation
-of FZW (:func:`aligned`; the shift is reported), then held there while the
-factors change.
+is first placed by cross-correlation of FZW with the ring at the starting
+parameters (:func:`aligned`), then every parameter set is compared at its own
+best shift within :data:`SHIFT_RANGE` of that (:func:`aligned_error`; the
+shift is reported).
 
 Identifiability (measured on the XZL, LC1, 50 mm cleat at 12 km/h, the
 "measurement" made by the model itself with the factors 1.6 and 0.6): the

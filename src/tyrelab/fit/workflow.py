@@ -110,10 +110,8 @@ def fit_vertical_step(campaign: Campaign, tir: TirFile) -> StepResult:
     if len(tests) < len(every):
         res.notes.append(f"vertical: {len(every) - len(tests)} press(es) at other pressures are for the "
                          "ring only")
-    for t in (t for t in tests if t.touch):
-        res.notes.append(f"vertical: {t.name}: the load starts to rise at {1e3 * t.touch:.1f} mm of the "
-                         f"file's deflection (the ram's travel before the tyre met the plate); "
-                         f"deflection is counted from there")
+    res.notes.extend(_touch_note("vertical", t, " (the ram's travel before the tyre met the plate)")
+                     for t in tests if t.touch)
     loop = [tb for tb in tables if tb.branches]
     if loop:
         res.notes.append(f"vertical: {sum(tb.branches for tb in loop)} loading/unloading branches "
@@ -121,6 +119,12 @@ def fit_vertical_step(campaign: Campaign, tir: TirFile) -> StepResult:
     if any(tb.raised for tb in tables):
         res.notes.append("vertical: some table rows fell below the row before and were raised to it")
     return res
+
+
+def _touch_note(step: str, test, why: str = "") -> str:
+    """The note that a press's file was counted from its first touch (``test.touch``)."""
+    return (f"{step}: {test.name}: the load starts to rise at {1e3 * test.touch:.1f} mm of the file's "
+            f"deflection{why}; deflection is counted from there")
 
 
 def _trailer_pendulum(trace: lf.DropTrace, tyre):
@@ -363,8 +367,7 @@ def predict_cleats(campaign: Campaign, tir: TirFile) -> StepResult:
         width, height = t.cleat
         spec = f"cleat:{width * 1e3:g}x{height * 1e3:g}"
         if t.touch:
-            res.notes.append(f"cleats: {t.name}: the load starts to rise at {1e3 * t.touch:.1f} mm of "
-                             f"the file's deflection; deflection is counted from there")
+            res.notes.append(_touch_note("cleats", t))
         pred = {}
         for m in models:
             loads = static_press(TyreModel(tyre, m), t.deflection, spec, t.direction)["load"].to_numpy()

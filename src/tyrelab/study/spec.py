@@ -197,12 +197,9 @@ def _models(ck: Checker, doc, tyres) -> tuple[ModelSpec, ...]:
         name = ck.unique_label(t["name"], path + ("name",), seen, "model")
         contact = ck.choice(t["contact"], path + ("contact",), contacts, "contact model")
         needs = contact_model(contact).check_tyre
-        for tyre_spec, tyre in tyres if needs is not None else ():  # what the model needs of a tyre
-            try:
-                needs(tyre)
-            except InputError as exc:
-                ck.fail(path + ("contact",), f"tyre '{tyre_spec.name}' cannot run the {contact} model: "
-                        f"{exc.reason}")
+        if needs is not None:  # what the model needs of a tyre
+            _every_tyre(ck, path + ("contact",), tyres, needs,
+                        lambda tyre, exc: f"tyre '{tyre}' cannot run the {contact} model: {exc.reason}")
         stiffness = None
         if "stiffness" in t:
             stiffness = ck.choice(t["stiffness"], path + ("stiffness",), STIFFNESS_MODES, "stiffness")
@@ -214,15 +211,22 @@ def _models(ck: Checker, doc, tyres) -> tuple[ModelSpec, ...]:
         handling = None
         if "handling" in t:
             handling = ck.choice(t["handling"], path + ("handling",), handlings, "handling model")
-            for tyre_spec, tyre in tyres:  # its coefficients must be in every tyre's file
-                try:
-                    handling_model(handling).build(tyre)
-                except InputError as exc:
-                    ck.fail(path + ("handling",), f"tyre '{tyre_spec.name}' has no {handling} "
-                            f"coefficients: {exc}")
+            # its coefficients must be in every tyre's file
+            _every_tyre(ck, path + ("handling",), tyres, handling_model(handling).build,
+                        lambda tyre, exc: f"tyre '{tyre}' has no {handling} coefficients: {exc}")
         options = _options(ck, t.get("options"), path + ("options",), contact)
         models.append(ModelSpec(name, contact, stiffness, handling, options))
     return tuple(models)
+
+
+def _every_tyre(ck: Checker, key, tyres, check, says) -> None:
+    """``check(tyre)`` for each of the spec's tyres; the first it refuses fails the spec at
+    ``key`` with ``says(tyre's label, error)``."""
+    for tyre_spec, tyre in tyres:
+        try:
+            check(tyre)
+        except InputError as exc:
+            ck.fail(key, says(tyre_spec.name, exc))
 
 
 def _options(ck: Checker, raw, path, contact: str) -> tuple:
