@@ -43,7 +43,7 @@ from ..validate.thesis import TABLE_5_15_ROWS
 from .comparison import (CHANNEL, FALLBACK_CHANNEL, compare_to_reference, disturbance_segments,
                          obstacle_of)
 from .spec import GROUPS, RunSpec, StudySpec
-from .runner import RunWarning, warning_messages
+from .runner import RunWarning, kept_warnings, warning_messages
 from .store import Store
 
 REPEATABILITY = "measured repeatability"
@@ -135,8 +135,7 @@ class _Evaluator:
             sim_source=None) -> dict:
         """One row: ``sim_source`` (default the run's key) against ``source``."""
         row = _labels(run, key, label, is_reference)
-        with warnings.catch_warnings(record=True) as caught:  # kept with the row (a worker's)
-            warnings.simplefilter("always", UserWarning)
+        with kept_warnings() as caught:  # kept with the row (a worker's)
             try:
                 ref = self.reference_signal(source)
                 seg = self.segments(run, source)

@@ -36,6 +36,7 @@ import signal
 import threading
 import time
 import warnings
+from contextlib import contextmanager
 
 from .. import limits, stop
 from ..errors import InputError
@@ -53,8 +54,7 @@ def execute(task: dict):
     warnings the run raised (each once, on one line)."""
     from ..api import simulate
     t0 = time.perf_counter()
-    with warnings.catch_warnings(record=True) as caught:
-        warnings.simplefilter("always", UserWarning)
+    with kept_warnings() as caught:
         try:
             signal = simulate(**task["simulate"], progress=False)
         except Exception as exc:  # recorded, not raised: the other runs go on
@@ -62,6 +62,15 @@ def execute(task: dict):
             return "failed", f"{type(exc).__name__}: {text}", time.perf_counter() - t0, \
                 warning_messages(caught)
     return "done", signal, time.perf_counter() - t0, warning_messages(caught)
+
+
+@contextmanager
+def kept_warnings():
+    """Within it, every user warning is recorded, not shown, into the list it yields (a
+    worker's: the run or row keeps them, :func:`warning_messages`)."""
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always", UserWarning)
+        yield caught
 
 
 def warning_messages(caught) -> list[str]:
