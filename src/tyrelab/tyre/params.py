@@ -7,6 +7,7 @@ law, carcass shape, wheel mass) and keeps the whole parsed property file in
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field, replace
 
 import numpy as np
@@ -14,7 +15,7 @@ import numpy as np
 from .. import limits
 from ..errors import InputError
 from .tir import TirFile, read_tir, write_tir
-from .vertical import DEFAULT_DAMPING_RAMP, VerticalLaw
+from .vertical import DEFAULT_DAMPING_RAMP, NO_BOTTOMING, VerticalLaw, bottoming_table
 
 #: the least spin inertia [kg m^2] a rig turns a wheel with (:attr:`Tyre.spin_inertia`)
 MIN_SPIN_INERTIA = 1e-3
@@ -50,6 +51,9 @@ class Tyre:
         Spin inertia of tyre + rim [kg m^2].
     pressure : float
         Inflation pressure [Pa] the parameters describe.
+    bottoming : ndarray or None
+        The bottoming table (deflection [m], load added to the vertical law [N]) from
+        ``[BOTTOMING_CURVE]`` or ``BOTTOM_STIFF``; None: the tyre does not bottom out.
     tir : TirFile
         The whole property file, for models that need more.
     """
@@ -67,6 +71,7 @@ class Tyre:
     pressure: float = float("nan")
     damping_ramp: float = DEFAULT_DAMPING_RAMP
     tir: TirFile = field(default_factory=TirFile, repr=False)
+    bottoming: np.ndarray | None = None
 
     # -- construction ---------------------------------------------------
     @classmethod
@@ -119,6 +124,7 @@ class Tyre:
             pressure=pressure,
             damping_ramp=tir.number("VERTICAL", "DAMPING_RAMP", default=DEFAULT_DAMPING_RAMP),
             tir=tir,
+            bottoming=_bottoming(tir, r0),
         )
 
     def with_stiffness(self, mode: str) -> "Tyre":
@@ -142,17 +148,20 @@ class Tyre:
     def vertical_law(self) -> VerticalLaw:
         """The compiled-ready vertical law (rebuilt only when its inputs change)."""
         use_table = self.stiffness == "table" and self.load_deflection is not None
+        bottoming = NO_BOTTOMING if self.bottoming is None else self.bottoming
         key = (use_table, self.vertical_stiffness, self.vertical_damping, self.damping_ramp,
-               self.load_deflection.tobytes() if use_table else b"")
+               self.load_deflection.tobytes() if use_table else b"", bottoming.tobytes())
         cached = self.__dict__.get("_law")
         if cached is not None and cached[0] == key:
             return cached[1]
         if use_table:
             t = self.load_deflection
             law = VerticalLaw.table(t[:, 0], t[:, 1], self.vertical_damping, self.damping_ramp,
-                                    stiffness=self.vertical_stiffness, source=self.tir.source)
+                                    stiffness=self.vertical_stiffness, source=self.tir.source,
+                                    bottoming=bottoming)
         else:
-            law = VerticalLaw.linear(self.vertical_stiffness, self.vertical_damping, self.damping_ramp)
+            law = VerticalLaw.linear(self.vertical_stiffness, self.vertical_damping, self.damping_ramp,
+                                     bottoming=bottoming)
         self.__dict__["_law"] = (key, law)
         return law
 
@@ -193,6 +202,73 @@ def _bounded(tir: TirFile, section: str, key: str, low: float, high: float, unit
     return v
 
 
+def _check_curve(tir: TirFile, name: str, r0: float | None, what: str, instead: str) -> None:
+    """Check a table of (deflection, ``what``) rows, ``[name]``, if the file has one: at least
+    two rows of two columns, non-negative deflections that increase strictly (up to ``r0``),
+    non-negative loads that never fall and do not all stay zero."""
+    if not tir.has(name):
+        return
+    table = tir.table(name)
+    if table is None or table.size == 0:
+        _fail(tir, f"section [{name}] has no rows of (deflection, {what}); give at least two rows "
+              f"or {instead}", name)
+    if table.ndim != 2 or table.shape[1] != 2:
+        _fail(tir, f"[{name}] needs two columns (deflection, {what}), found {table.shape[-1]}", name,
+              row=0)
+    d, f = table[:, 0], table[:, 1]
+    if len(d) < 2:
+        _fail(tir, f"[{name}] has {len(d)} row; a {what}-deflection curve needs at least two", name,
+              row=0)
+    for i in range(len(d)):
+        if d[i] < 0:
+            _fail(tir, f"deflection {d[i]:g} m is negative", name, row=i)
+        if f[i] < 0:
+            _fail(tir, f"{what} {f[i]:g} N is negative (a tyre does not pull the road)", name, row=i)
+        if i and not d[i] > d[i - 1]:
+            _fail(tir, f"deflection {d[i]:g} m does not increase (previous row {d[i - 1]:g} m); "
+                  "deflections must increase strictly down the table", name, row=i)
+        if i and f[i] < f[i - 1]:
+            _fail(tir, f"{what} {f[i]:g} N is below the previous row's {f[i - 1]:g} N; the {what} "
+                  "must not fall as the deflection grows", name, row=i)
+        if r0 is not None and d[i] > r0:
+            _fail(tir, f"deflection {d[i]:g} m is beyond the unloaded radius {r0:g} m", name, row=i)
+    if not f[-1] > 0:
+        _fail(tir, "the last load is zero: the table carries no load", name, row=len(d) - 1)
+
+
+def _bottoming(tir: TirFile, r0: float | None) -> np.ndarray | None:
+    """The file's bottoming table (:func:`~tyrelab.tyre.vertical.bottoming_table`), or None.
+
+    From ``[BOTTOMING_CURVE]`` (PAC2002) or ``[VERTICAL] BOTTOM_STIFF`` with ``BOTTOM_OFFST``
+    (MF-Tyre 6.1/6.2, default offset 0; ``BOTTOM_STIFF`` 0: none); a file with both is
+    refused, as is MF bottoming without ``RIM_RADIUS`` or one that starts before the tyre is
+    pressed.
+    """
+    curve = tir.table("BOTTOMING_CURVE") if tir.has("BOTTOMING_CURVE") else None
+    stiff = _bounded(tir, "VERTICAL", "BOTTOM_STIFF", 0.0, limits.MAX_STIFFNESS, "N/m", low_open=False)
+    offset = tir.get("VERTICAL", "BOTTOM_OFFST")
+    if offset is not None and (isinstance(offset, bool) or not isinstance(offset, (int, float))
+                               or not math.isfinite(offset)):
+        _fail(tir, f"expected a finite number, found '{offset}'", "VERTICAL", "BOTTOM_OFFST")
+    if stiff and curve is not None:
+        _fail(tir, "the file gives bottoming twice, as [BOTTOMING_CURVE] and as BOTTOM_STIFF; keep "
+              "one (set BOTTOM_STIFF = 0 to use the curve)", "VERTICAL", "BOTTOM_STIFF")
+    if curve is not None:
+        return bottoming_table(curve[:, 0], curve[:, 1])
+    if not stiff or r0 is None:
+        return None
+    rim = tir.get("DIMENSION", "RIM_RADIUS")
+    if rim is None:
+        _fail(tir, "BOTTOM_STIFF needs [DIMENSION] RIM_RADIUS: bottoming starts where the loaded "
+              "radius falls to RIM_RADIUS + BOTTOM_OFFST", "VERTICAL", "BOTTOM_STIFF")
+    start = r0 - rim - float(offset or 0.0)
+    if not start > 0:
+        _fail(tir, f"BOTTOM_OFFST {float(offset):g} m puts bottoming at the unloaded tyre: RIM_RADIUS "
+              f"{rim:g} m + BOTTOM_OFFST must stay below UNLOADED_RADIUS {r0:g} m", "VERTICAL",
+              "BOTTOM_OFFST")
+    return bottoming_table(stiffness=stiff, start=start)
+
+
 def check_physics(tir: TirFile) -> None:
     """Check a property file's values for physical sense, naming file and line.
 
@@ -225,31 +301,6 @@ def check_physics(tir: TirFile) -> None:
                  why=" (a wheel has a spin inertia)")
     for sec, key in (("OPERATING_CONDITIONS", "INFLPRES"), ("TIRE_CONDITIONS", "IP")):
         _bounded(tir, sec, key, 0.0, limits.MAX_TIR_MAGNITUDE, "Pa")
-    name = "DEFLECTION_LOAD_CURVE"
-    if tir.has(name):
-        table = tir.table(name)
-        if table is None or table.size == 0:
-            _fail(tir, f"section [{name}] has no rows of (deflection, load); give at least two rows "
-                  "or remove the section to use VERTICAL_STIFFNESS", name)
-        if table.ndim != 2 or table.shape[1] != 2:
-            _fail(tir, f"[{name}] needs two columns (deflection, load), found {table.shape[-1]}", name,
-                  row=0)
-        d, f = table[:, 0], table[:, 1]
-        if len(d) < 2:
-            _fail(tir, f"[{name}] has {len(d)} row; a load-deflection curve needs at least two", name,
-                  row=0)
-        for i in range(len(d)):
-            if d[i] < 0:
-                _fail(tir, f"deflection {d[i]:g} m is negative", name, row=i)
-            if f[i] < 0:
-                _fail(tir, f"load {f[i]:g} N is negative (a tyre does not pull the road)", name, row=i)
-            if i and not d[i] > d[i - 1]:
-                _fail(tir, f"deflection {d[i]:g} m does not increase (previous row {d[i - 1]:g} m); "
-                      "deflections must increase strictly down the table", name, row=i)
-            if i and f[i] < f[i - 1]:
-                _fail(tir, f"load {f[i]:g} N is below the previous row's {f[i - 1]:g} N; the load "
-                      "must not fall as the deflection grows", name, row=i)
-            if r0 is not None and d[i] > r0:
-                _fail(tir, f"deflection {d[i]:g} m is beyond the unloaded radius {r0:g} m", name, row=i)
-        if len(d) >= 1 and not f[-1] > 0:
-            _fail(tir, "the last load is zero: the table carries no load", name, row=len(d) - 1)
+    _check_curve(tir, "DEFLECTION_LOAD_CURVE", r0, "load", "remove the section to use VERTICAL_STIFFNESS")
+    _check_curve(tir, "BOTTOMING_CURVE", r0, "bottoming load", "remove the section")
+    _bottoming(tir, r0)   # checks BOTTOM_STIFF / BOTTOM_OFFST

@@ -13,6 +13,15 @@ is pressed harder). The damping coefficient is ramped from zero at zero
 deflection to its full value at ``DAMPING_RAMP`` (smoothstep), so the force
 has no jump at touch-down; the total is clipped at zero, so there is no
 tension and no negative normal force.
+
+Bottoming: a file may say how the tyre bottoms out (the rim, or a run-flat
+insert, pressed through the compressed tyre onto the road). Its load is added
+to ``k(rho)`` (ADAMS/Tire PAC2002 and Project Chrono's ``ChPac02Tire``): a
+``[BOTTOMING_CURVE]`` table of (deflection, added load), linear between its
+rows and continued with its last slope; or MF-Tyre 6.1/6.2's
+``BOTTOM_STIFF (rho - (R0 - RIM_RADIUS - BOTTOM_OFFST))`` once that is
+positive (the loaded radius below the rim radius plus ``BOTTOM_OFFST``).
+:func:`bottoming_table` turns either into the table the kernels take.
 """
 
 from __future__ import annotations
@@ -27,6 +36,8 @@ from ..errors import InputError
 
 #: default deflection over which damping ramps in [m]
 DEFAULT_DAMPING_RAMP = 0.002
+#: the bottoming table of a tyre that does not bottom out: no rows
+NO_BOTTOMING = np.zeros((0, 2))
 
 
 class VerticalLaw(NamedTuple):
@@ -47,6 +58,11 @@ class VerticalLaw(NamedTuple):
     coefs : ndarray (n-1, 4)
         Cubic coefficients per interval, highest power first, in the local
         coordinate ``rho - knots[i]``.
+    bottoming : ndarray (m, 2)
+        Bottoming load added to k(rho): rows of deflection [m] and load [N],
+        from deflection 0, linear between rows and continued with the last
+        row's slope (:func:`bottoming_table`); no rows: the tyre does not
+        bottom out.
     """
 
     stiffness: float
@@ -55,15 +71,16 @@ class VerticalLaw(NamedTuple):
     use_table: bool
     knots: np.ndarray
     coefs: np.ndarray
+    bottoming: np.ndarray = NO_BOTTOMING
 
     @classmethod
-    def linear(cls, stiffness, damping, damping_ramp=DEFAULT_DAMPING_RAMP):
+    def linear(cls, stiffness, damping, damping_ramp=DEFAULT_DAMPING_RAMP, bottoming=NO_BOTTOMING):
         return cls(float(stiffness), float(damping), float(damping_ramp), False, np.zeros(2),
-                   np.zeros((1, 4)))
+                   np.zeros((1, 4)), _bottoming_rows(bottoming))
 
     @classmethod
     def table(cls, deflection, load, damping, damping_ramp=DEFAULT_DAMPING_RAMP,
-              stiffness=0.0, source="load-deflection table"):
+              stiffness=0.0, source="load-deflection table", bottoming=NO_BOTTOMING):
         d = np.asarray(deflection, float)
         f = np.asarray(load, float)
         if d.ndim != 1 or d.shape != f.shape or d.size < 2:
@@ -89,7 +106,7 @@ class VerticalLaw(NamedTuple):
         spline = CubicSpline(d, f, bc_type=bc)
         coefs = np.ascontiguousarray(spline.c.T)  # (n-1, 4), highest power first
         return cls(float(stiffness), float(damping), float(damping_ramp), True,
-                   np.ascontiguousarray(d, np.float64), coefs)
+                   np.ascontiguousarray(d, np.float64), coefs, _bottoming_rows(bottoming))
 
     def static_load(self, rho):
         """Static load k(rho) [N] at deflections ``rho`` [m] (vectorised)."""
@@ -104,11 +121,60 @@ class VerticalLaw(NamedTuple):
         return static_deflection(self, float(load))
 
 
+def bottoming_table(deflection=None, load=None, *, stiffness=None, start=None) -> np.ndarray:
+    """The bottoming table :class:`VerticalLaw` takes: rows of deflection [m] and added load [N].
+
+    Either a ``[BOTTOMING_CURVE]`` (``deflection``, ``load``: increasing deflections, loads
+    that never fall; the file's checks, :func:`tyrelab.tyre.params.check_physics`) or
+    MF-Tyre 6.1/6.2's linear bottoming, ``stiffness`` [N/m] (``BOTTOM_STIFF``) from the
+    deflection ``start`` [m] (``R0 - RIM_RADIUS - BOTTOM_OFFST``) on. A curve that starts past
+    zero deflection gets a row (0, 0) first, as the load-deflection curve does.
+    """
+    if stiffness is not None:
+        start = max(float(start), 0.0)
+        rows = [(start, 0.0), (start + 1.0, float(stiffness))]   # slope BOTTOM_STIFF, continued
+    else:
+        rows = list(zip(np.asarray(deflection, float), np.asarray(load, float)))
+    if rows[0][0] > 0.0:
+        rows.insert(0, (0.0, 0.0))
+    return np.ascontiguousarray(rows, np.float64)
+
+
+def _bottoming_rows(bottoming) -> np.ndarray:
+    table = np.ascontiguousarray(bottoming, np.float64)
+    return table.reshape(-1, 2) if table.size else NO_BOTTOMING
+
+
+@nb.njit(cache=True)
+def bottoming_load(table, rho):
+    """Bottoming load [N] at deflection ``rho`` from a :func:`bottoming_table`: linear between
+    its rows, continued past the last with the last row's slope."""
+    n = table.shape[0]
+    k = 1
+    while k < n - 1 and table[k, 0] < rho:
+        k += 1
+    d0 = table[k - 1, 0]
+    f0 = table[k - 1, 1]
+    slope = (table[k, 1] - f0) / (table[k, 0] - d0)
+    value = f0 + slope * (rho - d0)
+    return value if value > 0.0 else 0.0
+
+
 @nb.njit(cache=True)
 def static_load(law, rho):
-    """Elastic part k(rho) [N] of :class:`VerticalLaw` ``law``; zero for rho <= 0 (no tension)."""
+    """Elastic part k(rho) [N] of :class:`VerticalLaw` ``law``, bottoming included; zero for
+    rho <= 0 (no tension)."""
     if rho <= 0.0:
         return 0.0
+    value = _carcass_load(law, rho)
+    if law.bottoming.shape[0] > 0:
+        value += bottoming_load(law.bottoming, rho)
+    return value
+
+
+@nb.njit(cache=True)
+def _carcass_load(law, rho):
+    """k(rho) [N] without bottoming, for rho > 0: linear or the table's spline (non-negative)."""
     if not law.use_table:
         return law.stiffness * rho
     knots = law.knots
