@@ -139,3 +139,18 @@ def test_write_read_round_trip(data_dir, tmp_path, units):
             np.testing.assert_allclose(again.table(name), sec.table, rtol=1e-12)
     if units:
         assert "LENGTH = 'mm'" in format_tir(original, units).replace("  ", " ")
+
+
+def test_a_file_that_states_no_pressure_says_so(data_dir, capsys):
+    """The FEDA file gives its pressure only in a vendor section (INFLATION_PRESSURE = 6.5 in
+    [GOODYEAR]): the tyre's pressure is unknown, and a pressure asked of it cannot be checked."""
+    from tyrelab.cli.main import main
+
+    feda = str(data_dir / "tir" / "335_65R22_5_G275MSA_95psi.tir")
+    assert main(["static", "--tyre", feda, "--steps", "3"]) == 0
+    header = capsys.readouterr().out.splitlines()[0]
+    assert "pressure not stated" in header and "nan" not in header
+    assert main(["static", "--tyre", feda, "--steps", "3", "--pressure", "600"]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "335_65R22_5_G275MSA_95psi.tir states no inflation pressure" in err[0]
+    assert "nan" not in err[0]

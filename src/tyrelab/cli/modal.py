@@ -46,7 +46,8 @@ def run(args) -> int:
         for col, name in ((f"freq_Hz_{key}", "measured_Hz"), (f"damping_pct_{key}", "measured_pct")):
             table[name] = table["mode"].map(meas[col]) if col in meas else np.nan
     state = f"loaded {args.load:.0f} N" if args.load else "free"
-    print(f"{tyre.name} at {tyre.pressure / 1e3:g} kPa, {state}:", file=sys.stdout)
+    where = f"at {tyre.pressure_text}" if np.isfinite(tyre.pressure) else f"({tyre.pressure_text})"
+    print(f"{tyre.name} {where}, {state}:", file=sys.stdout)
     print(table.to_string(index=False, float_format=lambda v: f"{v:.2f}"), file=sys.stdout)
     if out is not None:
         atomic_write(out, lambda tmp: table.to_csv(tmp, index=False))

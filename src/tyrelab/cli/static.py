@@ -84,7 +84,7 @@ def _run(args) -> int:
                          field="--max-deflection")
     d = np.linspace(0.0, args.max_deflection, args.steps)
     table = static_press(model, d, args.test, args.direction)
-    print(f"# {tyre.name} {tyre.pressure / 1e3:g} kPa, {model.contact}, {args.test}"
+    print(f"# {tyre.name} {tyre.pressure_text}, {model.contact}, {args.test}"
           + (f" ({args.direction})" if args.test != "plate" else ""))
     print(" deflection_mm   load_N")
     for dd, f in zip(table["deflection"], table["load"]):

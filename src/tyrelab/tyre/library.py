@@ -61,6 +61,11 @@ def load_tyre(name: str | Path = DEFAULT_TYRE, pressure: float | None = None) ->
             tyre = read_chrono_tyre(path)
         else:
             tyre = Tyre.from_tir(read_tir(path), name=path.stem)
+        if pressure is not None and not np.isfinite(tyre.pressure):
+            raise InputError(f"{path} states no inflation pressure ([OPERATING_CONDITIONS] INFLPRES "
+                             "or [TIRE_CONDITIONS] IP), so it cannot be run at a pressure given "
+                             "apart from it: leave out the pressure, or state it in the file",
+                             field="pressure")
         if pressure is not None and not np.isclose(pressure, tyre.pressure):
             raise InputError(f"{path} describes {tyre.pressure / 1e3:g} kPa only; "
                              "a single property file cannot be moved to another pressure",

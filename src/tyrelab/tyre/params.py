@@ -165,6 +165,11 @@ class Tyre:
         self.__dict__["_law"] = (key, law)
         return law
 
+    @property
+    def pressure_text(self) -> str:
+        """The inflation pressure as a message gives it: "300 kPa", or "pressure not stated"."""
+        return f"{self.pressure / 1e3:g} kPa" if math.isfinite(self.pressure) else "pressure not stated"
+
     def static_deflection(self, load: float) -> float:
         """Deflection [m] at which the vertical law carries ``load`` [N]."""
         return self.vertical_law.deflection_at(load)
