@@ -104,3 +104,53 @@ def test_mf_bottoming_without_a_rim_radius_is_refused_on_the_command_line(data_d
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and "norim.tir" in err[0] and "BOTTOM_STIFF needs [DIMENSION] RIM_RADIUS" in err[0]
     assert not (tmp_path / "p.csv").exists()
+
+
+# --- Chrono's TMeasy: its bottoming spring (ChTMeasyTire::GetNormalStiffnessForce) ----------
+
+def test_tmeasy_default_bottoming_is_chronos(data_dir):
+    """HMMWV_TMeasyTire.json sets no bottoming: Chrono's Initialize puts it at the rim radius
+    0.2095 m + 10 mm with 5 d1, d1 the load-index guess 1000 x 9.81 / (0.16 (0.4699 - 0.2095))."""
+    tyre = load_tyre(data_dir / "tir" / "HMMWV_TMeasyTire.json")
+    d1 = 1000 * 9.81 / (0.16 * (0.4699 - 0.2095))
+    start = 0.4699 - (0.2095 + 0.01)
+    np.testing.assert_allclose(_added(tyre, [start - 0.002, start + 0.004]), [0.0, 5 * d1 * 0.004],
+                               rtol=1e-9, atol=1e-9)
+
+
+def _tmeasy_json(path, vertical):
+    import json
+
+    path.write_text(json.dumps({
+        "Type": "Tire", "Template": "TMeasyTire",
+        "Design": {"Unloaded Radius [m]": 0.5, "Mass [kg]": 40.0, "Inertia [kg.m2]": [4, 7, 4],
+                   "Width [m]": 0.3, "Rim Radius [m]": 0.25},
+        "Parameters": {"Vertical": {"Nominal Vertical Force [N]": 10000.0,
+                                    "Tire Vertical Damping [Ns/m]": 1500.0, **vertical}}}, indent=1))
+    return path
+
+
+def test_tmeasy_bottoming_from_the_file_and_from_a_spring_curve(tmp_path):
+    given = load_tyre(_tmeasy_json(tmp_path / "given.json", {
+        "Vertical Tire Stiffness [N/m]": 4e5, "Tire Bottoming Radius [m]": 0.27,
+        "Tire Bottoming Stiffness [N/m]": 3e6}))
+    assert _added(given, [0.229, 0.235])[1] == pytest.approx(3e6 * 0.005, rel=1e-9)   # from 0.5 - 0.27
+    assert _added(given, [0.229])[0] == 0.0
+    # a spring curve: d1 of the least-squares d1 z + d2 z^2 through (0, 0), (0.02, 5000),
+    # (0.05, 14000), by the normal equations: [[S4, -S3], [-S3, S2]] [S1f, S2f] / (S2 S4 - S3^2)
+    z, f = np.array([0.0, 0.02, 0.05]), np.array([0.0, 5000.0, 14000.0])
+    s2, s3, s4 = (z ** 2).sum(), (z ** 3).sum(), (z ** 4).sum()
+    d1 = (s4 * (z * f).sum() - s3 * (z * z * f).sum()) / (s2 * s4 - s3 ** 2)
+    curve = load_tyre(_tmeasy_json(tmp_path / "curve.json", {
+        "Tire Spring Curve Data": [[0.0, 0.0], [0.02, 5000.0], [0.05, 14000.0]]}))
+    start = 0.5 - (0.25 + 0.01)
+    assert _added(curve, [start + 0.003])[0] == pytest.approx(5 * d1 * 0.003, rel=1e-9)
+
+
+def test_tmeasy_bottoming_radius_outside_the_tyre_is_refused(tmp_path):
+    path = _tmeasy_json(tmp_path / "inside.json", {"Vertical Tire Stiffness [N/m]": 4e5,
+                                                   "Tire Bottoming Radius [m]": 0.2})
+    with pytest.raises(InputError) as err:
+        load_tyre(path)
+    assert err.value.field == "Parameters > Vertical > Tire Bottoming Radius [m]"
+    assert "inside.json" in str(err.value) and "between the rim radius 0.25 m" in str(err.value)

@@ -371,8 +371,17 @@ def test_library_dispatches_json_and_keeps_its_errors(tmp_path, tir_dir):
     assert load_tyre(str(tir_dir / "HMMWV_FialaTire.json")).name == "HMMWV_FialaTire"
     with pytest.raises(InputError, match="no such Chrono tyre file"):
         load_tyre(tmp_path / "absent.json")
-    with pytest.raises(InputError, match="cannot be moved"):  # as for a .tir
+    with pytest.raises(InputError, match="states no inflation pressure"):  # as for a .tir
         load_tyre(tir_dir / "HMMWV_FialaTire.json", pressure=200e3)
+    stated = tmp_path / "stated.json"
+    stated.write_text(json.dumps({
+        "Type": "Tire", "Template": "TMeasyTire", "Load Index": 108, "Vehicle Type": "Truck",
+        "Inflation Pressure Use [Pa]": 250e3,
+        "Design": {"Unloaded Radius [m]": 0.5, "Mass [kg]": 40.0, "Inertia [kg.m2]": [4, 7, 4],
+                   "Width [m]": 0.3, "Rim Radius [m]": 0.25}}))
+    assert load_tyre(stated, pressure=250e3).pressure == 250e3
+    with pytest.raises(InputError, match="describes 250 kPa only; a single property file cannot be moved"):
+        load_tyre(stated, pressure=200e3)
 
 
 # --- the command line -------------------------------------------------------------------

@@ -99,8 +99,14 @@ Chrono file; add it if a rig needs the whole wheel.
        its R0; here R0 stays the file's).
 
     ``Inflation Pressure Use [Pa]`` -> ``[OPERATING_CONDITIONS] INFLPRES``
-    (:attr:`Tyre.pressure`). TMeasy's bottoming spring (rim radius + 10 mm,
-    five times the stiffness) and its handling parameters are not carried.
+    (:attr:`Tyre.pressure`). TMeasy's bottoming spring is carried as Chrono
+    computes it: ``Parameters > Vertical > Tire Bottoming Radius [m]`` and
+    ``Tire Bottoming Stiffness [N/m]``, by default (absent or 0) the rim radius
+    + 10 mm and 5 times ``d1`` (the linear stiffness; for a curve, the linear
+    coefficient of Chrono's least-squares ``d1 z + d2 z^2``), written as
+    ``[VERTICAL] BOTTOM_OFFST`` (bottoming radius less rim radius) and
+    ``BOTTOM_STIFF`` (:attr:`Tyre.bottoming`). Its handling parameters are not
+    carried.
 ``RigidTire`` (vertical data only)
     ``Radius`` [m] -> ``UNLOADED_RADIUS``; ``Width`` [m] -> ``WIDTH``; the
     contact material's ``Contact Material > Coefficients > Normal Stiffness``

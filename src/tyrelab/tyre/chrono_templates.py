@@ -25,6 +25,10 @@ from .tir import TirFile
 GUESS_DEFLECTION_RATIO = 0.16
 GUESS_DAMPING_RATIO = 0.5
 GUESS_GRAVITY = 9.81
+#: Chrono's TMeasy/TMsimple bottoming when the file sets none (``Initialize``): it starts at the
+#: rim radius plus this carcass thickness [m], with this many times the linear stiffness d1
+BOTTOM_CARCASS = 0.01
+BOTTOM_STIFFNESS_FACTOR = 5.0
 
 
 def _load_index_table() -> tuple[float, ...]:
@@ -93,12 +97,14 @@ def tmeasy_tir(doc: _Document, template: str) -> TirFile:
             raise doc.error("missing key 'Vertical Tire Stiffness [N/m]' (or 'Tire Spring Curve Data')",
                             vert)
         if doc.has(*stiffness):
-            b.put("VERTICAL", "VERTICAL_STIFFNESS", doc.number(*stiffness, positive=True), stiffness)
+            d1 = doc.number(*stiffness, positive=True)
+            b.put("VERTICAL", "VERTICAL_STIFFNESS", d1, stiffness)
             b.put("VERTICAL", "VERTICAL_DAMPING",
                   doc.number(*vert, "Tire Vertical Damping [Ns/m]", minimum=0.0),
                   vert + ("Tire Vertical Damping [Ns/m]",))
         else:
             b.vertical(stiffness, vert + ("Tire Vertical Damping [Ns/m]",), curve)
+            d1 = _linear_coefficient(b.tir.table("DEFLECTION_LOAD_CURVE"))
     else:
         if doc.has("Load Index"):
             keys = ("Load Index",)
@@ -118,15 +124,47 @@ def tmeasy_tir(doc: _Document, template: str) -> TirFile:
         c = 2.0 * GUESS_DAMPING_RATIO * math.sqrt(k * mass)
         b.put("VERTICAL", "VERTICAL_STIFFNESS", k, keys)
         b.put("VERTICAL", "VERTICAL_DAMPING", c, keys)
+        d1 = k
         b.tir.header += [
             f"$ Vertical law GUESSED as Chrono does from the {what}: stiffness = load /",
             f"$ ({GUESS_DEFLECTION_RATIO:g} x (unloaded radius - rim radius)), damping = 2 x "
             f"{GUESS_DAMPING_RATIO:g} x sqrt(stiffness x tyre mass)."]
+    _tmeasy_bottoming(doc, b, r0, rim, d1)
     if doc.has("Inflation Pressure Use [Pa]"):
         keys = ("Inflation Pressure Use [Pa]",)
         b.put("OPERATING_CONDITIONS", "INFLPRES", doc.number(*keys, positive=True), keys)
     b.assumed_contact_patch(width)
     return b.tir
+
+
+def _linear_coefficient(curve) -> float:
+    """``d1`` of Chrono's least-squares ``F = d1 z + d2 z^2`` through a spring curve's rows."""
+    import numpy as np
+
+    z, f = curve[:, 0], curve[:, 1]
+    (d1, _), *_ = np.linalg.lstsq(np.column_stack([z, z * z]), f, rcond=None)
+    return float(d1)
+
+
+def _tmeasy_bottoming(doc: _Document, b: _Builder, r0: float, rim: float, d1: float) -> None:
+    """TMeasy's bottoming spring, as Chrono's ``GetNormalStiffnessForce``: ``Tire Bottoming
+    Stiffness [N/m]`` times the deflection past ``R0 - Tire Bottoming Radius [m]`` (either
+    absent or 0: the rim radius + 10 mm and 5 d1, Chrono's ``Initialize``), written as MF 6.x's
+    ``BOTTOM_OFFST`` (bottoming radius less rim radius) and ``BOTTOM_STIFF``."""
+    vert = ("Parameters", "Vertical")
+    radius_keys = vert + ("Tire Bottoming Radius [m]",)
+    stiff_keys = vert + ("Tire Bottoming Stiffness [N/m]",)
+    radius = doc.number(*radius_keys, minimum=0.0) if doc.has(*radius_keys) else 0.0
+    stiff = doc.number(*stiff_keys, minimum=0.0) if doc.has(*stiff_keys) else 0.0
+    if radius and not rim <= radius < r0:
+        raise doc.error(f"the bottoming radius {radius:g} m must lie between the rim radius {rim:g} m "
+                        f"and the unloaded radius {r0:g} m", radius_keys)
+    radius = radius or rim + BOTTOM_CARCASS
+    stiff = stiff or BOTTOM_STIFFNESS_FACTOR * d1
+    b.put("VERTICAL", "BOTTOM_OFFST", radius - rim, radius_keys if doc.has(*radius_keys) else ())
+    b.put("VERTICAL", "BOTTOM_STIFF", stiff, stiff_keys if doc.has(*stiff_keys) else ())
+    b.tir.header.append(f"$ Bottoming as Chrono's TMeasy: {stiff:.6g} N/m from the radius {radius:.6g} m "
+                        "(BOTTOM_OFFST, BOTTOM_STIFF).")
 
 
 def rigid_tir(doc: _Document) -> TirFile:
