@@ -133,3 +133,42 @@ def test_a_road_with_a_grade_is_no_road_for_the_trailer_or_the_rolling_rig():
         road = road_from_spec(name)
         x0, x1 = road.extent()[:2]
         assert check_level_for_trailer(road, x0, x1, 2.4) is None, name
+
+
+@pytest.mark.parametrize("rig", ["trailer", "quarter-vehicle", "rolling"])
+def test_a_run_that_ends_before_the_road_relief_says_so(rig):
+    """The 50 x 50 cleat's edge is at x = 5 m (obstacles.Cleat's start). Towed at 12 km/h from
+    x = 0 for 1.0 s, the wheel ends 3.33 m along and reaches R0 = 0.7 m ahead of its centre:
+    the run never meets the cleat, the whole record is level rolling, and a warning says so
+    with the least duration that would meet it, (5 - R0) / v. Run for 1.6 s it meets the
+    cleat and nothing is said."""
+    import tyrelab
+    from tyrelab.guards import PhysicsWarning
+    from tyrelab.tyre.library import load_tyre
+
+    r0, v = load_tyre().unloaded_radius, 12 / 3.6
+    for duration, warned in ((1.0, True), (1.6, False)):
+        with warnings.catch_warnings(record=True) as found:
+            warnings.simplefilter("always")
+            run = tyrelab.simulate(model="point", rig=rig, road="cleat:50x50", speed=v,
+                                   duration=duration, progress=False)
+        said = [str(w.message) for w in found if issubclass(w.category, PhysicsWarning)]
+        said = [s for s in said if "before its first relief" in s]
+        assert bool(said) == warned, said
+        if warned:
+            assert f"run it for at least {(5.0 - r0) / v:.3g} s" in said[0] and "x = 5 m" in said[0]
+            fz = run["FZW"].to_numpy()
+            assert fz.max() - fz.min() < 1e-6 * fz.mean()     # level rolling throughout, as it says
+
+
+def test_first_relief_along_the_wheel_path():
+    from pathlib import Path
+
+    from tyrelab.guards import first_relief
+    from tyrelab.road.spec import road_from_spec
+
+    data = Path(__file__).parent / "data" / "roads"
+    assert first_relief(road_from_spec("flat"), 0.0) is None
+    assert first_relief(road_from_spec("cleat:50x50"), 0.0) == pytest.approx(5.0, abs=0.005)
+    assert 50.0 <= first_relief(road_from_spec(str(data / "halfround_4in.crg")), 0.0) <= 50.3
+    assert first_relief(road_from_spec(str(data / "handmade_sloped.crg")), 0.0) < 1.0  # a grade

@@ -3,9 +3,10 @@
 Two kinds of check, both outside the compiled kernels:
 
 * **before a run** (:func:`check_road_for_tyre`, :func:`check_load_range`,
-  :func:`check_level_for_trailer`): an obstacle edge taller than the tyre's radius
-  is refused (:class:`~tyrelab.errors.InputError`); a static load above the property
-  file's ``FZMAX`` and a road with a grade under the trailer are warned about.
+  :func:`check_level_for_trailer`, :func:`check_reaches_relief`): an obstacle edge
+  taller than the tyre's radius is refused (:class:`~tyrelab.errors.InputError`); a
+  static load above the property file's ``FZMAX``, a road with a grade under the trailer
+  and a run that ends before the road's relief begins are warned about.
 * **after a run** (:func:`check_run`), on the signal table: rim contact
   (deflection beyond the unloaded radius less the rim radius, or the wheel
   centre below the road), an overturned rig (trailer roll or pitch beyond
@@ -140,6 +141,43 @@ def check_level_for_trailer(road, x0: float, x1: float, track: float) -> str | N
     return check_level(road, x0, x1, track * math.sin(math.radians(GRADE_ROLL)),
                        "the trailer's hitch and left wheel stay on level ground, so its frame "
                        f"rolls beyond {GRADE_ROLL:g} deg to follow the test wheel")
+
+
+#: a height change [m] along the run's path from its start below which the road counts as level
+RELIEF_TOLERANCE = 1e-3
+
+
+def first_relief(road, x0: float) -> float | None:
+    """The first x [m] from ``x0`` on at which ``road``'s height along y = 0 differs from its
+    height at ``x0`` by more than :data:`RELIEF_TOLERANCE`; None if it is level to its end.
+    Sampled at the road's own spacing (at most 5 cm)."""
+    xmax = road.extent()[1]
+    if not xmax > x0:
+        return None
+    step = max(min(float(road.default_spacing[0]), 0.05), (xmax - x0) / 2e6)
+    xs = x0 + step * np.arange(int(np.floor((xmax - x0) / step)) + 1)
+    z = np.asarray(road.height(xs, np.zeros_like(xs)), dtype=float)
+    off = np.flatnonzero(np.abs(z - z[0]) > RELIEF_TOLERANCE)
+    return float(xs[off[0]]) if off.size else None
+
+
+def check_reaches_relief(road, x0: float, speed: float, duration: float, reach: float) -> str | None:
+    """Warn when a run from ``x0`` at ``speed`` [m/s] for ``duration`` [s] ends before the
+    tyre, reaching ``reach`` [m] (its radius) ahead of its centre, meets the road's first
+    relief (:func:`first_relief`): such a run tests the tyre on level road only (a study's
+    duration set for another speed, a measured road whose obstacle lies far along it).
+    Returns the message, if any."""
+    x1 = x0 + speed * duration
+    relief = first_relief(road, x0)
+    if relief is None or relief <= x1 + reach:
+        return None
+    need = (relief - reach - x0) / speed
+    message = (f"the run ends {x1 - x0:.4g} m along road '{road.name}', before its first relief at "
+               f"x = {relief:.4g} m (the road is level up to there): it rolls the tyre on level "
+               f"road only; run it for at least {need:.3g} s (a run without a duration goes to the "
+               "road's end)")
+    physics_warning(message)
+    return message
 
 
 def check_load_range(tyre, wheel_load: float) -> None:

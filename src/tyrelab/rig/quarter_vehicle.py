@@ -77,6 +77,8 @@ class QuarterVehicle:
         if duration is None:
             duration = max(road.extent()[1] - x0_road, 1.0) / speed
         tyre = self.model.tyre
+        from ..guards import check_reaches_relief
+        check_reaches_relief(road, x0_road, speed, duration, tyre.unloaded_radius)
         if terrain is not None:
             from .soil_ground import terrain_wheel
             wheel, ground, zu, ground_meta = terrain_wheel(self.model, terrain, road, x0_road,

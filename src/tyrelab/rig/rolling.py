@@ -92,11 +92,12 @@ def roll(model: TyreModel, road="cleat:50x50", speed: float = 0.5, height: float
     x0 = road.run_start if x_start is None else float(x_start)
     if duration is None:
         duration = max(road.extent()[1] - x0, 1.0) / speed
-    from ..guards import LEVEL_DEFLECTION, check_level
+    from ..guards import LEVEL_DEFLECTION, check_level, check_reaches_relief
     deflection = tyre.unloaded_radius - height
     check_level(road, x0, x0 + speed * duration, LEVEL_DEFLECTION * max(deflection, 0.0),
                 f"the rolling rig holds its axle at a fixed height, so that presses the tyre "
                 f"that much more or less than its static {deflection * 1e3:.3g} mm")
+    check_reaches_relief(road, x0, speed, duration, tyre.unloaded_radius)
     grid = levelled_grid(road, road.run_start)
     if eq is None:
         state_load = float(tyre.vertical_law.static_load(tyre.unloaded_radius - height))

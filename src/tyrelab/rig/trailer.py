@@ -238,8 +238,9 @@ class Trailer:
         if not (np.isfinite(duration) and duration > 0):
             raise InputError(f"duration must be a positive number of seconds, got {duration}",
                              field="duration")
-        from ..guards import check_level_for_trailer
+        from ..guards import check_level_for_trailer, check_reaches_relief
         check_level_for_trailer(road, x0_road, x0_road + speed * duration, self.geometry.track)
+        check_reaches_relief(road, x0_road, speed, duration, self.model.tyre.unloaded_radius)
         s = self.setup
         # each wheel where its model carries the load rolling at this speed (the
         # ring's own load-deflection and centrifugal growth; the vertical law's
