@@ -346,3 +346,40 @@ def test_the_effective_road_changes_no_faster_than_the_wheel_travels_over_it(roa
                                    f"x = {x[k]:.4f} m; bound {bound[k] * 1e3:.2f} mm")
     if kmh <= 1.0:
         assert np.all(fz > 0.0)
+
+
+def _feda_copy(data_dir, tmp_path, name, extra=""):
+    """The FEDA 335/65R22.5 (no [CONTACT_PATCH]) under a fresh name, ``extra`` appended."""
+    text = (data_dir / "tir" / "335_65R22_5_G275MSA_95psi.tir").read_text(encoding="latin-1")
+    path = tmp_path / name
+    path.write_text(text + extra, encoding="latin-1")
+    return path
+
+
+def test_a_tyre_without_contact_patch_data_is_told_it_gets_the_xzls(data_dir, tmp_path):
+    """The enveloping models size their patch and cams from [CONTACT_PATCH]; a file without
+    one (Chrono's FEDA) took the XZL's values without a word. Now one warning per file and
+    process says which quantities were assumed; the XZL's own file says nothing."""
+    import warnings
+
+    from tyrelab.api import make_tyre_model
+
+    def said(tyre, **options):
+        with warnings.catch_warnings(record=True) as found:
+            warnings.simplefilter("always")
+            model = make_tyre_model(tyre, "enveloping", handling="none", options=options)
+            model.contact_params(Flat().grid())
+        return [str(w.message) for w in found if "[CONTACT_PATCH]" in str(w.message)]
+
+    bare = _feda_copy(data_dir, tmp_path, "bare.tir")
+    first = said(str(bare))
+    assert len(first) == 1 and "bare.tir" in first[0] and "XZL 16.00R20" in first[0]
+    assert "PA1 0.15, PA2 7.06" in first[0] and "the whole section width" in first[0]
+    assert "N_WIDTH 10" in first[0] and "N_LENGTH 15" in first[0]
+    assert said(str(bare)) == []                                   # once per file and process
+    lengths = _feda_copy(data_dir, tmp_path, "lengths.tir",
+                         "\n[CONTACT_PATCH]\nPA1 = 0.2\nPA2 = 5.0\nELLIPS_NWIDTH = 8\n")
+    (text,) = said(str(lengths), n_length=5)
+    assert "length law" not in text and "N_WIDTH" not in text and "N_LENGTH" not in text
+    assert "PAE 0.72" in text and "the width law" in text
+    assert said("xzl-16.00R20") == []

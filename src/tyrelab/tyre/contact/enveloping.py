@@ -87,7 +87,7 @@ from ..model import PO, TyreModel, contact_geometry_table, positions_table, whee
 from ..registry import ContactModel, register_contact
 from ..wheel import ContactGeometry, WheelPose
 from .cams import cam_tables
-from .patch_laws import half_length, half_width, length_law, patch_key, width_law
+from .patch_laws import half_length, half_width, length_law, patch_key, warn_assumed_patch, width_law
 from .enveloping_params import (_DATA, _OTHER_OPTIONS, _USER_OPTIONS, BLOCK, CAM_LAYOUTS, FIT_STEPS,
                                 cam_option_values,
                                 MIN_PATCH_DEFLECTION, EnvelopingParams)
@@ -154,6 +154,7 @@ def enveloping_params(tyre, grid, width_table=None, n_width=None, n_length=None,
         raise InputError(f"cam_layout must be one of {', '.join(CAM_LAYOUTS)}, got '{cam_layout}'",
                          field="cam_layout")
     tir = tyre.tir
+    warn_assumed_patch(tir, [k for k, v in (("n_width", n_width), ("n_length", n_length)) if v is not None])
     r0, w0 = float(tyre.unloaded_radius), float(tyre.width)
     bounded = cam_option_values({"n_width": n_width, "n_length": n_length, "step": step,
                                  "min_patch_deflection": min_patch_deflection})

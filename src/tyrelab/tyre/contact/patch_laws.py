@@ -6,6 +6,7 @@ half-width against the deflection (thesis eqs. 2.3 and 2.4; MF-Swift's laws).
 from __future__ import annotations
 
 import math
+import warnings
 
 import numba as nb
 import numpy as np
@@ -18,6 +19,40 @@ DEFAULTS = {"PA1": 0.15, "PA2": 7.06, "PAE": 0.72, "PBE": 1.0, "PCE": 2.0, "PLS"
 #: ADAMS key -> MF-Swift key for the same cam quantity
 SWIFT = {"PAE": "ELLIPS_LENGTH", "PBE": "ELLIPS_HEIGHT", "PCE": "ELLIPS_ORDER",
          "PLS": "ELLIPS_SHIFT", "N_WIDTH": "ELLIPS_NWIDTH", "N_LENGTH": "ELLIPS_NLENGTH"}
+
+
+def assumed_patch(tir, given=()) -> list[str]:
+    """The contact-patch quantities ``tir`` gives neither as an ADAMS nor as an MF-Swift key
+    (nor ``given`` as a model option), each with the default :func:`patch_key`,
+    :func:`length_law` and :func:`width_law` take instead: the thesis XZL 16.00R20's."""
+    def has(*keys):
+        return any(tir.has("CONTACT_PATCH", k) for k in keys)
+
+    missing = []
+    if not has("PA1", "PA2", "Q_RA1", "Q_RA2"):
+        missing.append(f"the length law (PA1 {DEFAULTS['PA1']:g}, PA2 {DEFAULTS['PA2']:g})")
+    if tir.table("CONTACT_WIDTH_CURVE") is None and not has("PB1", "Q_RB1", "Q_RB2"):
+        missing.append("the width law (the whole section width)")
+    missing += [f"{name} {DEFAULTS[name]:g}" for name in ("PAE", "PBE", "PCE", "PLS", "N_WIDTH", "N_LENGTH")
+                if not has(name, SWIFT[name]) and name.lower() not in given]
+    return missing
+
+
+#: property files whose assumed patch has been warned about in this process
+_WARNED: set[str] = set()
+
+
+def warn_assumed_patch(tir, given=()) -> None:
+    """Warn, once per property file and process, when the enveloping models take the XZL's
+    contact patch for quantities the file does not give (:func:`assumed_patch`)."""
+    missing = assumed_patch(tir, given)
+    if not missing or tir.source in _WARNED:
+        return
+    _WARNED.add(tir.source)
+    warnings.warn(f"{tir.source}: no [CONTACT_PATCH] value for {', '.join(missing)}: the enveloping "
+                  "models take the thesis XZL 16.00R20's, not this tyre's; fit them from its "
+                  "footprints and cleat presses (tyrelab fit CAMPAIGN --into FILE)", UserWarning,
+                  stacklevel=3)
 
 
 def patch_key(tir, name):
