@@ -52,6 +52,7 @@ def test_mf_bottom_stiffness_starts_at_the_rim_plus_its_offset(data_dir):
     np.testing.assert_allclose(added, [0.0, 2e6 * 0.005, 2e6 * 0.02], rtol=1e-9, atol=1e-9)
 
 
+@pytest.mark.filterwarnings("ignore:.*no \\[CONTACT_PATCH\\] value")   # the FEDA's cams are assumed
 @pytest.mark.parametrize("model", ["point", "volume", "enveloping"])
 def test_plate_press_carries_the_bottoming_load(feda, model):
     """The analytic models press the plate with the law, bottoming included: at 150 mm the

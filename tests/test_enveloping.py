@@ -187,6 +187,7 @@ def tyre_from(patch, table=True):
     return Tyre.from_tir(parse_tir(text, "test.tir"))
 
 
+@pytest.mark.filterwarnings("ignore:.*no \\[CONTACT_PATCH\\] value")   # the MF-Swift file's cams are assumed
 def test_width_table_and_swift_keys():
     adams = tyre_from("PA1 = 0.2\nPA2 = 5.0\nPAE = 0.9\nPBE = 1.1\nPCE = 1.7\nPLS = 0.8\n"
                       "N_WIDTH = 4\nN_LENGTH = 6")

@@ -156,8 +156,7 @@ def bottoming_load(table, rho):
     d0 = table[k - 1, 0]
     f0 = table[k - 1, 1]
     slope = (table[k, 1] - f0) / (table[k, 0] - d0)
-    value = f0 + slope * (rho - d0)
-    return value if value > 0.0 else 0.0
+    return max(f0 + slope * (rho - d0), 0.0)
 
 
 @nb.njit(cache=True)
