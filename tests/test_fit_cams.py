@@ -178,3 +178,15 @@ def test_cli_bad_input_exits_2(args, tmp_path, capsys, monkeypatch):
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and err[0].startswith("tyrelab: error:")
     assert not list(tmp_path.iterdir())
+
+
+def test_the_warm_up_run_says_nothing_of_its_short_road():
+    """Each configuration's untimed warm-up stops 0.17 m along the road, before the cleat, on
+    purpose; the user is not warned that it tests nothing (the timed runs meet the cleat)."""
+    import warnings
+
+    from tyrelab.guards import PhysicsWarning
+    with warnings.catch_warnings(record=True) as found:
+        warnings.simplefilter("always")
+        cam_count_study(n_length=(1,), n_width=(1,), reference="enveloping:1x1", **SHORT)
+    assert [str(w.message) for w in found if issubclass(w.category, PhysicsWarning)] == []
