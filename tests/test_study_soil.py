@@ -287,6 +287,17 @@ BAD = [
     ("slip as text", {"slips": '["0.2"]'}, "test[1].slips[1]", "slips =", ("the string",)),
     ("empty slips", {"slips": "[]"}, "test[1].slips", "slips =", ("non-empty array",)),
     ("duplicate slip", {"slips": "[0.2, 0.2]"}, "test[1].slips[2]", "slips =", ("duplicate slip",)),
+    ("slips and torques", {"torques": "[4000]"}, "test[1].torques", "torques =",
+     ("slips or under driving torques, not both",)),
+    ("torques on the trailer", {"rig": '"trailer"', "terrain": None, "road": '"flat"', "slips": None,
+                                "torques": "[4000]"}, "test[1].torques", "torques =",
+     ("trailer rig takes no driving torque", "single-wheel")),
+    ("torque as text", {"slips": None, "torques": '["4 kN m"]'}, "test[1].torques[1]", "torques =",
+     ("a driving torque in N m", "the string")),
+    ("empty torques", {"slips": None, "torques": "[]"}, "test[1].torques", "torques =",
+     ("non-empty array of driving torques",)),
+    ("duplicate torque", {"slips": None, "torques": "[4000, 4000.0]"}, "test[1].torques[2]",
+     "torques =", ("duplicate torque",)),
     ("group on a soil test", {"group": '"rough tracks"'}, "test[1].group", "group =",
      ("group 'soil'",)),
     ("measured reference", {"reference": '{ files = ["a.tdx"] }'}, "test[1].reference.files",
@@ -382,3 +393,46 @@ def test_a_soil_file_is_read_from_the_spec_folder_and_its_content_keys_its_runs(
         assert (after[run] != key) == (run.test == "sand"), run
     soil.write_text(original)
     assert parse_spec(text, folder / "spec.toml").run_keys() == before
+
+
+# ---------------------------------------------------------------------------
+# driving torques instead of slips
+
+TORQUE = 8000.0   # N m: the rigid wheel on LETE sand settles at s = 0.15 within 1.2 s
+
+
+def test_a_torque_test_is_a_soil_test_run_per_torque(tmp_path):
+    text = HEAD + _soil_test(slips=None, torques=f"[0, {TORQUE:g}]")
+    (tmp_path / "spec.toml").write_text(text)
+    from tyrelab.study.spec import load_spec
+    spec = load_spec(tmp_path / "spec.toml")
+    runs = spec.runs()
+    assert [(r.model.name, r.slip, r.torque) for r in runs] == [
+        (m, None, t) for m in ("rigid wheel", "OPC lk") for t in (0.0, TORQUE)]
+    assert spec.tests[0].is_soil_test and spec.tests[0].group == "soil"
+    assert runs[1].simulate_kwargs()["rig_options"] == {"torque": TORQUE}
+    keys = spec.run_keys()
+    assert len({keys[r] for r in runs}) == 4
+    slip_spec = parse_spec(HEAD + _soil_test(slips="[0]"), tmp_path / "s.toml")
+    assert keys[runs[0]] != slip_spec.run_keys()[slip_spec.runs()[0]]   # s = 0 is not T = 0
+
+
+def test_a_torque_run_gives_the_slip_at_which_that_torque_drives_the_wheel(tmp_path):
+    """Round trip through both drives: the study runs the rigid wheel under 8 kN m; its table's
+    slip is the one the soil settled it at. Prescribing that slip must then take the same
+    torque (the steady torque balances the soil's moment whichever way the spin is set)."""
+    import tyrelab
+    from tyrelab import study as studies
+    text = HEAD + _soil_test(slips=None, torques=f"[{TORQUE:g}]", models='["rigid wheel"]',
+                             duration="3.0")
+    (tmp_path / "spec.toml").write_text(text)
+    table = studies.run(tmp_path / "spec.toml", workers=1, progress=False).soil_curves
+    (row,) = table.itertuples()
+    assert row.torque == TORQUE and row.TORQUE == pytest.approx(TORQUE, rel=1e-12)
+    assert 0.1 < row.slip < 0.2
+    back = tyrelab.simulate(model="rigid", rig="single-wheel", terrain="lete-sand", load=LOAD,
+                            speed=SPEED_KMH / 3.6, duration=3.0, rig_options={"slip": row.slip},
+                            progress=False)
+    steady = back[back["RUNTIME"] >= 1.5]
+    assert steady["TORQUE"].mean() == pytest.approx(TORQUE, rel=0.01)
+    assert steady["FX"].mean() == pytest.approx(row.FX, rel=0.01)

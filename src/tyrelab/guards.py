@@ -40,6 +40,9 @@ AIRBORNE_TIME = 0.5
 #: a wheel driven by a torque (the single-wheel tester's ``torque``) whose slip ends above
 #: this has spun up: the torque is more than the soil's shear carries (s = 1 spins in place)
 SPIN_UP_SLIP = 0.95
+#: ... and one whose slip still ranges over more than this in the part of the run a slip
+#: curve averages (the last STEADY_FRACTION) has not settled: its means are not a steady state
+UNSETTLED_SLIP = 0.02
 
 
 class PhysicsWarning(UserWarning):
@@ -202,6 +205,22 @@ def _longest_run(mask: np.ndarray) -> tuple[int, int]:
     return int(starts[k]), int(lengths[k])
 
 
+def _unsettled(t: np.ndarray, slip: np.ndarray, torque: float) -> list[str]:
+    """The finding of a torque-driven run whose slip has not settled where a slip curve
+    averages it (:data:`UNSETTLED_SLIP`), or none."""
+    from .rig.single_wheel import STEADY_FRACTION
+    if len(t) < 2:
+        return []
+    steady = slip[t >= t[0] + (1.0 - STEADY_FRACTION) * (t[-1] - t[0])]
+    low, high = float(np.min(steady)), float(np.max(steady))
+    if high - low <= UNSETTLED_SLIP:
+        return []
+    return [f"under the driving torque {torque:.6g} N m the slip has not settled in the run's last "
+            f"{STEADY_FRACTION:.0%} (the part a slip curve averages): it ranges from {low:.3g} to "
+            f"{high:.3g}, so its means are no steady state; run it longer, or prescribe the slip "
+            "(--slip): near zero slip a wheel under a torque may not settle at all"]
+
+
 def check_run(table, tyre) -> list[str]:
     """Check a run's signal table against the models' validity; warn once per finding.
 
@@ -254,15 +273,18 @@ def check_run(table, tyre) -> list[str]:
                          f"than {limits.PEAK_LOAD_FACTOR:g} x FZMAX {fzm / 1e3:.4g} kN of {tyre.name}: "
                          "the tyre's coefficients do not reach that far: use a lower load, speed or "
                          "obstacle")
-    torque = float(table.attrs.get("metadata", {}).get("torque_Nm", 0.0))
-    if torque > 0.0 and "LONGSLIP" in table.columns:
+    metadata = table.attrs.get("metadata", {})
+    torque = float(metadata.get("torque_Nm", 0.0))
+    if "torque_Nm" in metadata and "LONGSLIP" in table.columns:
         slip = float(table["LONGSLIP"].iloc[-1])
-        if slip > SPIN_UP_SLIP:
+        if torque > 0.0 and slip > SPIN_UP_SLIP:
             found.append(f"the driving torque {torque:.6g} N m is more than the soil's shear "
                          f"carries under this load: the wheel spun up to a slip of {slip:.3g} "
                          f"({table['ROTSPEED'].iloc[-1]:.4g} rad/s at the end) and keeps "
                          "accelerating; a smaller torque, or a slip (--slip) for the pull at "
                          "full slip")
+        else:
+            found += _unsettled(t, table["LONGSLIP"].to_numpy(dtype=float), torque)
     for message in found:
         physics_warning(message)
     return found

@@ -1,6 +1,7 @@
 """The study report's "On soil" section: each soil test's slip curves, as a figure and a table.
 
-A study's soil tests (the single-wheel tester at prescribed slips) are read
+A study's soil tests (the single-wheel tester at prescribed slips, or under driving
+torques, each run then at the slip the soil gave it) are read
 through ``study.soil_curves`` (:func:`tyrelab.study.soil.soil_curves`: one row
 per run, the steady drawbar pull ``FX`` [N], driving torque ``TORQUE`` [N m],
 sinkage ``SINKAGE`` [m] and load ``FZ`` [N], and with a reference model each
@@ -98,7 +99,8 @@ def soil_section(study, figs, colours: dict) -> str:
     if table is None or len(table) == 0:
         return ""
     out = ["<section id='soil'><h2>On soil</h2><p>Each soil test drives the single-wheel tester "
-           "through the soil at each slip; the values are the means over the steady last part of "
+           "through the soil at each slip, or under each driving torque (its slip then the soil's "
+           "answer); the values are the means over the steady last part of "
            "each run (drawbar pull positive forward; sinkage of the wheel's lowest point below the "
            "undisturbed surface). These tests stay out of the summary and the comparison with the "
            "thesis, which are about its rigid-road tests.</p>"]

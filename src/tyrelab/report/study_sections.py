@@ -60,12 +60,16 @@ def frame_html(df: pd.DataFrame, caption: str | None = None) -> str:
 
 
 def _slip_text(run) -> str:
-    """``"s = 0.2: "`` for a soil test's run (the index's ``slip``), else nothing."""
-    slip = getattr(run, "slip", None)
-    try:
-        return f"s = {float(slip):g}: " if slip is not None and np.isfinite(float(slip)) else ""
-    except (TypeError, ValueError):
-        return ""
+    """``"s = 0.2: "`` or ``"T = 5000 N m: "`` for a soil test's run (the index's ``slip`` or
+    ``torque``), else nothing."""
+    for name, text in (("slip", "s = {:g}: "), ("torque", "T = {:g} N m: ")):
+        value = getattr(run, name, None)
+        try:
+            if value is not None and np.isfinite(float(value)):
+                return text.format(float(value))
+        except (TypeError, ValueError):
+            pass
+    return ""
 
 
 def run_matrix(index: pd.DataFrame) -> str:

@@ -51,7 +51,7 @@ def run_record(run: RunSpec) -> dict:
             "road": run.road, "speed_kmh": round(run.speed_kmh, 9), "load": str(run.load),
             "rig": run.rig, "left_wheel": run.left_contact or run.model.contact
             if run.rig in ("trailer", "drop") else "", "dt": run.dt,
-            "terrain": run.terrain or "", "slip": run.slip}
+            "terrain": run.terrain or "", "slip": run.slip, "torque": run.torque}
 
 
 def tasks(spec: StudySpec) -> list[dict]:

@@ -214,7 +214,7 @@ def evaluate_study(spec: StudySpec, store: Store, progress: bool = True,
         atomically to ``<store folder>/metrics.parquet``.
     """
     from tqdm import tqdm
-    runs = [r for r in spec.runs() if r.slip is None]  # soil tests: tyrelab.study.soil
+    runs = [r for r in spec.runs() if not r.is_soil_run]  # soil tests: tyrelab.study.soil
     rows = []
     bar = tqdm(total=len(runs), unit="run", desc="evaluate", disable=not progress)
     with bar:

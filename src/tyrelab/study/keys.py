@@ -2,7 +2,7 @@
 
 A run's key covers the content of the tyre files it reads, the model's
 settings, the road (a CRG file by its content), the soil (a soil file's, or the
-built-in soil's file's, content) and the slip of a soil test's run, speed, load,
+built-in soil's file's, content) and the slip or driving torque of a soil test's run, speed, load,
 rig, duration, time step, output rate and the package version -- and nothing else (labels,
 groups, references, limits and the output folder are left out), so a result
 is reused exactly when it would be computed again identically.
@@ -135,7 +135,7 @@ def run_key(run: RunSpec, tyre_digest: str) -> str:
     the speed [m/s]; the load (a load case with its ballast and wheel mass
     from Table 3-4, or the force [N]); the rig (and the trailer's left-wheel model when
     it differs from the test wheel's), duration, dt, output rate; on soil, the soil
-    file's content (:func:`_terrain_identity`) and the slip of a soil test;
+    file's content (:func:`_terrain_identity`) and the slip or driving torque of a soil test;
     and ``tyrelab.__version__``. Labels (study, tyre, model and test names,
     the group), references, limits and the output folder are left out:
     they do not change what is simulated, so renaming a model keeps its
@@ -163,5 +163,7 @@ def run_key(run: RunSpec, tyre_digest: str) -> str:
         payload["terrain"] = _terrain_identity(run.terrain)
     if run.slip is not None:
         payload["slip"] = float(run.slip)
+    if run.torque is not None:
+        payload["torque"] = float(run.torque)
     text = json.dumps(payload, sort_keys=True, separators=(",", ":"), allow_nan=False)
     return hashlib.sha256(text.encode()).hexdigest()[:16]

@@ -84,6 +84,8 @@ class TestSpec:
     models: tuple[str, ...] = ()
     terrain: str | None = None
     slips: tuple[float, ...] = ()
+    #: driving torques [N m] instead of slips: the wheel spins freely under each
+    torques: tuple[float, ...] = ()
 
     @property
     def speeds_kmh(self) -> tuple[float, ...]:
@@ -92,8 +94,18 @@ class TestSpec:
     @property
     def is_soil_test(self) -> bool:
         """A slip curve on soil (drawbar pull, torque and sinkage against slip; the
-        single-wheel tester), evaluated by :mod:`tyrelab.study.soil`, not chapter 5."""
-        return bool(self.slips)
+        single-wheel tester at prescribed slips or driving torques), evaluated by
+        :mod:`tyrelab.study.soil`, not chapter 5."""
+        return bool(self.slips or self.torques)
+
+    def drives(self) -> tuple[tuple[float | None, float | None], ...]:
+        """``(slip, torque)`` of each run of a condition: the slips, the torques, or one
+        ``(None, None)`` (a rigid-road test)."""
+        if self.slips:
+            return tuple((s, None) for s in self.slips)
+        if self.torques:
+            return tuple((None, t) for t in self.torques)
+        return ((None, None),)
 
 
 @dataclass(frozen=True)
@@ -103,7 +115,8 @@ class RunSpec:
     ``speed`` [m/s], ``load`` a load-case name or a wheel load [N],
     ``duration`` [s] or None, ``dt`` [s], ``output_rate`` [Hz]; ``terrain`` the
     deformable ground (None: the rigid road) and ``slip`` the prescribed slip of a
-    soil test's run (None: the rig's own, free rolling).
+    soil test's run (None: the rig's own, free rolling), or ``torque`` [N m] the driving
+    torque it spins freely under instead.
     """
 
     tyre: TyreSpec
@@ -120,10 +133,21 @@ class RunSpec:
     left_wheel: str | None = None
     terrain: str | None = None
     slip: float | None = None
+    torque: float | None = None
 
     @property
     def speed_kmh(self) -> float:
         return self.speed * 3.6
+
+    @property
+    def is_soil_run(self) -> bool:
+        """A run of a soil test: at a prescribed slip or driving torque."""
+        return self.slip is not None or self.torque is not None
+
+    @property
+    def drive(self) -> tuple[float | None, float | None]:
+        """``(slip, torque)``, as :meth:`TestSpec.drives` gives them."""
+        return self.slip, self.torque
 
     @property
     def left_contact(self) -> str | None:
@@ -143,7 +167,8 @@ class RunSpec:
                 "options": dict(self.model.options) or None,
                 # only when set: the keyword arguments of a rigid-road run stay as they were
                 **({"terrain": self.terrain} if self.terrain is not None else {}),
-                **({"rig_options": {"slip": self.slip}} if self.slip is not None else {})}
+                **({"rig_options": {"slip": self.slip}} if self.slip is not None else {}),
+                **({"rig_options": {"torque": self.torque}} if self.torque is not None else {})}
 
 
 @dataclass(frozen=True)
@@ -171,7 +196,7 @@ class StudySpec:
     store: str = "compact"
 
     def runs(self) -> tuple[RunSpec, ...]:
-        """Every tyre x test x speed x load x model (x slip, for a soil test), in that nesting
+        """Every tyre x test x speed x load x model (x slip or torque, for a soil test), in that nesting
         (outermost first).
 
         Deterministic: the order of the spec's tables and lists. The runs of
@@ -185,11 +210,11 @@ class StudySpec:
                 for speed in test.speeds:
                     for load in test.loads:
                         for model in self.test_models(test):
-                            for slip in test.slips or (None,):
+                            for slip, torque in test.drives():
                                 out.append(RunSpec(tyre, model, test.name, test.group, test.road, speed,
                                                    load, test.rig, test.duration, self.dt,
                                                    self.output_rate, self.left_wheel, test.terrain,
-                                                   slip))
+                                                   slip, torque))
         return tuple(out)
 
     def test_models(self, test: TestSpec) -> tuple[ModelSpec, ...]:
@@ -208,7 +233,7 @@ class StudySpec:
         """The ``[[test]]`` table ``run`` comes from."""
         for test in self.tests:
             if (test.name == run.test and run.speed in test.speeds and run.load in test.loads
-                    and (run.slip in test.slips if test.slips else run.slip is None)):
+                    and run.drive in test.drives()):
                 return test
         raise KeyError(run.test)
 
@@ -223,7 +248,7 @@ class StudySpec:
             return None
         return RunSpec(run.tyre, self.model(test.reference_model), run.test, run.group, run.road,
                        run.speed, run.load, run.rig, run.duration, run.dt, run.output_rate,
-                       run.left_wheel, run.terrain, run.slip)
+                       run.left_wheel, run.terrain, run.slip, run.torque)
 
     def reference_files(self, run: RunSpec) -> tuple[Path, ...]:
         """The measured files ``run`` is compared with (repeats of its condition); () if none."""

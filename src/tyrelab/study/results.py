@@ -287,8 +287,9 @@ class Study:
         if idx.empty or "status" not in idx:
             return pd.DataFrame(columns=cols)
         done = idx[(idx["status"] == DONE) & (idx["simulated_s"] > 0)]
-        if "slip" in done:
-            done = done[done["slip"].isna()]
+        for drive in ("slip", "torque"):
+            if drive in done:
+                done = done[done[drive].isna()]
         rows = []
         for model, g in done.groupby("model", sort=False):
             contact = str(g["contact"].iloc[0]) if "contact" in g else ""

@@ -81,7 +81,7 @@ def warning_messages(caught) -> list[str]:
 
 def run_label(spec: dict) -> str:
     """A run in words, from its record: ``"run xzl, OPC lk, cleat 50x50, 12 km/h, LC1"`` (tyre,
-    model, test, speed, load; a soil test's slip)."""
+    model, test, speed, load; a soil test's slip or driving torque)."""
     parts = [str(spec[k]) for k in ("tyre", "model", "test") if spec.get(k) not in (None, "")]
     if spec.get("test") in (None, "") and spec.get("road"):
         parts.append(str(spec["road"]))
@@ -91,6 +91,8 @@ def run_label(spec: dict) -> str:
         parts.append(str(spec["load"]))
     if spec.get("slip") is not None:
         parts.append(f"s = {float(spec['slip']):g}")
+    if spec.get("torque") is not None:
+        parts.append(f"T = {float(spec['torque']):g} N m")
     return "run " + ", ".join(parts)
 
 

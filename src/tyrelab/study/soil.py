@@ -1,8 +1,9 @@
 """Evaluate a study's soil tests: each model's steady drawbar pull, torque and sinkage against slip.
 
 A soil test (:attr:`tyrelab.study.records.TestSpec.is_soil_test`: the
-single-wheel tester on a terrain, at the test's ``slips``) is a slip curve per
-model, not a signal compared with a reference over time, so it stays out of
+single-wheel tester on a terrain, at the test's ``slips`` or under its driving
+``torques``) is a slip curve per model, not a signal compared with a reference
+over time, so it stays out of
 :func:`tyrelab.study.evaluate.evaluate_study` and of every table made from its
 metrics (Table 5-15, the thesis's numbers, the rank agreement, the
 consistency: those are about the thesis's rigid-road tests).
@@ -17,8 +18,12 @@ with ``RUNTIME >= (1 - STEADY_FRACTION) * duration``, as
 * ``SINKAGE`` [m]: the wheel's lowest point below the undisturbed surface,
 * ``FZ`` [N]: the load the soil carries (the dead weight, once steady).
 
+A run's ``slip`` is the slip it was driven at, or, under a driving torque (its
+``torque`` column, NaN at a prescribed slip), the steady mean of its ``LONGSLIP``:
+the soil's answer to that torque.
+
 With a reference model (``reference = { model = ... }``), each run also gets its
-difference from the reference's run at the same slip:
+difference from the reference's run at the same slip (or the same torque):
 
 * ``FX_diff_pct`` = 100 (FX - FX_ref) / F_ref and ``TORQUE_diff_pct`` =
   100 (TORQUE - TORQUE_ref) / (R0 F_ref), where ``F_ref`` (``force_scale_N``) is
@@ -44,19 +49,19 @@ from .store import DONE, Store
 SOIL_FILE = "soil_curves.parquet"
 #: the steady means of a run (module notes)
 VALUES = ["FX", "TORQUE", "SINKAGE", "FZ"]
-LABELS = ["key", "tyre", "test", "soil", "speed_kmh", "load", "model", "contact", "slip"]
+LABELS = ["key", "tyre", "test", "soil", "speed_kmh", "load", "model", "contact", "slip", "torque"]
 DIFFERENCES = ["reference", "force_scale_N", "FX_diff_pct", "TORQUE_diff_pct", "SINKAGE_diff_pct"]
 COLUMNS = [*LABELS, *VALUES, *DIFFERENCES, "wall_time_s"]
 #: a soil test's condition: one curve per model
 CONDITION = ["tyre", "test", "speed_kmh", "load"]
 
 
-def steady_means(signal: pd.DataFrame, duration: float) -> dict:
-    """The means of :data:`VALUES` over the last ``STEADY_FRACTION`` of a run of ``duration`` [s]
-    (the samples :func:`tyrelab.rig.single_wheel.slip_curve` averages)."""
+def steady_means(signal: pd.DataFrame, duration: float, channels=VALUES) -> dict:
+    """The means of ``channels`` (:data:`VALUES`) over the last ``STEADY_FRACTION`` of a run of
+    ``duration`` [s] (the samples :func:`tyrelab.rig.single_wheel.slip_curve` averages)."""
     from ..rig.single_wheel import STEADY_FRACTION
     steady = signal[signal["RUNTIME"] >= (1.0 - STEADY_FRACTION) * duration]
-    return {c: float(steady[c].mean()) for c in VALUES}
+    return {c: float(steady[c].mean()) for c in channels}
 
 
 def _soil_name(terrain: str, names: dict) -> str:
@@ -80,11 +85,11 @@ def _differences(df: pd.DataFrame, spec: StudySpec, radius: dict) -> pd.DataFram
         ref_name = references.get(cond[1])
         if ref_name is None:
             continue
-        ref = rows[rows["model"] == ref_name].set_index("slip")
+        ref = rows[rows["model"] == ref_name].set_index("_drive")
         if ref.empty:
             continue
         scale = float(np.max(np.abs(ref["TORQUE"].to_numpy()))) / radius[cond[0]]
-        at = rows["slip"].map
+        at = rows["_drive"].map
         df.loc[rows.index, "reference"] = ref_name
         df.loc[rows.index, "force_scale_N"] = scale
         df.loc[rows.index, "FX_diff_pct"] = 100.0 * (rows["FX"] - at(ref["FX"])) / scale
@@ -111,25 +116,30 @@ def soil_curves(spec: StudySpec, store: Store, write: bool = True) -> pd.DataFra
     keys = spec.run_keys()
     names, radii, rows = {}, {}, []
     for run in spec.runs():
-        if run.slip is None:
+        if not run.is_soil_run:
             continue
         key = keys[run]
         record = store.record(key)
         if record is None or record.get("status") != DONE or not store.is_finished(key):
             continue
-        means = steady_means(store.signal(key), run.duration)
+        signal = store.signal(key)
+        means = steady_means(signal, run.duration)
+        slip = run.slip
+        if slip is None:   # under a driving torque: the slip the soil settled it at
+            slip = steady_means(signal, run.duration, ("LONGSLIP",))["LONGSLIP"]
         radius = _radius(run, radii)
         rows.append({"key": key, "tyre": run.tyre.name, "test": run.test,
                      "soil": _soil_name(run.terrain, names), "speed_kmh": round(run.speed_kmh, 9),
                      "load": str(run.load), "model": run.model.name, "contact": run.model.contact,
-                     "slip": float(run.slip), **means, "reference": "",
-                     "wall_time_s": float(record.get("wall_time_s", np.nan)), "_radius": radius})
-    df = pd.DataFrame(rows, columns=[*COLUMNS, "_radius"])
-    for col in (*VALUES, *DIFFERENCES[1:], "slip", "speed_kmh", "wall_time_s"):
+                     "slip": float(slip), "torque": np.nan if run.torque is None else float(run.torque),
+                     **means, "reference": "", "wall_time_s": float(record.get("wall_time_s", np.nan)),
+                     "_radius": radius, "_drive": run.slip if run.torque is None else run.torque})
+    df = pd.DataFrame(rows, columns=[*COLUMNS, "_radius", "_drive"])
+    for col in (*VALUES, *DIFFERENCES[1:], "slip", "torque", "speed_kmh", "wall_time_s", "_drive"):
         df[col] = df[col].astype(float)
     df["reference"] = df["reference"].fillna("").astype(str)
     radius = dict(zip(df["tyre"], df["_radius"]))
-    df = _differences(df, spec, radius).drop(columns="_radius").reset_index(drop=True)
+    df = _differences(df, spec, radius).drop(columns=["_radius", "_drive"]).reset_index(drop=True)
     if write:
         path = store.folder / SOIL_FILE
         if any(t.is_soil_test for t in spec.tests):

@@ -47,6 +47,7 @@ Schema (km/h, kPa, mm at this edge, as the command line; SI in the parsed object
     terrain = "lete-sand"               # a built-in soil (tyrelab soil list) or a soil .toml path
     slips = [0, 0.2, 0.4]               # driving s = 1 - V / (R_e omega) in [0, 1); braking
                                         # s = R_e omega / V - 1 in [-1, 0) (-1: locked)
+    # torques = [0, 4000, 8000]         # or instead: driving torques [N m], the slip the soil's answer
     speeds_kmh = [3.6]
     loads = [23300]
     duration = 3.0                      # [s] optional (default 3 s: the steady part is the last half)
@@ -75,7 +76,8 @@ Rules beyond the types:
 * A soil test (:mod:`.spec_soil`): ``terrain`` only on a rig that runs on soil
   only (the single-wheel tester; the trailer and the quarter vehicle stay on the
   rigid road in a study), ``slips`` only on a rig that takes a slip, both then
-  required; no ``group`` (its group is "soil") and no measured reference. Every
+  required (or, instead of ``slips``, ``torques`` on a rig that takes a driving
+  torque); no ``group`` (its group is "soil") and no measured reference. Every
   model it runs must run on soil (``ContactModel.terrains``), as every model of a
   rigid-road test must run on the rigid road.
 * In key paths of error messages, ``test[3]`` is the third ``[[test]]``

@@ -1,4 +1,4 @@
-"""The ground of a ``[[test]]`` table: ``terrain``, ``slips`` and the models that run on it.
+"""The ground of a ``[[test]]`` table: ``terrain``, ``slips`` or ``torques`` and the models that run on it.
 
 A test on the rigid road names no terrain. A rig that runs on soil only (the
 single-wheel tester) needs ``terrain``, and only such a rig takes one here (the
@@ -7,8 +7,9 @@ a study compares their runs as the thesis's rigid-road tests, so it keeps them
 there): a built-in soil's name (``tyrelab soil
 list``) or a soil file (TOML, relative to the spec's folder), read now so a bad
 soil stops the study before it starts. A rig that drives at a prescribed slip
-(the single-wheel tester) needs ``slips``, each in [-1, 1); its test is a *soil
-test* (:attr:`tyrelab.study.records.TestSpec.is_soil_test`). Each model a test
+(the single-wheel tester) needs ``slips``, each in [-1, 1), or instead ``torques``
+[N m], the driving torques the wheel spins freely under (its slip then the soil's
+answer); its test is a *soil test* (:attr:`tyrelab.study.records.TestSpec.is_soil_test`). Each model a test
 runs must run on its ground (:attr:`tyrelab.tyre.registry.ContactModel.terrains`).
 Every mistake is one :class:`~tyrelab.errors.InputError` naming file, line and
 key path (:class:`~.checker.Checker`).
@@ -86,9 +87,9 @@ def check_slips(ck: Checker, t: dict, path, rig) -> tuple[float, ...]:
 
     takes_slip = "slip" in rig.options
     if "slips" not in t:
-        if takes_slip:
+        if takes_slip and "torques" not in t:
             ck.fail(path, f"missing key 'slips': the {rig.name} rig drives at prescribed slips, "
-                    "e.g. slips = [0, 0.2, 0.4]")
+                    "e.g. slips = [0, 0.2, 0.4] (or under driving torques, torques = [0, 5000] N m)")
         return ()
     key = path + ("slips",)
     if not takes_slip:
@@ -109,6 +110,35 @@ def check_slips(ck: Checker, t: dict, path, rig) -> tuple[float, ...]:
             ck.fail(key + (k,), f"duplicate slip {v!r}")
         slips.append(s)
     return tuple(slips)
+
+
+def check_torques(ck: Checker, t: dict, path, rig) -> tuple[float, ...]:
+    """The test's ``torques`` [N m] (finite, no repeats; negative brakes, 0 tows the wheel:
+    :func:`tyrelab.rig.single_wheel.single_wheel`), on a rig that takes a driving torque
+    and in a test without ``slips``; () when the test has none."""
+    from ..rig.registry import rigs
+
+    if "torques" not in t:
+        return ()
+    key = path + ("torques",)
+    if "torque" not in rig.options:
+        with_torque = [name for name, r in rigs().items() if "torque" in r.options]
+        ck.fail(key, f"the {rig.name} rig takes no driving torque; torques are for the rigs that "
+                f"turn the wheel under one: {', '.join(with_torque)}")
+    if "slips" in t:
+        ck.fail(key, "a test drives the wheel at prescribed slips or under driving torques, not "
+                "both; make two tests")
+    value = t["torques"]
+    if not isinstance(value, list) or not value:
+        what = describe_value(value) if not isinstance(value, list) else "an empty array"
+        ck.fail(key, f"expected a non-empty array of driving torques in N m, got {what}")
+    torques = []
+    for k, v in enumerate(value):
+        torque = ck.number(v, key + (k,), "a driving torque in N m (negative brakes, 0 tows the wheel)")
+        if torque in torques:
+            ck.fail(key + (k,), f"duplicate torque {v!r}")
+        torques.append(torque)
+    return tuple(torques)
 
 
 def check_models_on_ground(ck: Checker, path, names, models, terrain: str | None,

@@ -18,7 +18,7 @@ from .. import limits
 from ..errors import InputError
 from .checker import Checker, describe_value
 from .records import ReferenceFile, TestSpec
-from .spec_soil import (DEFAULT_SOIL_DURATION, SOIL_GROUP, check_models_on_ground, check_slips,
+from .spec_soil import (DEFAULT_SOIL_DURATION, SOIL_GROUP, check_models_on_ground, check_slips, check_torques,
                         check_terrain)
 
 #: the obstacle groups of the thesis (Table 5-15); the summary rules differ per group
@@ -30,7 +30,7 @@ DEFAULT_DT = 1e-3
 DEFAULT_OUTPUT_RATE = 1000.0
 
 _TEST_KEYS = ("name", "group", "road", "speeds_kmh", "loads", "rig", "duration", "models",
-              "reference", "terrain", "slips")
+              "reference", "terrain", "slips", "torques")
 _REFERENCE_KEYS = ("model", "files", "column_map")
 _REFERENCE_FILE_KEYS = ("file", "speed_kmh", "load")
 _OBSTACLE_KINDS = ("cleat", "bump", "step", "pothole")
@@ -215,13 +215,15 @@ def _tests(ck: Checker, doc, models, dt: float = DEFAULT_DT,
         the_rig = rigs()[rig_name]
         terrain = check_terrain(ck, t, path, the_rig)
         slips = check_slips(ck, t, path, the_rig)
+        torques = check_torques(ck, t, path, the_rig)
+        soil_test = bool(slips or torques)
         if "road" not in t and the_rig.terrain != "soil":
             ck.fail(path, f"missing key 'road' (required; keys: {', '.join(_TEST_KEYS)})")
         road, group = _road(ck, t.get("road", the_rig.default_road), path + ("road",))
         _check_obstacle_for_tyres(ck, road, path + ("road",), tyres)
-        if slips:  # a soil test: a slip curve, none of the thesis's groups
+        if soil_test:  # a soil test: a slip curve, none of the thesis's groups
             if "group" in t:
-                ck.fail(path + ("group",), f"a soil test (with slips) is in the group "
+                ck.fail(path + ("group",), f"a soil test (with slips or torques) is in the group "
                         f"'{SOIL_GROUP}'; the groups {', '.join(GROUPS)} are the rigid-road tests'")
             group = SOIL_GROUP
         elif "group" in t:
@@ -244,7 +246,7 @@ def _tests(ck: Checker, doc, models, dt: float = DEFAULT_DT,
                     limits.check_wheel_load(newtons, tyre)
                 except InputError as exc:
                     ck.fail(path + ("loads", k), f"{exc.reason} (tyre {json.dumps(spec.name)})")
-        duration = DEFAULT_SOIL_DURATION if slips else None
+        duration = DEFAULT_SOIL_DURATION if soil_test else None
         if "duration" in t:
             duration = ck.number(t["duration"], path + ("duration",), "a duration > 0 [s]", low=0.0)
         if duration is not None:
@@ -258,7 +260,7 @@ def _tests(ck: Checker, doc, models, dt: float = DEFAULT_DT,
         reference_model, reference_files = None, ()
         if "reference" in t:
             reference_model, reference_files = _reference(ck, t["reference"], path + ("reference",),
-                                                          speeds, loads, models, cases, bool(slips))
+                                                          speeds, loads, models, cases, soil_test)
             if reference_model is not None and chosen and reference_model not in chosen:
                 ck.fail(path + ("reference", "model"), f"the reference {json.dumps(reference_model)} "
                         "is not among this test's models")
@@ -280,5 +282,5 @@ def _tests(ck: Checker, doc, models, dt: float = DEFAULT_DT,
                             f"{load} is also in test[{conditions[(name, v, load)] + 1}]")
                 conditions[(name, v, load)] = i
         tests.append(TestSpec(name, group, road, tuple(speeds), tuple(loads), rig_name, duration,
-                              reference_model, reference_files, chosen, terrain, slips))
+                              reference_model, reference_files, chosen, terrain, slips, torques))
     return tuple(tests)

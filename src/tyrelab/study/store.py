@@ -155,9 +155,9 @@ class Store:
     def save(self, key: str, spec: dict, signal: pd.DataFrame, wall_time: float,
              warnings: list[str] = ()) -> None:
         """Store a finished run: its table first (in the form :attr:`storage`; a soil test's
-        run, whose record has a ``slip``, with :data:`SOIL_CHANNELS`), then its record, with
+        run, whose record has a ``slip`` or ``torque``, with :data:`SOIL_CHANNELS`), then its record, with
         the ``warnings`` the run raised (one per line)."""
-        exact = SOIL_CHANNELS if spec.get("slip") is not None else ()
+        exact = SOIL_CHANNELS if (spec.get("slip"), spec.get("torque")) != (None, None) else ()
         write_run(signal, self.signal_path(key), self.storage, exact)
         _write_json(self.record_path(key), {**spec, "key": key, "status": DONE,
                                             "wall_time_s": float(wall_time),
