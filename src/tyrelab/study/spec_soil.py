@@ -96,20 +96,31 @@ def check_slips(ck: Checker, t: dict, path, rig) -> tuple[float, ...]:
         with_slip = [name for name, r in rigs().items() if "slip" in r.options]
         ck.fail(key, f"the {rig.name} rig takes no slip; slips are for the rigs that drive at a "
                 f"prescribed slip: {', '.join(with_slip)}")
-    value = t["slips"]
-    if not isinstance(value, list) or not value:
-        what = describe_value(value) if not isinstance(value, list) else "an empty array"
-        ck.fail(key, f"expected a non-empty array of slips in [-1, 1), got {what}")
-    slips = []
-    for k, v in enumerate(value):
-        s = ck.number(v, key + (k,), "a slip in [-1, 1) (driving s = 1 - V / (R_e omega), braking "
-                      "s = R_e omega / V - 1)", low=-1.0, high=1.0, low_open=False)
+    def below_one(s, v, at):
         if s >= 1.0:
-            ck.fail(key + (k,), f"expected a slip in [-1, 1) (1 spins in place, at no speed), got {v!r}")
-        if s in slips:
-            ck.fail(key + (k,), f"duplicate slip {v!r}")
-        slips.append(s)
-    return tuple(slips)
+            ck.fail(at, f"expected a slip in [-1, 1) (1 spins in place, at no speed), got {v!r}")
+
+    return _distinct_numbers(ck, t["slips"], key, "slips in [-1, 1)", "slip",
+                             "a slip in [-1, 1) (driving s = 1 - V / (R_e omega), braking "
+                             "s = R_e omega / V - 1)", below_one, low=-1.0, high=1.0, low_open=False)
+
+
+def _distinct_numbers(ck: Checker, value, key, plural: str, singular: str, what: str, check=None,
+                      **bounds) -> tuple[float, ...]:
+    """A non-empty array of ``plural`` at ``key``, each a number (``what``, within ``bounds``:
+    :meth:`Checker.number`) that ``check(number, as written, its key)`` accepts, none twice."""
+    if not isinstance(value, list) or not value:
+        got = describe_value(value) if not isinstance(value, list) else "an empty array"
+        ck.fail(key, f"expected a non-empty array of {plural}, got {got}")
+    numbers = []
+    for k, v in enumerate(value):
+        x = ck.number(v, key + (k,), what, **bounds)
+        if check is not None:
+            check(x, v, key + (k,))
+        if x in numbers:
+            ck.fail(key + (k,), f"duplicate {singular} {v!r}")
+        numbers.append(x)
+    return tuple(numbers)
 
 
 def check_torques(ck: Checker, t: dict, path, rig) -> tuple[float, ...]:
@@ -128,17 +139,8 @@ def check_torques(ck: Checker, t: dict, path, rig) -> tuple[float, ...]:
     if "slips" in t:
         ck.fail(key, "a test drives the wheel at prescribed slips or under driving torques, not "
                 "both; make two tests")
-    value = t["torques"]
-    if not isinstance(value, list) or not value:
-        what = describe_value(value) if not isinstance(value, list) else "an empty array"
-        ck.fail(key, f"expected a non-empty array of driving torques in N m, got {what}")
-    torques = []
-    for k, v in enumerate(value):
-        torque = ck.number(v, key + (k,), "a driving torque in N m (negative brakes, 0 tows the wheel)")
-        if torque in torques:
-            ck.fail(key + (k,), f"duplicate torque {v!r}")
-        torques.append(torque)
-    return tuple(torques)
+    return _distinct_numbers(ck, t["torques"], key, "driving torques in N m", "torque",
+                             "a driving torque in N m (negative brakes, 0 tows the wheel)")
 
 
 def check_models_on_ground(ck: Checker, path, names, models, terrain: str | None,
