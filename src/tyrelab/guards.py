@@ -41,7 +41,8 @@ AIRBORNE_TIME = 0.5
 #: this has spun up: the torque is more than the soil's shear carries (s = 1 spins in place)
 SPIN_UP_SLIP = 0.95
 #: ... and one whose slip still ranges over more than this in the part of the run a slip
-#: curve averages (the last STEADY_FRACTION) has not settled: its means are not a steady state
+#: curve averages (the last :data:`tyrelab.limits.STEADY_FRACTION`) has not settled: its
+#: means are not a steady state
 UNSETTLED_SLIP = 0.02
 
 
@@ -208,15 +209,14 @@ def _longest_run(mask: np.ndarray) -> tuple[int, int]:
 def _unsettled(t: np.ndarray, slip: np.ndarray, torque: float) -> list[str]:
     """The finding of a torque-driven run whose slip has not settled where a slip curve
     averages it (:data:`UNSETTLED_SLIP`), or none."""
-    from .rig.single_wheel import STEADY_FRACTION
     if len(t) < 2:
         return []
-    steady = slip[t >= t[0] + (1.0 - STEADY_FRACTION) * (t[-1] - t[0])]
+    steady = slip[t >= t[0] + (1.0 - limits.STEADY_FRACTION) * (t[-1] - t[0])]
     low, high = float(np.min(steady)), float(np.max(steady))
     if high - low <= UNSETTLED_SLIP:
         return []
     return [f"under the driving torque {torque:.6g} N m the slip has not settled in the run's last "
-            f"{STEADY_FRACTION:.0%} (the part a slip curve averages): it ranges from {low:.3g} to "
+            f"{limits.STEADY_FRACTION:.0%} (the part a slip curve averages): it ranges from {low:.3g} to "
             f"{high:.3g}, so its means are no steady state; run it longer, or prescribe the slip "
             "(--slip): near zero slip a wheel under a torque may not settle at all"]
 

@@ -21,6 +21,9 @@ from .errors import InputError
 
 # --- resources --------------------------------------------------------------------------
 
+#: the part of a slip-curve run whose mean is its steady state: the second half
+#: (:func:`tyrelab.rig.single_wheel.slip_curve`, the study's soil tables, the guards)
+STEADY_FRACTION = 0.5
 #: largest memory one request may need before ``force`` [bytes]: 2 GiB, well inside a
 #: workstation's memory, far above any run of the thesis campaign (a 100 m track at
 #: 3 km/h at 1 kHz is 0.15 GB of output)

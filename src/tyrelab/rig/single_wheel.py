@@ -34,6 +34,7 @@ import numpy as np
 
 from ..core.named_index import named_index
 from ..errors import InputError
+from ..limits import STEADY_FRACTION  # the part of a run a slip curve averages
 from ..road.soil.scm import SoilSurface, undisturbed_height
 from ..road.terrain import terrain_height
 from ..tyre.wheel import WheelPose, wheel_step
@@ -228,10 +229,6 @@ def single_wheel(model, soil, load: float, speed: float, slip: float = 0.0, leng
         tables.append(to_signal(data, CHANNELS, meta))
     result = tables[0] if passes == 1 else tables
     return (result, wheel.road) if return_bed else result
-
-
-#: the part of a slip-curve run whose mean is its steady state: the second half
-STEADY_FRACTION = 0.5
 
 
 def slip_curve(model, soil, load: float, speed: float, slips, duration: float = 3.0,

@@ -9,7 +9,7 @@ metrics (Table 5-15, the thesis's numbers, the rank agreement, the
 consistency: those are about the thesis's rigid-road tests).
 
 Per finished run, the means over the last
-:data:`~tyrelab.rig.single_wheel.STEADY_FRACTION` of its duration (the samples
+:data:`~tyrelab.limits.STEADY_FRACTION` of its duration (the samples
 with ``RUNTIME >= (1 - STEADY_FRACTION) * duration``, as
 :func:`tyrelab.rig.single_wheel.slip_curve` takes them) of
 
@@ -59,7 +59,7 @@ CONDITION = ["tyre", "test", "speed_kmh", "load"]
 def steady_means(signal: pd.DataFrame, duration: float, channels=VALUES) -> dict:
     """The means of ``channels`` (:data:`VALUES`) over the last ``STEADY_FRACTION`` of a run of
     ``duration`` [s] (the samples :func:`tyrelab.rig.single_wheel.slip_curve` averages)."""
-    from ..rig.single_wheel import STEADY_FRACTION
+    from ..limits import STEADY_FRACTION
     steady = signal[signal["RUNTIME"] >= (1.0 - STEADY_FRACTION) * duration]
     return {c: float(steady[c].mean()) for c in channels}
 
