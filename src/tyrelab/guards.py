@@ -184,6 +184,31 @@ def check_reaches_relief(road, x0: float, speed: float, duration: float, reach: 
     return message
 
 
+#: tyre files whose estimated spin inertia has been warned about in this process
+_ESTIMATED_INERTIA: set[str] = set()
+
+
+def rig_spin_inertia(model, wheel_load: float) -> float:
+    """The spin inertia [kg m^2] a rig turns ``model``'s wheel with at ``wheel_load`` [N]
+    (:func:`tyrelab.limits.wheel_spin_inertia`). An estimate is warned about, once per file
+    and process, when the wheel's spin matters: a handling model or a model with its own
+    tangential forces (the ring) turns it."""
+    tyre = model.tyre
+    inertia, estimated = limits.wheel_spin_inertia(tyre, wheel_load)
+    source = getattr(tyre.tir, "source", tyre.name)
+    if estimated and (model.handling != "none" or model.has_state) and source not in _ESTIMATED_INERTIA:
+        _ESTIMATED_INERTIA.add(source)
+        mass = limits.wheel_mass(tyre, wheel_load)
+        how = ("the file's" if tyre.wheel_mass > 0
+               else "a tenth of the wheel load's, the quarter vehicle's rule")
+        warnings.warn(f"{source}: no spin inertia ([INERTIA] WHEEL_IYY or IYY): the rig turns the "
+                      f"wheel with {inertia:.3g} kg m^2, a uniform disc of the wheel's mass {mass:.4g} kg "
+                      f"({how}) and its unloaded radius {tyre.unloaded_radius:.4g} m; give your wheel's "
+                      "(tyre and rim), which its spin under the tyre's longitudinal force depends on",
+                      UserWarning, stacklevel=3)
+    return inertia
+
+
 def check_load_range(tyre, wheel_load: float) -> None:
     """Warn when the static wheel load is above the property file's FZMAX."""
     fz = limits.fzmax(tyre)

@@ -351,9 +351,29 @@ def wheel_hop_omega(tyre, wheel_load: float) -> tuple[float, float, float]:
         k_max = max(k_max, 0.0)
     else:
         k_max = float(law.stiffness)
-    mass = float(tyre.wheel_mass) if tyre.wheel_mass > 0 else 0.1 * float(wheel_load) / 9.80665
-    mass = max(mass, 1e-6)
+    mass = max(wheel_mass(tyre, wheel_load), 1e-6)
     return math.sqrt(max(k_max, 1e-9) / mass), k_max, mass
+
+
+def wheel_mass(tyre, wheel_load: float) -> float:
+    """The wheel's mass [kg]: the file's (``WHEEL_MASS`` or ``MASS``), or without one a tenth of
+    the static wheel load's mass, the quarter vehicle's rule."""
+    return float(tyre.wheel_mass) if tyre.wheel_mass > 0 else 0.1 * float(wheel_load) / 9.80665
+
+
+def wheel_spin_inertia(tyre, wheel_load: float) -> tuple[float, bool]:
+    """``(inertia [kg m^2], estimated)``: the spin inertia a rig turns the wheel with.
+
+    The file's (``WHEEL_IYY`` or ``IYY``); without one, a uniform disc of the wheel's mass
+    (:func:`wheel_mass`) and the unloaded radius, ``m R0^2 / 2`` (a wheel of tyre and rim is
+    0.4-0.6 m R0^2: the XZL's file 0.43, MFeval's MF 6.1 example tyre 0.41), never the
+    :data:`tyrelab.tyre.params.MIN_SPIN_INERTIA` a file without one left before: under a
+    handling model's slip stiffness that wheel's spin ran away past the force's peak
+    (+-1e4 rad/s, step to step, over a 50 mm cleat).
+    """
+    if tyre.wheel_spin_inertia > 0:
+        return float(tyre.wheel_spin_inertia), False
+    return 0.5 * wheel_mass(tyre, wheel_load) * float(tyre.unloaded_radius) ** 2, True
 
 
 def stable_step(model, wheel_load: float) -> tuple[float, str]:

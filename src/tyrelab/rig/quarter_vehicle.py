@@ -106,6 +106,7 @@ class QuarterVehicle:
         """Drive (or hold, at ``speed`` 0) from hub height ``zu``, suspension at its static
         length, the tyre model in ``model_state`` (default: its static state); ``wheel`` the
         wheel when it is built already (on soil), on its Python ``ground``."""
+        from ..guards import rig_spin_inertia
         tyre = self.model.tyre
         x0_road = road.run_start
         ms, mu = self.sprung_mass, self.unsprung_mass
@@ -113,7 +114,7 @@ class QuarterVehicle:
             speed=float(speed), sprung_mass=float(ms), unsprung_mass=float(mu),
             stiffness=float(self.suspension_stiffness), damping=float(self.suspension_damping),
             spring_free_length=float(self.spring_length + ms * G / self.suspension_stiffness),
-            spin_inertia=tyre.spin_inertia, gravity=G,
+            spin_inertia=rig_spin_inertia(self.model, self.wheel_load), gravity=G,
             x_start=float(x0_road))
         state = np.zeros(K.Q_SIZE)
         state[K.Q.ZU] = zu

@@ -92,7 +92,7 @@ def roll(model: TyreModel, road="cleat:50x50", speed: float = 0.5, height: float
     x0 = road.run_start if x_start is None else float(x_start)
     if duration is None:
         duration = max(road.extent()[1] - x0, 1.0) / speed
-    from ..guards import LEVEL_DEFLECTION, check_level, check_reaches_relief
+    from ..guards import LEVEL_DEFLECTION, check_level, check_reaches_relief, rig_spin_inertia
     deflection = tyre.unloaded_radius - height
     check_level(road, x0, x0 + speed * duration, LEVEL_DEFLECTION * max(deflection, 0.0),
                 f"the rolling rig holds its axle at a fixed height, so that presses the tyre "
@@ -109,7 +109,7 @@ def roll(model: TyreModel, road="cleat:50x50", speed: float = 0.5, height: float
         spin = eq.spin
     state = np.zeros(len(STATE))
     state[R.X], state[R.OMEGA] = x0, spin
-    inertia = max(tyre.wheel_spin_inertia, 1.0)
+    inertia = rig_spin_inertia(model, wheel_load)
     n_steps = int(round(duration / dt))
     out_every = max(1, int(round(1.0 / (output_rate * dt))))
 

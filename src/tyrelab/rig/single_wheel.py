@@ -196,7 +196,9 @@ def single_wheel(model, soil, load: float, speed: float, slip: float = 0.0, leng
         duration = (x_end - X_START) / speed
     r_e = rolling_radius(model, load, speed)
     omega = wheel_spin(speed, r_e, 0.0 if torque is not None else slip)
-    drive = Drive(torque is not None, float(torque or 0.0), model.tyre.spin_inertia)
+    from ..guards import rig_spin_inertia
+    inertia = rig_spin_inertia(model, load) if torque is not None else model.tyre.spin_inertia
+    drive = Drive(torque is not None, float(torque or 0.0), inertia)
     n_steps = int(round(duration / dt))
     out_every = max(1, int(round(1.0 / (output_rate * dt))))
     tables = []

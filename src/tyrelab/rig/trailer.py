@@ -205,13 +205,14 @@ class Trailer:
 
     def params(self, speed: float) -> K.TrailerParams:
         """The :class:`~._trailer_kernel.TrailerParams` record at towing ``speed`` [m/s]."""
+        from ..guards import rig_spin_inertia
         s, gm, ty = self.setup, self.geometry, self.model.tyre
         return K.TrailerParams(
             speed=float(speed), hitch_to_axle=float(gm.hitch_to_axle), track=float(gm.track),
             hitch_height=float(s.hitch_height), mass=float(s.mass),
             cg=np.ascontiguousarray(s.cg, np.float64),
             inertia=np.ascontiguousarray(s.inertia, np.float64),
-            spin_inertia=ty.spin_inertia, wheel_mass=float(ty.wheel_mass),
+            spin_inertia=rig_spin_inertia(self.model, s.wheel_load), wheel_mass=float(ty.wheel_mass),
             gravity=G, road_y=0.5 * float(gm.track))
 
     def run(self, road: Road | str, speed: float, duration: float | None = None,
