@@ -17,7 +17,8 @@ from ..errors import InputError
 from .tir import TirFile, read_tir, write_tir
 from .vertical import DEFAULT_DAMPING_RAMP, NO_BOTTOMING, VerticalLaw, bottoming_table
 
-#: the least spin inertia [kg m^2] a rig turns a wheel with (:attr:`Tyre.spin_inertia`)
+#: the least spin inertia [kg m^2] a spin step divides by (:attr:`Tyre.spin_inertia`); the rigs
+#: turn a wheel whose file gives none with :func:`tyrelab.limits.wheel_spin_inertia`'s estimate
 MIN_SPIN_INERTIA = 1e-3
 #: vertical stiffness modes a user can ask for
 STIFFNESS_MODES = ("table", "linear")
@@ -140,8 +141,9 @@ class Tyre:
     # -- what the kernels take -------------------------------------------
     @property
     def spin_inertia(self) -> float:
-        """The spin inertia [kg m^2] a rig turns the wheel with: ``wheel_spin_inertia``, at
-        least :data:`MIN_SPIN_INERTIA` (a file that gives none; the spin step divides by it)."""
+        """The file's spin inertia [kg m^2], ``wheel_spin_inertia``, at least
+        :data:`MIN_SPIN_INERTIA` (a file that gives none; the spin step divides by it). The
+        rigs take :func:`tyrelab.limits.wheel_spin_inertia`, which estimates a missing one."""
         return float(max(self.wheel_spin_inertia, MIN_SPIN_INERTIA))
 
     @property

@@ -304,6 +304,7 @@ def ring_equilibrium(tyre, load, speed, params, tread_pattern=False, **options):
     from ...road.obstacles import Flat
     from ..handling.none import NoHandling
     from ..static import roll_in_place
+    from ...limits import wheel_spin_inertia
     from ..vertical import VerticalLaw
     from ..wheel import Wheel
     height, state = ring_static_equilibrium(tyre, load, tread_pattern, **options)
@@ -317,7 +318,7 @@ def ring_equilibrium(tyre, load, speed, params, tread_pattern=False, **options):
         st = copy_state(state)
         wheel = Wheel(VerticalLaw.linear(0.0, 0.0), params, NoHandling(), road, st)
         dt = 1e-3
-        inertia = tyre.spin_inertia
+        inertia = wheel_spin_inertia(tyre, load)[0]   # a file without one: estimated
         travel = 2.0 * math.sqrt(max(r0 ** 2 - height ** 2, 0.0))   # a contact length
         n_settle = int(max(ROLL_SETTLE, 3.0 * travel / speed) / dt)
         n = int(max(ROLL_WINDOW, travel / speed) / dt)
