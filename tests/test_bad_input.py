@@ -305,17 +305,17 @@ def test_bad_input_is_refused_in_one_line(work, capsys, long_work, argv, code, w
 
 
 def test_a_local_cluster_holds_no_more_workers_than_the_memory(work, capsys, long_work, monkeypatch):
-    """Each local worker holds about 0.5 GiB (limits.WORKER_MEMORY): a machine of 4 GiB takes
+    """Each local worker holds about 0.5 GiB (resources.WORKER_MEMORY): a machine of 4 GiB takes
     8 of them; 9 are refused, naming --workers, before any run, with or without a spec. (1000
     workers on this project's 24 GB machine used to start until it ran out of memory.)"""
-    from tyrelab import limits
+    from tyrelab import resources
 
     gib = 1024 ** 3
-    assert limits.max_local_workers(4 * gib) == 8
-    assert limits.max_local_workers(gib // 4) == 1              # one worker always starts
-    assert limits.max_local_workers(10 ** 6 * gib) == limits.MAX_WORKERS
-    monkeypatch.setattr(limits, "machine_memory", lambda: 4 * gib)
-    assert limits.check_local_workers(8) == 8
+    assert resources.max_local_workers(4 * gib) == 8
+    assert resources.max_local_workers(gib // 4) == 1              # one worker always starts
+    assert resources.max_local_workers(10 ** 6 * gib) == resources.MAX_WORKERS
+    monkeypatch.setattr(resources, "machine_memory", lambda: 4 * gib)
+    assert resources.check_local_workers(8) == 8
     for spec in ([], [work / "good_study.toml"]):
         (work / "good_study.toml").write_text(
             (work / "study.toml").read_text().replace("dt = nan", "dt = 1e-3"))

@@ -229,7 +229,7 @@ def test_fuzzed_road_names():
     run and, for a sample, driven (point model, 0.3 s) with finite results."""
     import tyrelab
     from tyrelab.guards import check_road_for_tyre
-    from tyrelab.limits import MAX_MEMORY, grid_cells
+    from tyrelab.resources import MAX_MEMORY, grid_cells
     from tyrelab.road.spec import road_from_spec
     from tyrelab.tyre.library import load_tyre
 

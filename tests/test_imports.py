@@ -31,7 +31,8 @@ PACKAGE = Path(__file__).resolve().parents[1] / "src" / "tyrelab"
 #: is the package's own ``__init__`` (the front door re-exporting ``simulate`` ...).
 LAYERS = (
     ("tyrelab.core",),
-    ("tyrelab._version", "tyrelab.errors", "tyrelab.limits", "tyrelab.io_atomic", "tyrelab.signal",
+    ("tyrelab._version", "tyrelab.errors", "tyrelab.limits", "tyrelab.resources", "tyrelab.io_atomic",
+     "tyrelab.signal",
      "tyrelab.guards", "tyrelab.stop", "tyrelab.plugins"),
     ("tyrelab.road",),
     ("tyrelab.tyre",),

@@ -108,19 +108,19 @@ def test_a_step_above_the_stability_limit_is_refused(xzl):
 
 
 def test_a_runs_cost_estimate_grows_only_below_the_rings_internal_step(xzl):
-    """``limits.run_wall_time``: the ring advances in its own internal steps, so a rig step
+    """``resources.run_wall_time``: the ring advances in its own internal steps, so a rig step
     above its default internal step costs nothing more, one of half that step twice as much;
     an analytic model costs the same per rig step at any step. (The estimate reads the step
     the ring takes: both were 1/6 ms, then the estimate's stayed behind for a while.)"""
-    from tyrelab import limits
+    from tyrelab import resources
     from tyrelab.tyre.ring.model import ACCURATE_STEP
 
     ring, point = TyreModel(xzl, "ring"), TyreModel(xzl, "point")
-    at = {dt: limits.run_wall_time([ring], 1.0, dt) for dt in (1e-3, ACCURATE_STEP, 0.5 * ACCURATE_STEP)}
+    at = {dt: resources.run_wall_time([ring], 1.0, dt) for dt in (1e-3, ACCURATE_STEP, 0.5 * ACCURATE_STEP)}
     assert at[1e-3] == at[ACCURATE_STEP] > 0.0
     assert at[0.5 * ACCURATE_STEP] == pytest.approx(2.0 * at[ACCURATE_STEP], rel=1e-12)
-    assert limits.run_wall_time([point], 1.0, 0.5e-3) == pytest.approx(
-        2.0 * limits.run_wall_time([point], 1.0, 1e-3), rel=1e-12)
+    assert resources.run_wall_time([point], 1.0, 0.5e-3) == pytest.approx(
+        2.0 * resources.run_wall_time([point], 1.0, 1e-3), rel=1e-12)
 
 
 def _cleat_peak(xzl, **options):

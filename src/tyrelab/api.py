@@ -142,7 +142,7 @@ def simulate(tyre: str | Tyre = DEFAULT_TYRE, model: str = "point", road=None,
         vertical law at a fraction of the ring's cost.
     force : bool
         Run even when the estimated memory or wall time is above
-        :data:`tyrelab.limits.MAX_MEMORY` / :data:`~tyrelab.limits.MAX_WALL_TIME`.
+        :data:`tyrelab.resources.MAX_MEMORY` / :data:`~tyrelab.resources.MAX_WALL_TIME`.
     options : dict, optional
         The contact model's options, e.g. ``{"n_length": 5}`` for the
         enveloping model's cams or ``{"n_segments": 200}`` for the ring
@@ -164,7 +164,7 @@ def simulate(tyre: str | Tyre = DEFAULT_TYRE, model: str = "point", road=None,
     :class:`tyrelab.guards.PhysicsWarning` per finding (also listed in the
     table's ``attrs["metadata"]["physics_warnings"]``).
     """
-    from . import guards, limits
+    from . import guards, limits, resources
     from .rig.registry import RigRequest, check_rig_options, rig_named, rigs
 
     the_rig = rig_named(rig)
@@ -219,14 +219,14 @@ def simulate(tyre: str | Tyre = DEFAULT_TYRE, model: str = "point", road=None,
             raise InputError(f"the run to the road's end at {speed:.6g} m/s would last {run_time:.6g} s, "
                              f"above the {limits.MAX_DURATION:g} s allowed; give a duration or a "
                              "higher speed", field="speed")
-        cells = limits.grid_cells(road)
+        cells = resources.grid_cells(road)
         guards.check_road_for_tyre(road, tm.tyre)
     else:
         road = None
         duration = run_time = duration or the_rig.default_duration
-    limits.check_resources(f"a {run_time:.6g} s run at a {dt:g} s step",
-                           memory=limits.run_memory(run_time, dt, output_rate, cells),
-                           wall_time=limits.run_wall_time(models, run_time, dt), force=force,
+    resources.check_resources(f"a {run_time:.6g} s run at a {dt:g} s step",
+                           memory=resources.run_memory(run_time, dt, output_rate, cells),
+                           wall_time=resources.run_wall_time(models, run_time, dt), force=force,
                            hint="use a larger time step, a shorter duration or a higher speed")
     request = RigRequest(model=tm, left=left, road=road, speed=speed, load=load, wheel_load=wheel_load,
                          duration=duration, dt=dt, output_rate=output_rate, progress=progress,

@@ -126,7 +126,7 @@ def model_options(pairs) -> dict:
 
 def add_force(parser) -> None:
     """``--force``: run a request estimated above the memory or time limit."""
-    from ..limits import MAX_MEMORY, MAX_WALL_TIME
+    from ..resources import MAX_MEMORY, MAX_WALL_TIME
     parser.add_argument("--force", action="store_true",
                         help=f"run even when the request is estimated to need more than "
                              f"{MAX_MEMORY / 1024 ** 3:g} GiB of memory or {MAX_WALL_TIME / 60:g} min")

@@ -75,7 +75,7 @@ def register(sub):
 
 def _road(text, force: bool = False):
     """The road of a command, with its grid's memory checked before it is built."""
-    from ..limits import check_resources, grid_cells
+    from ..resources import check_resources, grid_cells
     from ..road.spec import road_from_spec
 
     road = road_from_spec(text, force=force)

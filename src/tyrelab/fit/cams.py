@@ -55,7 +55,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from .. import limits
+from .. import limits, resources
 from ..errors import InputError
 from ..guards import PhysicsWarning
 from .cam_choice import ABS_TOL, COST_TOL, REL_TOL, recommend, rule_text, summarise
@@ -278,11 +278,11 @@ def cam_count_study(tyre="xzl-16.00R20", n_length=(1, 3, 5, 7), n_width=(1, 3, 6
         for v in speeds:
             run_time = duration or max(road_objs[r].extent()[1] - road_objs[r].run_start, 1.0) / v
             models = [probe] if left is None else [probe, left]
-            est += len(pairs) * (repeat * run_time + WARM_UP) * limits.run_wall_time(models, 1.0, dt)
+            est += len(pairs) * (repeat * run_time + WARM_UP) * resources.run_wall_time(models, 1.0, dt)
             if kind == "model":
                 ref_models = [model(*ref_value)] + ([] if left is None else [left])
-                est += limits.run_wall_time(ref_models, run_time, dt)
-    limits.check_resources(f"a cam study of {len(pairs)} pairs x {len(roads) * len(speeds)} conditions",
+                est += resources.run_wall_time(ref_models, run_time, dt)
+    resources.check_resources(f"a cam study of {len(pairs)} pairs x {len(roads) * len(speeds)} conditions",
                            wall_time=est, force=force, hint="use fewer pairs, roads or speeds")
 
     rows = []

@@ -51,7 +51,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .. import limits
+from .. import limits, resources
 from ..errors import InputError
 from ..io_atomic import atomic_write
 from .base import GriddedRoad, Road
@@ -291,7 +291,7 @@ class CrgRoad(GriddedRoad):
         self.header = _header(self.path)
         _check_binary_length(self.path, self.header)
         src = str(self.path)
-        limits.check_resources(f"the OpenCRG file {self.path.name}", memory=_estimated_bytes(self.path,
+        resources.check_resources(f"the OpenCRG file {self.path.name}", memory=_estimated_bytes(self.path,
                                self.header), force=force, field="road")
         g, du = _load_grid(self.path)
         _check_data(g, src)
@@ -304,7 +304,7 @@ class CrgRoad(GriddedRoad):
             raise InputError(f"lateral offset {self.v_offset:g} m is outside the road, whose long "
                              f"sections run from v = {g.v[0]:g} to {g.v[-1]:g} m", source=src, field="road")
         dv, v_nodes = _regular_v(g.v)
-        limits.check_resources(f"the OpenCRG file {self.path.name} on a regular v grid",
+        resources.check_resources(f"the OpenCRG file {self.path.name} on a regular v grid",
                                memory=8.0 * 3 * len(v_nodes) * len(g.u), force=force, field="road")
         if len(v_nodes) != len(g.v) or np.any(np.abs(v_nodes - g.v) > 1e-12):
             elevation = np.stack([np.interp(v_nodes, g.v, row) for row in elevation])
@@ -335,7 +335,7 @@ def write_crg(road: Road, path, spacing: tuple[float, float] | None = None, fmt:
     one of :data:`CRG_FORMATS`; the default KDBI (binary double) keeps heights
     exact. The file appears only when complete. ``spacing`` is bounded
     (:data:`tyrelab.limits.MIN_GRID_SPACING` to ``MAX_GRID_SPACING``) and a
-    grid above :data:`tyrelab.limits.MAX_MEMORY` is refused unless ``force``.
+    grid above :data:`tyrelab.resources.MAX_MEMORY` is refused unless ``force``.
     """
     import pycrg
 
@@ -355,8 +355,8 @@ def write_crg(road: Road, path, spacing: tuple[float, float] | None = None, fmt:
         spacing = tuple(limits.check_number(d, "spacing", limits.MIN_GRID_SPACING,
                                             limits.MAX_GRID_SPACING, "m", what="grid spacing")
                         for d in (dx, dy))
-    cells = limits.grid_cells(road, spacing)
-    limits.check_resources(f"the grid of {road.name} at this spacing ({cells:.3g} nodes)",
+    cells = resources.grid_cells(road, spacing)
+    resources.check_resources(f"the grid of {road.name} at this spacing ({cells:.3g} nodes)",
                            memory=8.0 * 3 * cells, force=force, field="spacing",
                            hint="use a coarser spacing")
     g = road.grid(spacing)

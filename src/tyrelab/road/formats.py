@@ -57,7 +57,7 @@ class RoadFormat:
     read : callable
         ``read(path, offset, force) -> Road``: the road in the file, driven at
         lateral offset ``offset`` [m]; ``force`` lifts the memory limit of a
-        road built from data (:data:`tyrelab.limits.MAX_MEMORY`). A malformed
+        road built from data (:data:`tyrelab.resources.MAX_MEMORY`). A malformed
         file raises :class:`~tyrelab.errors.InputError` naming the file.
     write : callable, optional
         ``write(road, path, spacing=None, force=False, **options) -> (path, what)``:

@@ -30,7 +30,7 @@ from __future__ import annotations
 import numpy as np
 from scipy import fft, special
 
-from .. import limits
+from .. import limits, resources
 from ..errors import InputError
 from .base import GriddedRoad
 from .grid import RoadGrid
@@ -221,7 +221,7 @@ class RandomRoad(GriddedRoad):
         dx, dy = (float(s) for s in spacing)
         nx = _check_sizes(length, dx)
         ny = _check_sizes(width, dy, "width", limits.MAX_ROAD_WIDTH) if width else 2
-        limits.check_resources(f"a random road of {nx} x {ny} nodes", memory=8.0 * 4 * nx * ny,
+        resources.check_resources(f"a random road of {nx} x {ny} nodes", memory=8.0 * 4 * nx * ny,
                                force=force, field="road", hint="use a coarser spacing or a smaller road")
         limits.check_number(start, "road", -limits.MAX_ROAD_LENGTH, limits.MAX_ROAD_LENGTH, "m",
                             what="random road start")

@@ -112,7 +112,7 @@ def random_road_args(kind: str, args: str, text: str) -> tuple:
 def road_from_spec(spec: str | Road, force: bool = False) -> Road:
     """A :class:`Road` from its name (see the module docstring).
 
-    ``force`` lifts the memory limit (:data:`tyrelab.limits.MAX_MEMORY`) of the
+    ``force`` lifts the memory limit (:data:`tyrelab.resources.MAX_MEMORY`) of the
     roads built from data, a random road's or an OpenCRG file's grid.
     """
     if isinstance(spec, Road):

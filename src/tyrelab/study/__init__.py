@@ -95,7 +95,7 @@ def run(spec: StudySpec | str | Path | None = None, workers: int | None = None,
     elif not isinstance(spec, StudySpec):
         spec = load_spec(spec)
     if workers is not None and not scheduler:
-        from ..limits import check_local_workers
+        from ..resources import check_local_workers
 
         check_local_workers(workers)  # before the results folder is made
     store = Store(output if output is not None else spec.output, storage=spec.store)

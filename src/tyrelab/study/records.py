@@ -10,7 +10,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from ..limits import model_cost
+from ..resources import model_cost
 from ..rig.registry import rig_named
 from .keys import run_key, tyre_digest
 
@@ -278,7 +278,7 @@ _TRACK_LENGTH = 100.0
 def expected_cost(run: RunSpec) -> float:
     """A rough estimate of a run's wall time [s]: simulated time x the model's cost."""
     simulated = run.duration if run.duration is not None else _TRACK_LENGTH / run.speed
-    # the model's cost per simulated second (the registry's, limits.model_cost) orders the runs
+    # the model's cost per simulated second (the registry's, resources.model_cost) orders the runs
     from ..tyre.registry import contact_model
     return simulated * model_cost(contact_model(run.model.contact))
 

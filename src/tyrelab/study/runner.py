@@ -38,7 +38,7 @@ import time
 import warnings
 from contextlib import contextmanager
 
-from .. import limits, stop
+from .. import resources, stop
 from ..errors import InputError
 from .store import Store
 
@@ -108,8 +108,8 @@ def _client(scheduler: str | None, workers: int | None, connect_timeout: float =
                              "running 'dask scheduler' prints, e.g. tcp://host:8786",
                              field="--scheduler") from None
     # one per core by default, and never more than the machine's memory holds (limits)
-    n = (limits.check_local_workers(workers) if workers is not None
-         else min(os.cpu_count() or 1, limits.max_local_workers()))
+    n = (resources.check_local_workers(workers) if workers is not None
+         else min(os.cpu_count() or 1, resources.max_local_workers()))
     # the worker processes start with SIGINT ignored (an ignored signal stays ignored across
     # exec, and Python then installs no KeyboardInterrupt handler): Ctrl-C in a terminal
     # reaches the whole process group, and only this process should answer it, by

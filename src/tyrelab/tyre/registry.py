@@ -93,7 +93,7 @@ class ContactModel:
     cost : float, optional
         Wall time [s] per simulated second on the trailer at a 1 ms step on one
         core (README benchmarks): orders a study's runs, longest first, and
-        estimates a request's time (:func:`tyrelab.limits.model_cost`; None: by
+        estimates a request's time (:func:`tyrelab.resources.model_cost`; None: by
         kind). The built-in models state the mean over the built-in campaign's runs
         (its ``index.parquet``: ``wall_time_s`` over ``simulated_s``, two workers on
         two cores, 2026-11-27): ring 0.080, ring-tp 0.085, enveloping 0.022,

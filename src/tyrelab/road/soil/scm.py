@@ -57,9 +57,9 @@ BYTES_PER_NODE = 5 * 8
 
 def check_bed_memory(nodes: int, bed: str, remedy: str, field: str) -> None:
     """One InputError on ``field`` when a bed of ``nodes`` nodes (``bed``: what it is, in words)
-    needs more than the memory one request may take (:data:`~tyrelab.limits.MAX_MEMORY`)."""
+    needs more than the memory one request may take (:data:`~tyrelab.resources.MAX_MEMORY`)."""
     from ...errors import InputError
-    from ...limits import MAX_MEMORY
+    from ...resources import MAX_MEMORY
     if nodes * BYTES_PER_NODE > MAX_MEMORY:
         raise InputError(f"{bed} needs {nodes * BYTES_PER_NODE / 1024 ** 3:.3g} GiB, above the "
                          f"{MAX_MEMORY / 1024 ** 3:g} GiB allowed; {remedy}", field=field)

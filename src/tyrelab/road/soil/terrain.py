@@ -177,7 +177,7 @@ def lay_soil(soil: Soil, road, x0: float, x1: float, level_at: float | None = No
     ``(level_at, 0)`` when given): a :class:`~tyrelab.road.soil.patch.SoilPatch` holding at
     most :data:`~tyrelab.road.soil.patch.PATCH_LENGTH` of it at once, the whole of it when not
     ``moving`` (a run that comes back over its rut); refused above the memory allowed
-    (:data:`~tyrelab.limits.MAX_MEMORY`). :attr:`TerrainKind.lay` of the soil."""
+    (:data:`~tyrelab.resources.MAX_MEMORY`). :attr:`TerrainKind.lay` of the soil."""
     from .patch import PATCH_LENGTH, SoilPatch
     x0, x1 = x0 - BED_MARGIN, x1 + BED_MARGIN
     n_run = int(np.ceil((x1 - x0) / spacing)) + 1
