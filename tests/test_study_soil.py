@@ -423,11 +423,16 @@ def test_a_torque_run_gives_the_slip_at_which_that_torque_drives_the_wheel(tmp_p
     torque (the steady torque balances the soil's moment whichever way the spin is set)."""
     import tyrelab
     from tyrelab import study as studies
-    text = HEAD + _soil_test(slips=None, torques=f"[{TORQUE:g}]", models='["rigid wheel"]',
-                             duration="3.0")
+    text = HEAD + _soil_test(slips=None, torques=f"[{TORQUE:g}]", models='["rigid wheel", "OPC lk"]',
+                             duration="3.0", reference='{ model = "rigid wheel" }')
     (tmp_path / "spec.toml").write_text(text)
     table = studies.run(tmp_path / "spec.toml", workers=1, progress=False).soil_curves
-    (row,) = table.itertuples()
+    # the point model settles at another slip under the same torque: it is compared with the
+    # reference at that torque (at its own slip the reference has no run)
+    (row,) = _curve(table, "rigid wheel").itertuples()
+    (other,) = _curve(table, "OPC lk").itertuples()
+    assert other.slip != row.slip and other.TORQUE_diff_pct == 0.0
+    assert other.FX_diff_pct == pytest.approx(100 * (other.FX - row.FX) / other.force_scale_N, rel=1e-12)
     assert row.torque == TORQUE and row.TORQUE == pytest.approx(TORQUE, rel=1e-12)
     assert 0.1 < row.slip < 0.2
     back = tyrelab.simulate(model="rigid", rig="single-wheel", terrain="lete-sand", load=LOAD,

@@ -283,7 +283,7 @@ def cam_count_study(tyre="xzl-16.00R20", n_length=(1, 3, 5, 7), n_width=(1, 3, 6
                 ref_models = [model(*ref_value)] + ([] if left is None else [left])
                 est += resources.run_wall_time(ref_models, run_time, dt)
     resources.check_resources(f"a cam study of {len(pairs)} pairs x {len(roads) * len(speeds)} conditions",
-                           wall_time=est, force=force, hint="use fewer pairs, roads or speeds")
+                              wall_time=est, force=force, hint="use fewer pairs, roads or speeds")
 
     rows = []
     for r in roads:

@@ -159,6 +159,7 @@ class RunSpec:
 
     def simulate_kwargs(self) -> dict:
         """Keyword arguments of :func:`tyrelab.simulate` for this run."""
+        drive = {k: v for k, v in (("slip", self.slip), ("torque", self.torque)) if v is not None}
         return {"tyre": self.tyre.file, "model": self.model.contact, "road": self.road,
                 "speed": self.speed, "load": self.load, "pressure": self.tyre.pressure,
                 "stiffness": self.model.stiffness, "handling": self.model.handling,
@@ -167,8 +168,7 @@ class RunSpec:
                 "options": dict(self.model.options) or None,
                 # only when set: the keyword arguments of a rigid-road run stay as they were
                 **({"terrain": self.terrain} if self.terrain is not None else {}),
-                **({"rig_options": {"slip": self.slip}} if self.slip is not None else {}),
-                **({"rig_options": {"torque": self.torque}} if self.torque is not None else {})}
+                **({"rig_options": drive} if drive else {})}
 
 
 @dataclass(frozen=True)

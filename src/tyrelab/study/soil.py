@@ -79,17 +79,19 @@ def _radius(run: RunSpec, radii: dict) -> float:
 
 
 def _differences(df: pd.DataFrame, spec: StudySpec, radius: dict) -> pd.DataFrame:
-    """The reference columns of the module notes, per condition with a reference model."""
-    references = {t.name: t.reference_model for t in spec.tests if t.is_soil_test}
+    """The reference columns of the module notes, per condition with a reference model: the
+    reference's run at the same slip, or under the same torque in a test of torques."""
+    references = {t.name: (t.reference_model, "torque" if t.torques else "slip")
+                  for t in spec.tests if t.is_soil_test}
     for cond, rows in df.groupby(CONDITION, sort=False):
-        ref_name = references.get(cond[1])
+        ref_name, drive = references.get(cond[1], (None, None))
         if ref_name is None:
             continue
-        ref = rows[rows["model"] == ref_name].set_index("_drive")
+        ref = rows[rows["model"] == ref_name].set_index(drive)
         if ref.empty:
             continue
         scale = float(np.max(np.abs(ref["TORQUE"].to_numpy()))) / radius[cond[0]]
-        at = rows["_drive"].map
+        at = rows[drive].map
         df.loc[rows.index, "reference"] = ref_name
         df.loc[rows.index, "force_scale_N"] = scale
         df.loc[rows.index, "FX_diff_pct"] = 100.0 * (rows["FX"] - at(ref["FX"])) / scale
@@ -122,24 +124,23 @@ def soil_curves(spec: StudySpec, store: Store, write: bool = True) -> pd.DataFra
         record = store.record(key)
         if record is None or record.get("status") != DONE or not store.is_finished(key):
             continue
-        signal = store.signal(key)
-        means = steady_means(signal, run.duration)
-        slip = run.slip
-        if slip is None:   # under a driving torque: the slip the soil settled it at
-            slip = steady_means(signal, run.duration, ("LONGSLIP",))["LONGSLIP"]
+        # under a driving torque, the slip is the soil's answer: its steady LONGSLIP
+        means = steady_means(store.signal(key), run.duration,
+                             VALUES if run.torque is None else (*VALUES, "LONGSLIP"))
+        slip = means.pop("LONGSLIP", run.slip)
         radius = _radius(run, radii)
         rows.append({"key": key, "tyre": run.tyre.name, "test": run.test,
                      "soil": _soil_name(run.terrain, names), "speed_kmh": round(run.speed_kmh, 9),
                      "load": str(run.load), "model": run.model.name, "contact": run.model.contact,
                      "slip": float(slip), "torque": np.nan if run.torque is None else float(run.torque),
                      **means, "reference": "", "wall_time_s": float(record.get("wall_time_s", np.nan)),
-                     "_radius": radius, "_drive": run.slip if run.torque is None else run.torque})
-    df = pd.DataFrame(rows, columns=[*COLUMNS, "_radius", "_drive"])
-    for col in (*VALUES, *DIFFERENCES[1:], "slip", "torque", "speed_kmh", "wall_time_s", "_drive"):
+                     "_radius": radius})
+    df = pd.DataFrame(rows, columns=[*COLUMNS, "_radius"])
+    for col in (*VALUES, *DIFFERENCES[1:], "slip", "torque", "speed_kmh", "wall_time_s"):
         df[col] = df[col].astype(float)
     df["reference"] = df["reference"].fillna("").astype(str)
     radius = dict(zip(df["tyre"], df["_radius"]))
-    df = _differences(df, spec, radius).drop(columns=["_radius", "_drive"]).reset_index(drop=True)
+    df = _differences(df, spec, radius).drop(columns="_radius").reset_index(drop=True)
     if write:
         path = store.folder / SOIL_FILE
         if any(t.is_soil_test for t in spec.tests):

@@ -253,10 +253,7 @@ def _bottoming(tir: TirFile, r0: float | None) -> np.ndarray | None:
     """
     curve = tir.table("BOTTOMING_CURVE") if tir.has("BOTTOMING_CURVE") else None
     stiff = _bounded(tir, "VERTICAL", "BOTTOM_STIFF", 0.0, limits.MAX_STIFFNESS, "N/m", low_open=False)
-    offset = tir.get("VERTICAL", "BOTTOM_OFFST")
-    if offset is not None and (isinstance(offset, bool) or not isinstance(offset, (int, float))
-                               or not math.isfinite(offset)):
-        _fail(tir, f"expected a finite number, found '{offset}'", "VERTICAL", "BOTTOM_OFFST")
+    offset = _bounded(tir, "VERTICAL", "BOTTOM_OFFST", -limits.MAX_RADIUS, limits.MAX_RADIUS, "m")
     if stiff and curve is not None:
         _fail(tir, "the file gives bottoming twice, as [BOTTOMING_CURVE] and as BOTTOM_STIFF; keep "
               "one (set BOTTOM_STIFF = 0 to use the curve)", "VERTICAL", "BOTTOM_STIFF")
