@@ -91,7 +91,7 @@ def _loop(tyre, damping, cycles=3, rate=50.0, amplitude=0.04, period=10.0):
     d = amplitude * (1 - np.cos(w * t))
     v = amplitude * w * np.sin(w * t)
     law = VerticalLaw.table(tyre.load_deflection[:, 0], tyre.load_deflection[:, 1], damping, 1e-9)
-    return t, d, np.array([normal_force(law, a, b) for a, b in zip(d, v)])
+    return t, d, np.array([normal_force(law, a, b, 0.0) for a, b in zip(d, v)])
 
 
 def test_raw_loop_mean_of_loading_and_unloading_gives_the_curve(xzl):

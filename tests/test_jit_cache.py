@@ -4,7 +4,7 @@ The end-to-end tests run a copy of the current package (``tyrelab.__file__``'s
 folder) in fresh interpreters, with every cache folder and ``HOME`` inside
 ``tmp_path``, so neither the work tree nor the user's caches are touched. Each
 cold run compiles the smallest kernel that calls into another kernel module: the soil
-wheel's tyre force (``tyre/contact/soil_wheel.py``), which calls ``static_load`` of
+wheel's tyre force (``tyre/contact/soil_wheel.py``), which calls ``rolling_load`` of
 ``tyre/vertical.py``, the module the edits below change. A cold run takes about 2 s, of
 which 1.5 s is the interpreter and its imports (the point model's static press, used
 before, took 5.5-7.5 s: the suite ran six of them).
@@ -28,7 +28,7 @@ from tyrelab.core import jit_cache
 from tyrelab.core.cache_folders import IN_USE
 
 PACKAGE = Path(tyrelab.__file__).resolve().parent
-#: the spline branch of ``static_load`` (the built-in tyre uses the load-deflection table)
+#: the spline branch of ``_carcass_load`` (the built-in tyre uses the load-deflection table)
 SPLINE_RETURN = "    return value if value > 0.0 else 0.0\n"
 DOUBLED_RETURN = "    return 2.0 * value if value > 0.0 else 0.0\n"
 
@@ -40,7 +40,7 @@ from tyrelab.core.jit_cache import cache_dir
 from tyrelab.tyre.contact.soil_wheel import _tyre_force
 
 law = tyrelab.load_tyre("xzl-16.00R20").vertical_law
-load = float(_tyre_force(law, 0.03, 0.03, 0.0)[0])  # static: static_load at 30 mm [N]
+load = float(_tyre_force(law, 0.03, 0.03, 0.0, 0.0)[0])  # static, not spinning: at 30 mm [N]
 ours = [d for d in gc.get_objects() if isinstance(d, Dispatcher)
         and d.py_func.__module__.startswith("tyrelab.")]
 print(json.dumps({

@@ -41,22 +41,22 @@ def test_linear_law_is_k_rho():
 def test_damping_ramps_in_and_force_never_pulls():
     lw = law()
     # full damping beyond the ramp: F = k(rho) + c rho_dot
-    assert normal_force(lw, 0.03, 0.1) == pytest.approx(15559 + 266.0)
+    assert normal_force(lw, 0.03, 0.1, 0.0) == pytest.approx(15559 + 266.0)
     # half-way up the ramp, smoothstep(0.5) = 0.5 of the damping
     rho = 0.001
     k = static_load(lw, rho)
-    assert normal_force(lw, rho, 0.1) == pytest.approx(k + 0.5 * 266.0)
+    assert normal_force(lw, rho, 0.1, 0.0) == pytest.approx(k + 0.5 * 266.0)
     # rebound faster than the spring can follow: clipped at zero, no tension
-    assert normal_force(lw, 0.01, -100.0) == 0.0
+    assert normal_force(lw, 0.01, -100.0, 0.0) == 0.0
     # lift-off
-    assert normal_force(lw, -0.01, -1.0) == 0.0
+    assert normal_force(lw, -0.01, -1.0, 0.0) == 0.0
 
 
 def test_normal_force_never_negative_or_nan():
     lw = law()
     rng = np.random.default_rng(1)
     for rho, rdot in zip(rng.uniform(-0.05, 0.2, 5000), rng.normal(0, 5, 5000)):
-        f = normal_force(lw, rho, rdot)
+        f = normal_force(lw, rho, rdot, 0.0)
         assert np.isfinite(f) and f >= 0.0
 
 

@@ -181,9 +181,9 @@ def _pressure(m: _Manifest, value, keys) -> float:
 
 def _tyre_physics(m: _Manifest, tyre: dict) -> None:
     """The ``[tyre]`` values checked as a property file's would be
-    (:func:`tyrelab.tyre.params.check_physics`: sizes, the rim inside the tyre, masses and
+    (:func:`tyrelab.tyre.tir_physics.check_physics`: sizes, the rim inside the tyre, masses and
     inertias), each failure at its manifest key."""
-    from ..tyre.params import check_physics
+    from ..tyre.tir_physics import check_physics
     from ..tyre.tir import TirFile
     from .property_file import TYRE_KEYS as TIR_KEYS
     tir, key_of = TirFile(source=str(m.path)), {}

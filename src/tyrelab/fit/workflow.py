@@ -423,7 +423,7 @@ def fit_campaign(campaign: Campaign, steps=STEPS, base=None, progress=None, skip
         progress("predictions")
     tidy(tir, new=base is None and campaign.base is None)
     if tir.has("DIMENSION", "UNLOADED_RADIUS"):
-        from ..tyre.params import check_physics
+        from ..tyre.tir_physics import check_physics
         try:
             check_physics(tir)  # what is written must read back
         except InputError as exc:  # the fitted values' fault, not the output file's: name the tests

@@ -207,9 +207,10 @@ def _models(ck: Checker, doc, tyres) -> tuple[ModelSpec, ...]:
             stiffness = ck.choice(t["stiffness"], path + ("stiffness",), STIFFNESS_MODES, "stiffness")
             if stiffness == "table":
                 for tyre_spec, tyre in tyres:
-                    if tyre.load_deflection is None:
+                    if not tyre.has_nonlinear_law:
                         ck.fail(path + ("stiffness",), f"tyre '{tyre_spec.name}' has no "
-                                "[DEFLECTION_LOAD_CURVE] for a table stiffness; use \"linear\"")
+                                "[DEFLECTION_LOAD_CURVE] (nor MF-Tyre's Q_FZ2) for a table "
+                                "stiffness; use \"linear\"")
         handling = None
         if "handling" in t:
             handling = ck.choice(t["handling"], path + ("handling",), handlings, "handling model")

@@ -106,8 +106,9 @@ class TyreModel:
         at ``speed`` [m/s] on a flat road (see :class:`Equilibrium`).
 
         ``params`` the contact record the wheel will run with (default: built
-        for a flat road). Analytic models stand at the vertical law's static
-        deflection; a model with its own load-deflection (the ring) finds
+        for a flat road). Analytic models stand at the vertical law's
+        deflection at the free-rolling spin (:meth:`Tyre.rolling_deflection`);
+        a model with its own load-deflection (the ring) finds
         its own (registry hook ``equilibrium``).
         """
         if params is None:
@@ -117,7 +118,7 @@ class TyreModel:
         if hook is not None and load > 0:
             deflection, spin, state = hook(self.tyre, load, float(speed), params, **self.options)
             return Equilibrium(float(deflection), float(spin), state)
-        deflection = self.tyre.static_deflection(load) if load > 0 else 0.0
+        deflection = self.tyre.rolling_deflection(load, float(speed)) if load > 0 else 0.0
         return Equilibrium(deflection, float(speed) / (self.tyre.unloaded_radius - deflection),
                            self.initial_state(load, params))
 

@@ -4,8 +4,9 @@ Thesis eq. 2.2 / 4.1::
 
     Fz = k(rho) + c_z * rho_dot
 
-with ``k(rho)`` linear (``VERTICAL_STIFFNESS``) or a cubic spline through the
-``[DEFLECTION_LOAD_CURVE]`` table (up to 100 points). As in ADAMS/Tire, a
+with ``k(rho)`` linear (``VERTICAL_STIFFNESS``), a cubic spline through the
+``[DEFLECTION_LOAD_CURVE]`` table (up to 100 points), or MF-Tyre 6.x's
+quadratic law in ``Q_FZ2`` (:func:`mf_load_deflection`). As in ADAMS/Tire, a
 table, when present, replaces the linear stiffness. Beyond the last table
 point the spline is continued as a straight line with its end slope (a cubic
 continued past its data soon turns over; a tyre does not get softer when it
@@ -26,6 +27,7 @@ positive (the loaded radius below the rim radius plus ``BOTTOM_OFFST``).
 
 from __future__ import annotations
 
+import math
 from typing import NamedTuple
 
 import numba as nb
@@ -63,6 +65,10 @@ class VerticalLaw(NamedTuple):
         from deflection 0, linear between rows and continued with the last
         row's slope (:func:`bottoming_table`); no rows: the tyre does not
         bottom out.
+    speed_stiffening : float
+        MF-Tyre's stiffening with spin, ``Q_V2 R0 / LONGVL`` [s]: k(rho) (bottoming not
+        included) is multiplied by ``1 + speed_stiffening |omega|`` (Pacejka 2012, eq. A3.3);
+        0: no speed effect.
     """
 
     stiffness: float
@@ -72,15 +78,18 @@ class VerticalLaw(NamedTuple):
     knots: np.ndarray
     coefs: np.ndarray
     bottoming: np.ndarray = NO_BOTTOMING
+    speed_stiffening: float = 0.0
 
     @classmethod
-    def linear(cls, stiffness, damping, damping_ramp=DEFAULT_DAMPING_RAMP, bottoming=NO_BOTTOMING):
+    def linear(cls, stiffness, damping, damping_ramp=DEFAULT_DAMPING_RAMP, bottoming=NO_BOTTOMING,
+               speed_stiffening=0.0):
         return cls(float(stiffness), float(damping), float(damping_ramp), False, np.zeros(2),
-                   np.zeros((1, 4)), _bottoming_rows(bottoming))
+                   np.zeros((1, 4)), _bottoming_rows(bottoming), float(speed_stiffening))
 
     @classmethod
     def table(cls, deflection, load, damping, damping_ramp=DEFAULT_DAMPING_RAMP,
-              stiffness=0.0, source="load-deflection table", bottoming=NO_BOTTOMING):
+              stiffness=0.0, source="load-deflection table", bottoming=NO_BOTTOMING,
+              speed_stiffening=0.0):
         d = np.asarray(deflection, float)
         f = np.asarray(load, float)
         if d.ndim != 1 or d.shape != f.shape or d.size < 2:
@@ -106,26 +115,62 @@ class VerticalLaw(NamedTuple):
         spline = CubicSpline(d, f, bc_type=bc)
         coefs = np.ascontiguousarray(spline.c.T)  # (n-1, 4), highest power first
         return cls(float(stiffness), float(damping), float(damping_ramp), True,
-                   np.ascontiguousarray(d, np.float64), coefs, _bottoming_rows(bottoming))
+                   np.ascontiguousarray(d, np.float64), coefs, _bottoming_rows(bottoming),
+                   float(speed_stiffening))
 
-    def static_load(self, rho):
-        """Static load k(rho) [N] at deflections ``rho`` [m] (vectorised)."""
+    @classmethod
+    def quadratic(cls, linear, quadratic, damping, damping_ramp=DEFAULT_DAMPING_RAMP, stiffness=0.0,
+                  up_to=1.0, bottoming=NO_BOTTOMING, speed_stiffening=0.0):
+        """k(rho) = ``linear`` rho + ``quadratic`` rho^2 [N] (``linear`` in N/m, ``quadratic`` in
+        N/m^2; :func:`mf_load_deflection`), exact up to the deflection ``up_to`` [m] (one
+        spline interval holding the polynomial) and continued with its slope there."""
+        if not (linear > 0.0 and up_to > 0.0 and linear + 2.0 * quadratic * up_to > 0.0):
+            raise ValueError("a quadratic load-deflection law must rise up to its end")
+        coefs = np.array([[0.0, float(quadratic), float(linear), 0.0]])
+        return cls(float(stiffness), float(damping), float(damping_ramp), True,
+                   np.array([0.0, float(up_to)]), coefs, _bottoming_rows(bottoming),
+                   float(speed_stiffening))
+
+    def static_load(self, rho, omega=0.0):
+        """Load k(rho) [N] at deflections ``rho`` [m] (vectorised), the wheel standing or spinning
+        at ``omega`` [rad/s] (:func:`rolling_load`)."""
         rho = np.asarray(rho, float)
         out = np.empty(rho.size)
         for i, r in enumerate(rho.ravel()):
-            out[i] = static_load(self, r)
+            out[i] = rolling_load(self, r, float(omega))
         return out.reshape(rho.shape)
 
-    def deflection_at(self, load):
-        """Static deflection [m] that carries ``load`` [N] (inverse of k)."""
-        return static_deflection(self, float(load))
+    def deflection_at(self, load, omega=0.0):
+        """Deflection [m] that carries ``load`` [N] (inverse of k), at spin ``omega`` [rad/s]."""
+        return rolling_deflection(self, float(load), float(omega))
+
+
+def mf_load_deflection(vertical_stiffness, unloaded_radius, nominal_load, q_fz2, pressure_factor=1.0):
+    """Coefficients (k1 [N/m], k2 [N/m^2]) of MF-Tyre's static load-deflection law, k1 rho + k2 rho^2.
+
+    Pacejka, *Tyre and Vehicle Dynamics* (2012) eq. A3.3 without its speed and force terms::
+
+        Fz = (Q_FZ1 rho/R0 + Q_FZ2 (rho/R0)^2) (1 + PFZ1 dpi) FNOMIN
+        Q_FZ1 = sqrt((Cz R0 / FNOMIN)^2 - 4 Q_FZ2)
+
+    ``Q_FZ1`` is not in a property file: it is chosen so that the law's slope at FNOMIN (and
+    nominal pressure) is ``VERTICAL_STIFFNESS`` = Cz (Besselink et al. 2010, eq. 4; MFeval 4.3.1
+    ``calculateRhoRl61``). ``pressure_factor`` is ``1 + PFZ1 dpi``. Returns None when
+    ``4 Q_FZ2`` exceeds ``(Cz R0 / FNOMIN)^2``: no such law has the slope Cz at FNOMIN.
+    """
+    ratio = vertical_stiffness * unloaded_radius / nominal_load
+    disc = ratio * ratio - 4.0 * q_fz2
+    if not disc >= 0.0:
+        return None
+    scale = pressure_factor * nominal_load
+    return scale * math.sqrt(disc) / unloaded_radius, scale * q_fz2 / unloaded_radius ** 2
 
 
 def bottoming_table(deflection=None, load=None, *, stiffness=None, start=None) -> np.ndarray:
     """The bottoming table :class:`VerticalLaw` takes: rows of deflection [m] and added load [N].
 
     Either a ``[BOTTOMING_CURVE]`` (``deflection``, ``load``: increasing deflections, loads
-    that never fall; the file's checks, :func:`tyrelab.tyre.params.check_physics`) or
+    that never fall; the file's checks, :func:`tyrelab.tyre.tir_physics.check_physics`) or
     MF-Tyre 6.1/6.2's linear bottoming, ``stiffness`` [N/m] (``BOTTOM_STIFF``) from the
     deflection ``start`` [m] (``R0 - RIM_RADIUS - BOTTOM_OFFST``) on. A curve that starts past
     zero deflection gets a row (0, 0) first, as the load-deflection curve does.
@@ -161,11 +206,19 @@ def bottoming_load(table, rho):
 
 @nb.njit(cache=True)
 def static_load(law, rho):
-    """Elastic part k(rho) [N] of :class:`VerticalLaw` ``law``, bottoming included; zero for
-    rho <= 0 (no tension)."""
+    """Elastic part k(rho) [N] of :class:`VerticalLaw` ``law`` of a wheel that does not spin,
+    bottoming included; zero for rho <= 0 (no tension)."""
+    return rolling_load(law, rho, 0.0)
+
+
+@nb.njit(cache=True)
+def rolling_load(law, rho, omega):
+    """Elastic part [N] of ``law`` at deflection ``rho`` [m] spinning at ``omega`` [rad/s]:
+    ``k(rho) (1 + speed_stiffening |omega|)`` plus the bottoming load (Pacejka 2012, eq. A3.3:
+    the speed term scales the tyre's law, not the rim's); zero for rho <= 0."""
     if rho <= 0.0:
         return 0.0
-    value = _carcass_load(law, rho)
+    value = _carcass_load(law, rho) * (1.0 + law.speed_stiffening * abs(omega))
     if law.bottoming.shape[0] > 0:
         value += bottoming_load(law.bottoming, rho)
     return value
@@ -202,8 +255,9 @@ def _carcass_load(law, rho):
 
 
 @nb.njit(cache=True)
-def normal_force(law, rho, rho_dot):
-    """Normal force [N] of eq. 2.2 with damping ramped in near zero deflection.
+def normal_force(law, rho, rho_dot, omega):
+    """Normal force [N] of eq. 2.2 of a wheel spinning at ``omega`` [rad/s]
+    (:func:`rolling_load`), with damping ramped in near zero deflection.
 
     Never negative, zero after lift-off (rho <= 0).
     """
@@ -214,22 +268,29 @@ def normal_force(law, rho, rho_dot):
     if rho < ramp:
         t = rho / ramp
         c = c * t * t * (3.0 - 2.0 * t)
-    f = static_load(law, rho) + c * rho_dot
+    f = rolling_load(law, rho, omega) + c * rho_dot
     return f if f > 0.0 else 0.0
 
 
 @nb.njit(cache=True)
 def static_deflection(law, load):
     """Deflection carrying ``load`` statically, by bisection on k(rho)."""
+    return rolling_deflection(law, load, 0.0)
+
+
+@nb.njit(cache=True)
+def rolling_deflection(law, load, omega):
+    """Deflection carrying ``load`` at spin ``omega`` [rad/s], by bisection on
+    :func:`rolling_load`."""
     if load <= 0.0:
         return 0.0
     lo = 0.0
     hi = 0.01
-    while static_load(law, hi) < load and hi < 100.0:
+    while rolling_load(law, hi, omega) < load and hi < 100.0:
         hi *= 2.0
     for _ in range(200):
         mid = 0.5 * (lo + hi)
-        if static_load(law, mid) < load:
+        if rolling_load(law, mid, omega) < load:
             lo = mid
         else:
             hi = mid

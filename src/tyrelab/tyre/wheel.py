@@ -252,7 +252,7 @@ def analytic_wheel_step(wheel, pose, geo, dt):
     vx, vy, vz = pose.vx, pose.vy, pose.vz
     omega = pose.omega
     rho_dot = -dot(vx, vy, vz, nx, ny, nz)
-    fz = normal_force(wheel.law, rho, rho_dot)
+    fz = normal_force(wheel.law, rho, rho_dot, omega)
     rx, ry, rz = px - cx, py - cy, pz - cz
     fxw = 0.0
     fyw = 0.0

@@ -48,7 +48,7 @@ from ...core.vec3 import cross, dot, wheel_axes
 from ...road.soil.scm import SoilSurface
 from ...road.soil.wheel import wheel_loads
 from ..registry import ContactModel, register_contact
-from ..vertical import normal_force, static_load
+from ..vertical import normal_force, rolling_load
 from ..wheel import WheelLoads
 
 #: Newton's iteration stops when the tyre and the soil agree to this force [N] ...
@@ -126,17 +126,18 @@ def _soil(wheel, pose, flat, dt, update, normal_only):
 
 
 @nb.njit(cache=True)
-def _tyre_force(law, delta, last, dt):
-    """The vertical law's force at deflection ``delta`` [m] (damped by the rate from ``last``
-    over ``dt``; static when ``dt`` is 0) and its slope [N/m]."""
+def _tyre_force(law, delta, last, dt, omega):
+    """The vertical law's force at deflection ``delta`` [m] spinning at ``omega`` [rad/s]
+    (damped by the rate from ``last`` over ``dt``; undamped when ``dt`` is 0) and its slope
+    [N/m]."""
     if dt > 0.0:
         rate = (delta - last) / dt
-        f = normal_force(law, delta, rate)
-        df = (normal_force(law, delta + STIFFNESS_STEP, rate + STIFFNESS_STEP / dt) - f) \
+        f = normal_force(law, delta, rate, omega)
+        df = (normal_force(law, delta + STIFFNESS_STEP, rate + STIFFNESS_STEP / dt, omega) - f) \
             / STIFFNESS_STEP
     else:
-        f = static_load(law, delta)
-        df = (static_load(law, delta + STIFFNESS_STEP) - f) / STIFFNESS_STEP
+        f = rolling_load(law, delta, omega)
+        df = (rolling_load(law, delta + STIFFNESS_STEP, omega) - f) / STIFFNESS_STEP
     return f, max(df, 0.0)
 
 
@@ -155,7 +156,7 @@ def flexible_deflection(wheel, pose, dt):
     last = p.last[0]
     delta = min(max(last, lo), hi)
     for _ in range(MAX_ITERATIONS):
-        f, df = _tyre_force(wheel.law, delta, last, dt)
+        f, df = _tyre_force(wheel.law, delta, last, dt, pose.omega)
         soil = _soil(wheel, pose, p.radius - delta, dt, False, True)
         h = f - soil.normal
         if abs(h) <= FORCE_TOLERANCE:
