@@ -11,7 +11,8 @@ export; :func:`read_manifest` and :func:`build_stepper` turn it back into a
   the terrain laid over it when there is one (a soil's name, or its file in the
   folder), and the defaults of the FMU's parameters;
 * ``tyre/`` -- the tyre: a ``.tir`` or Chrono ``.json`` file as the user gave it,
-  or a built-in tyre written at the export's pressure (with the ring's
+  or a built-in tyre (or an MF-Tyre 6.x file moved to another pressure) written at the
+  export's pressure (with the ring's
   ``[FLEXIBLE_RING]`` section when the ring needs it and the tyre's own file
   has none);
 * ``road/`` -- the road file, when the road is one;
@@ -55,11 +56,13 @@ def _tyre_record(folder: Path, tm: TyreModel, tyre) -> dict:
     builtin = names.get(str(tyre).lower()) if isinstance(tyre, (str, Path)) else None
     (folder / "tyre").mkdir()
     t = tm.tyre
-    if builtin is None and not isinstance(tyre, Tyre):  # the user's file, as it is
+    user_file = builtin is None and not isinstance(tyre, Tyre)
+    if user_file and _at_its_own_pressure(Path(tyre), t):  # the user's file, as it is
         source = Path(tyre)
         name = source.name
         shutil.copyfile(source, folder / "tyre" / name)
-    else:  # a built-in tyre (or a Tyre object) at its pressure, as a property file
+    else:  # a built-in tyre, a Tyre object, or an MF 6.x file moved to another pressure
+        # (:func:`~tyrelab.tyre.pressure.at_pressure`), at its pressure, as a property file
         out = copy.deepcopy(t)
         if tm.contact_model.has_state and not out.tir.has("FLEXIBLE_RING"):
             _add_ring_section(out)
@@ -69,6 +72,14 @@ def _tyre_record(folder: Path, tm: TyreModel, tyre) -> dict:
     return {"file": f"tyre/{name}", "builtin": builtin,
             "pressure": pressure if math.isfinite(pressure) else None,
             "stiffness": t.stiffness, "unloaded_radius": float(t.unloaded_radius)}
+
+
+def _at_its_own_pressure(path: Path, tyre) -> bool:
+    """Whether ``tyre``, loaded from the user's ``path``, is at the pressure that file states."""
+    from ..tyre.library import load_tyre
+
+    own = load_tyre(path).pressure
+    return not (math.isfinite(own) and math.isfinite(tyre.pressure)) or math.isclose(own, tyre.pressure)
 
 
 def _add_ring_section(tyre) -> None:
@@ -214,8 +225,9 @@ def build_stepper(resources, manifest: dict, pressure: float, load: float, max_s
     """The wheel an FMU instance steps, from its manifest and its parameters.
 
     ``pressure`` [Pa]: 0 or the tyre file's own takes the file in the FMU; another
-    pressure takes the built-in tyre at that pressure from the installed tyrelab
-    (a tyre file describes one pressure only: an InputError). ``load`` [N] and
+    pressure takes the built-in tyre at that pressure from the installed tyrelab, or moves
+    an MF-Tyre 6.x file with pressure terms there (any other tyre file describes one
+    pressure only: an InputError). ``load`` [N] and
     ``speed`` [m/s] the equilibrium the state starts in; ``max_step`` [s], 0
     for the model's stable step. A terrain is laid over the road around the wheel's
     start ``(x_start, y_start)`` [m] (:func:`~tyrelab.rig.soil_ground.lay_terrain_around`:

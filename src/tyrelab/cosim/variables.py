@@ -83,7 +83,8 @@ OUTPUTS = (
 #: set before initialisation (fixed); ``field`` names the argument of ``wheel_stepper``
 PARAMETERS = (
     Variable("PRESSURE", "Pa", "inflation pressure; a built-in tyre measured at several pressures "
-             "takes any pressure between them, a tyre file only its own", "pressure"),
+             "takes any pressure between them, an MF-Tyre 6.1/6.2 file with pressure terms any in its "
+             "range, any other tyre file only its own", "pressure"),
     Variable("INITIAL_LOAD", "N", "static load at which the model's state starts in equilibrium on a "
              "flat road, rolling at the initial inputs' speed (the rigs' start); 0: unloaded",
              "load"),

@@ -5,7 +5,8 @@
 exist at the three measured pressures (100, 300 and 550 kPa); in between, the
 load-deflection table and the linear stiffness are interpolated linearly in
 pressure, point by point. Any other name is taken as a path to a ``.tir`` or to a
-Project Chrono ``.json`` tyre file.
+Project Chrono ``.json`` tyre file, at the pressure it states; an MF-Tyre 6.1/6.2 file
+with pressure terms may be moved to another (:func:`tyrelab.tyre.pressure.at_pressure`).
 """
 
 from __future__ import annotations
@@ -19,6 +20,7 @@ import pandas as pd
 
 from ..errors import InputError
 from .params import Tyre
+from .pressure import at_pressure
 from .tir import read_tir
 
 #: built-in tyre -> measured pressures [Pa]
@@ -67,9 +69,7 @@ def load_tyre(name: str | Path = DEFAULT_TYRE, pressure: float | None = None) ->
                              "apart from it: leave out the pressure, or state it in the file",
                              field="pressure")
         if pressure is not None and not np.isclose(pressure, tyre.pressure):
-            raise InputError(f"{path} describes {tyre.pressure / 1e3:g} kPa only; "
-                             "a single property file cannot be moved to another pressure",
-                             field="pressure")
+            tyre = at_pressure(tyre, float(pressure), str(path))   # MF-Tyre 6.x; else refused
         return tyre
     pressures = BUILT_IN[match]
     p = DEFAULT_PRESSURE if pressure is None else float(pressure)
