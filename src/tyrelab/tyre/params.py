@@ -158,6 +158,15 @@ class Tyre:
                              "linear stiffness", source=self.tir.source, field="stiffness")
         return replace(self, stiffness=mode)
 
+    def require_width(self, what: str) -> "Tyre":
+        """This tyre, if it has a width (``[DIMENSION] WIDTH``); else an :class:`InputError`
+        saying that ``what`` (a model spreading its contact across the tyre) needs it."""
+        if not self.width > 0:
+            raise InputError(f"{what} needs the tyre's width ([DIMENSION] WIDTH), which the file "
+                             "does not give; state it, or use the point model", source=self.tir.source,
+                             field="WIDTH")
+        return self
+
     @property
     def has_nonlinear_law(self) -> bool:
         """True when the file gives a nonlinear load-deflection law (the ``"table"`` stiffness):

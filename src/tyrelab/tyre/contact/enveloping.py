@@ -89,7 +89,7 @@ from ..wheel import ContactGeometry, WheelPose
 from .cams import cam_tables
 from .patch_laws import half_length, half_width, length_law, patch_key, warn_assumed_patch, width_law
 from .enveloping_params import (_DATA, _OTHER_OPTIONS, _USER_OPTIONS, BLOCK, CAM_LAYOUTS, FIT_STEPS,
-                                cam_option_values,
+                                cam_option_values, check_width,
                                 MIN_PATCH_DEFLECTION, EnvelopingParams)
 from .enveloping_plane import cam_plane
 from .volume import DEFAULT_STEP, no_contact, plane_contact
@@ -155,7 +155,7 @@ def enveloping_params(tyre, grid, width_table=None, n_width=None, n_length=None,
                          field="cam_layout")
     tir = tyre.tir
     warn_assumed_patch(tir, [k for k, v in (("n_width", n_width), ("n_length", n_length)) if v is not None])
-    r0, w0 = float(tyre.unloaded_radius), float(tyre.width)
+    r0, w0 = float(check_width(tyre).unloaded_radius), float(tyre.width)
     bounded = cam_option_values({"n_width": n_width, "n_length": n_length, "step": step,
                                  "min_patch_deflection": min_patch_deflection})
     n_width, n_length = bounded.get("n_width"), bounded.get("n_length")
@@ -323,5 +323,5 @@ register_contact(ContactModel("enveloping", EnvelopingParams, enveloping_params,
                                       "thesis 2.3.3",
                               options={**_USER_OPTIONS, "cam_layout": str}, cost=0.022,
                               parameterization=_DATA, fit_steps=FIT_STEPS, terrains=("rigid", "soil"),
-                              check_values=cam_option_values))
+                              check_values=cam_option_values, check_tyre=check_width))
 

@@ -31,7 +31,8 @@ from __future__ import annotations
 from ...errors import InputError
 from ..registry import ContactModel, register_contact
 from .enveloping import enveloping_contact, enveloping_params
-from .enveloping_params import _DATA, _USER_OPTIONS, FIT_STEPS, EnvelopingParams, cam_option_values
+from .enveloping_params import (_DATA, _USER_OPTIONS, FIT_STEPS, EnvelopingParams, cam_option_values,
+                                check_width)
 
 
 def edge_params(tyre, grid, **options) -> EnvelopingParams:
@@ -51,4 +52,4 @@ register_contact(ContactModel("enveloping-edge", EnvelopingParams, edge_params,
                               options=_USER_OPTIONS, cost=0.011,
                               parameterization=_DATA + " (the cams on the patch's edges only)",
                               fit_steps=FIT_STEPS, terrains=("rigid", "soil"),
-                              check_values=cam_option_values))
+                              check_values=cam_option_values, check_tyre=check_width))

@@ -17,6 +17,7 @@ from typing import NamedTuple
 import numpy as np
 
 from ...limits import MAX_CAMS, SAMPLING_STEP, Bound, bounded_options
+from ..params import Tyre
 
 #: length of the ground's blocks whose bounds let cams skip road they cannot touch [m]
 BLOCK = 0.05
@@ -32,6 +33,9 @@ _DATA = ("load-deflection curve + contact-patch length and width vs load (footpr
          "(ellipse) parameters from cleat tests")
 #: the steps of ``tyrelab fit`` that identify it: the patch sizes the cams, the shape their sections
 FIT_STEPS = ("vertical", "damping", "patch", "shape")
+#: the enveloping models' check of a tyre: the cams stand across its width
+#: (:attr:`~tyrelab.tyre.registry.ContactModel.check_tyre`)
+check_width = partial(Tyre.require_width, what="the enveloping model")
 #: which cams make the effective plane: the whole grid, or only those on the patch's outline
 CAM_LAYOUTS = ("grid", "outline")
 

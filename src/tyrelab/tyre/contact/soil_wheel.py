@@ -80,9 +80,7 @@ class SoilWheelParams(NamedTuple):
 
 def soil_wheel_params(tyre, flexible: bool) -> SoilWheelParams:
     """The record of ``tyre`` as a wheel on soil (its unloaded radius and width)."""
-    from ...errors import InputError
-    if not tyre.width > 0:
-        raise InputError("a wheel on soil needs the tyre's width (DIMENSION WIDTH)", field="model")
+    tyre.require_width("a wheel on soil")
     return SoilWheelParams(float(tyre.unloaded_radius), float(tyre.width), bool(flexible),
                            np.zeros(1))
 

@@ -55,10 +55,13 @@ from ...errors import InputError
 from ...limits import MAX_DISCS, SAMPLING_STEP, Bound, bounded_options
 from ...road.terrain import terrain_height, terrain_range, terrain_zmax
 from ..model import TyreModel, contact_geometry_table
+from ..params import Tyre
 from ..registry import ContactModel, register_contact
 from ..wheel import ContactGeometry
 from .shape import carcass_discs, disc_intersection, segment_area, segment_depth
 
+#: what needs the tyre's width, as a refusal names it (:meth:`~tyrelab.tyre.params.Tyre.require_width`)
+WHAT = "the volume model"
 #: default sampling step [m] along sections not aligned with the grid
 DEFAULT_STEP = 0.005
 #: options the enveloping model takes (accepted and ignored here)
@@ -121,6 +124,7 @@ def volume_params(tyre, grid, discs=None, step=DEFAULT_STEP, **options) -> Volum
         raise InputError(f"unknown volume-model option(s) {', '.join(sorted(unknown))}; "
                          "expected discs, step", field="options")
     step = volume_option_values({"step": step})["step"]
+    tyre.require_width(WHAT)
     offsets, radii, widths = carcass_discs(tyre, discs)
     breaks = grid.profile_breaks()
     if breaks is None:
@@ -315,5 +319,6 @@ register_contact(ContactModel("volume", VolumeParams, volume_params, geometry=vo
                               summary="3D equivalent volume contact, thesis 2.3.2",
                               options={"discs": int, "step": float}, cost=0.017,
                               check_values=volume_option_values,
+                              check_tyre=partial(Tyre.require_width, what=WHAT),
                               parameterization="load-deflection curve + carcass cross-section shape",
                               terrains=("rigid", "soil"), fit_steps=("vertical", "damping", "shape")))
