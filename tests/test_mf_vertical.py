@@ -163,3 +163,21 @@ def test_an_impossible_vertical_law_is_refused_at_its_line(tmp_path, mf61_path, 
 def test_q_fz2_needs_fnomin(tmp_path, mf61_path):
     with pytest.raises(InputError, match="Q_FZ2 needs FNOMIN"):
         Tyre.from_tir(_edited(tmp_path, mf61_path, "VERTICAL", "FNOMIN", 0, drop=True))
+
+
+@pytest.mark.parametrize("stiffness", ["table", "linear"])
+def test_the_enveloping_patch_is_mfevals_at_each_load(mf61, mfeval, stiffness):
+    """MF-Swift's patch laws are written in Fz / (Cz R0) (Besselink et al. 2010, eqs. 9, 10):
+    at the static deflection that carries each load, in either law, the enveloping model's
+    patch is MFeval's contact length 2a and width 2b."""
+    from tyrelab.road.spec import road_from_spec
+    from tyrelab.tyre.contact.enveloping import contact_patch
+
+    tyre = mf61.with_stiffness(stiffness)
+    params = make_tyre_model(tyre, "enveloping", handling="none").contact_params(
+        road_from_spec("flat").grid())
+    rows = mfeval.groupby("Fz").first()
+    for fz, row in rows.iterrows():
+        a, b = contact_patch(params, tyre.static_deflection(fz))
+        assert 2 * a == pytest.approx(row["contact_length_2a"], rel=1e-9)
+        assert 2 * b == pytest.approx(row["contact_width_2b"], rel=1e-9)

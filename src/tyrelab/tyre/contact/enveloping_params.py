@@ -33,6 +33,19 @@ _DATA = ("load-deflection curve + contact-patch length and width vs load (footpr
          "(ellipse) parameters from cleat tests")
 #: the steps of ``tyrelab fit`` that identify it: the patch sizes the cams, the shape their sections
 FIT_STEPS = ("vertical", "damping", "patch", "shape")
+def swift_argument(tyre) -> tuple[float, float]:
+    """``(swift_c1, swift_c2)`` of :class:`EnvelopingParams` for ``tyre``: its vertical law's
+    load over ``Cz = VERTICAL_STIFFNESS (1 + PFZ1 dpi)`` when the law is MF-Tyre 6.x's quadratic
+    (:attr:`~tyrelab.tyre.params.Tyre.quadratic_law`); (1, 0) for the linear law, whose load over
+    Cz is the deflection. A ``[DEFLECTION_LOAD_CURVE]`` law is taken as (1, 0) too (its load over
+    Cz would need the table in the kernel)."""
+    k1k2 = tyre.quadratic_law
+    if k1k2 is None or tyre.load_deflection is not None or tyre.stiffness != "table":
+        return 1.0, 0.0   # the law in use is not the quadratic (Tyre.vertical_law)
+    cz = tyre.vertical_stiffness * tyre.pressure_factor
+    return k1k2[0] / cz, k1k2[1] / cz
+
+
 #: the enveloping models' check of a tyre: the cams stand across its width
 #: (:attr:`~tyrelab.tyre.registry.ContactModel.check_tyre`)
 check_width = partial(Tyre.require_width, what="the enveloping model")
@@ -79,7 +92,12 @@ class EnvelopingParams(NamedTuple):
       (:meth:`~tyrelab.road.terrain.Ground.row_maxima`), empty when there is
       nothing to bound (a grid of two x nodes);
     * ``outline_only``: only the cams on the patch's outline enter the plane
-      (:mod:`.enveloping_edge`); False: every cam.
+      (:mod:`.enveloping_edge`); False: every cam;
+    * ``swift_c1``, ``swift_c2``: the MF-Swift laws are written in ``Fz / (Cz R0)``, the
+      load over the file's (pressure-corrected) stiffness (Besselink et al. 2010, eqs. 9 and
+      10; MFeval's contact patch), so they take ``x = (swift_c1 rho + swift_c2 rho^2) / R0``:
+      1 and 0 for a linear law (x = rho / R0), MF-Tyre 6.x's quadratic law over Cz
+      (:func:`swift_argument`). The thesis laws (eqs. 2.3, 2.4) take ``rho / R0``.
     """
 
     unloaded_radius: float
@@ -109,3 +127,5 @@ class EnvelopingParams(NamedTuple):
     block_per: int
     row_block_max: np.ndarray
     outline_only: bool = False
+    swift_c1: float = 1.0
+    swift_c2: float = 0.0

@@ -1,6 +1,7 @@
 """The contact patch of the enveloping models: its keys in a property file (ADAMS
 ``[CONTACT_PATCH]`` or their MF-Swift twins, with defaults) and its half-length and
-half-width against the deflection (thesis eqs. 2.3 and 2.4; MF-Swift's laws).
+half-width against the deflection (thesis eqs. 2.3 and 2.4; MF-Swift's laws, written in the
+load over the vertical stiffness, Fz / (Cz R0)).
 """
 
 from __future__ import annotations
@@ -93,6 +94,14 @@ def width_law(tir, width_table, b_max):
 
 
 @nb.njit(cache=True)
+def swift_argument(params, rho):
+    """The MF-Swift laws' argument ``Fz / (Cz R0)`` at deflection ``rho`` > 0: the load of
+    the tyre's static law over its stiffness Cz, per R0 (Besselink et al. 2010, eqs. 9 and 10),
+    from ``params.swift_c1`` and ``swift_c2`` (:class:`.enveloping_params.EnvelopingParams`)."""
+    return (params.swift_c1 + params.swift_c2 * rho) * rho / params.unloaded_radius
+
+
+@nb.njit(cache=True)
 def half_length(params, rho):
     """Half contact length a [m] at deflection ``rho``: eq. 2.3 (``length_law`` 0) or
     MF-Swift (1)."""
@@ -101,9 +110,10 @@ def half_length(params, rho):
     r0 = params.unloaded_radius
     c1 = params.length_c1
     c2 = params.length_c2
-    x = rho / r0
     if params.length_law == 0:
+        x = rho / r0
         return c1 * r0 * (x + c2 * math.sqrt(x))  # eq. 2.3: PA1, PA2
+    x = swift_argument(params, rho)
     return r0 * (c2 * x + c1 * math.sqrt(x))  # MF-Swift: Q_RA1, Q_RA2
 
 
@@ -134,11 +144,12 @@ def half_width(params, rho):
     elif rho <= 0.0:
         b = 0.0
     else:
-        x = rho / params.unloaded_radius
         w0 = params.width
         c1, c2, c3 = params.width_c1, params.width_c2, params.width_c3
         if mode == 0:
+            x = rho / params.unloaded_radius
             b = c1 * w0 * (x + c2 * math.sqrt(x) + c3 * x * math.sqrt(x))  # eq. 2.4
         else:
+            x = swift_argument(params, rho)
             b = w0 * (c2 * x + c1 * x ** (1.0 / 3.0))  # MF-Swift
     return min(max(b, 0.0), params.max_half_width)
