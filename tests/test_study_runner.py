@@ -330,3 +330,11 @@ def test_local_workers_are_forked_from_one_server_with_sigint_ignored():
         assert all(ignored and preloaded for _, ignored, preloaded in starts.values())
         parents += [parent for parent, _, _ in starts.values()]
     assert len(set(parents)) == 1 and parents[0] != os.getpid()  # one server, not this process
+
+
+def test_the_time_left_is_never_shown_negative():
+    """The last run's cost sum leaves a rounding residue (-1e-15 s of work): "about 0 s left",
+    not "about -0 s left" as the bar said."""
+    from tyrelab.study.runner import _minutes
+    assert _minutes(-1e-15) == "0 s"
+    assert _minutes(89.0) == "89 s" and _minutes(150.0) == "2 min"

@@ -174,6 +174,7 @@ def _forked_workers():
 def _minutes(seconds: float) -> str:
     if not seconds == seconds:  # NaN: nothing finished yet
         return "?"
+    seconds = max(seconds, 0.0)   # the last run's rounding leaves -1e-15 of cost: not "-0 s"
     return f"{seconds / 60:.0f} min" if seconds >= 90 else f"{seconds:.0f} s"
 
 
