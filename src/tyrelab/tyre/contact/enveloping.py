@@ -89,7 +89,7 @@ from ..wheel import ContactGeometry, WheelPose
 from .cams import cam_tables
 from .patch_laws import half_length, half_width, length_law, patch_key, warn_assumed_patch, width_law
 from .enveloping_params import (_DATA, _OTHER_OPTIONS, _USER_OPTIONS, BLOCK, CAM_LAYOUTS, FIT_STEPS,
-                                cam_option_values, check_width, swift_argument,
+                                cam_option_values, check_width, swift_coefficients,
                                 MIN_PATCH_DEFLECTION, EnvelopingParams)
 from .enveloping_plane import cam_plane
 from .volume import DEFAULT_STEP, no_contact, plane_contact
@@ -192,7 +192,7 @@ def enveloping_params(tyre, grid, width_table=None, n_width=None, n_length=None,
         profile_road=grid.uniform_across(),
         cam_drop=drop, cam_window=window, cam_touch=touch, width_table=wtable,
         block_per=per, row_block_max=maxima, outline_only=cam_layout == "outline",
-        **dict(zip(("swift_c1", "swift_c2"), swift_argument(tyre))))
+        **dict(zip(("swift_c1", "swift_c2"), swift_coefficients(tyre))))
 
 
 def contact_patch(params: EnvelopingParams, deflection: float):

@@ -33,7 +33,23 @@ _DATA = ("load-deflection curve + contact-patch length and width vs load (footpr
          "(ellipse) parameters from cleat tests")
 #: the steps of ``tyrelab fit`` that identify it: the patch sizes the cams, the shape their sections
 FIT_STEPS = ("vertical", "damping", "patch", "shape")
-def swift_argument(tyre) -> tuple[float, float]:
+#: which cams make the effective plane: the whole grid, or only those on the patch's outline
+CAM_LAYOUTS = ("grid", "outline")
+#: the enveloping models' check of a tyre: the cams stand across its width
+#: (:attr:`~tyrelab.tyre.registry.ContactModel.check_tyre`)
+check_width = partial(Tyre.require_width, what="the enveloping model")
+
+
+#: the bounded options of the enveloping models (``cam_option_values``)
+CAM_BOUNDS = {"n_width": Bound("cams across the width", 1, MAX_CAMS, whole=True),
+              "n_length": Bound("cams along the length", 1, MAX_CAMS, whole=True),
+              "step": SAMPLING_STEP,
+              "min_patch_deflection": Bound(None, 0.0, unit="m")}
+#: the enveloping models' option values, checked (``ContactModel.check_values``)
+cam_option_values = partial(bounded_options, bounds=CAM_BOUNDS)
+
+
+def swift_coefficients(tyre) -> tuple[float, float]:
     """``(swift_c1, swift_c2)`` of :class:`EnvelopingParams` for ``tyre``: its vertical law's
     load over ``Cz = VERTICAL_STIFFNESS (1 + PFZ1 dpi)`` when the law is MF-Tyre 6.x's quadratic
     (:attr:`~tyrelab.tyre.params.Tyre.quadratic_law`); (1, 0) for the linear law, whose load over
@@ -44,22 +60,6 @@ def swift_argument(tyre) -> tuple[float, float]:
         return 1.0, 0.0   # the law in use is not the quadratic (Tyre.vertical_law)
     cz = tyre.vertical_stiffness * tyre.pressure_factor
     return k1k2[0] / cz, k1k2[1] / cz
-
-
-#: the enveloping models' check of a tyre: the cams stand across its width
-#: (:attr:`~tyrelab.tyre.registry.ContactModel.check_tyre`)
-check_width = partial(Tyre.require_width, what="the enveloping model")
-#: which cams make the effective plane: the whole grid, or only those on the patch's outline
-CAM_LAYOUTS = ("grid", "outline")
-
-
-#: the bounded options of the enveloping models (``cam_option_values``)
-CAM_BOUNDS = {"n_width": Bound("cams across the width", 1, MAX_CAMS, whole=True),
-              "n_length": Bound("cams along the length", 1, MAX_CAMS, whole=True),
-              "step": SAMPLING_STEP,
-              "min_patch_deflection": Bound(None, 0.0, unit="m")}
-#: the enveloping models' option values, checked (``ContactModel.check_values``)
-cam_option_values = partial(bounded_options, bounds=CAM_BOUNDS)
 
 
 class EnvelopingParams(NamedTuple):
@@ -97,7 +97,7 @@ class EnvelopingParams(NamedTuple):
       load over the file's (pressure-corrected) stiffness (Besselink et al. 2010, eqs. 9 and
       10; MFeval's contact patch), so they take ``x = (swift_c1 rho + swift_c2 rho^2) / R0``:
       1 and 0 for a linear law (x = rho / R0), MF-Tyre 6.x's quadratic law over Cz
-      (:func:`swift_argument`). The thesis laws (eqs. 2.3, 2.4) take ``rho / R0``.
+      (:func:`swift_coefficients`). The thesis laws (eqs. 2.3, 2.4) take ``rho / R0``.
     """
 
     unloaded_radius: float
