@@ -19,7 +19,7 @@ from tyrelab.errors import InputError
 from tyrelab.rig.rolling import roll
 from tyrelab.tyre.params import Tyre
 from tyrelab.tyre.tir import read_tir
-from tyrelab.tyre.wheel import loads_table, pose
+from tyrelab.tyre.wheel import WheelLoads, loads_table, pose
 
 R0, FZ0, CZ, Q_FZ2, Q_V2, V0 = 0.3943, 6752.0, 314931.2969, 20.7558, 0.034092, 16.6
 Q_FCX, Q_FCY, PFZ1 = -0.020112, 0.26033, 0.88241
@@ -181,3 +181,27 @@ def test_the_enveloping_patch_is_mfevals_at_each_load(mf61, mfeval, stiffness):
         a, b = contact_patch(params, tyre.static_deflection(fz))
         assert 2 * a == pytest.approx(row["contact_length_2a"], rel=1e-9)
         assert 2 * b == pytest.approx(row["contact_width_2b"], rel=1e-9)
+
+
+def test_the_magic_formulas_slip_is_taken_at_its_effective_rolling_radius(mf61, mfeval):
+    """MFeval's free-rolling rows (kappa = alpha = gamma = 0, Vx = 16.7 m/s) give the spin at
+    which the Magic Formula's slip is zero: omega = Vx / Re, Re from BREFF, DREFF, FREFF. The
+    point model's wheel at that spin, pressed to carry the row's load, has zero slip and
+    MFeval's Fx (to 1e-6). The contact point's lever, the loaded radius, is 1.1-5.8 % shorter
+    than Re at these loads: the slip taken there was -1.1 to -5.8 % and FXW -1.0 to -10.1 kN,
+    a braked wheel where MFeval's rolls freely (27 to 172 N)."""
+    from tyrelab.road.spec import road_from_spec
+
+    model = make_tyre_model(mf61, "point", handling="mf")
+    wheel = model.wheel(road_from_spec("flat").grid(), FZ0)
+    free = mfeval[(mfeval.kappa == 0) & (mfeval.alpha == 0) & (mfeval.gamma == 0)]
+    law = mf61.vertical_law
+    poses = [pose(cz=R0 - law.deflection_at(fz, w), velocity=(16.7, 0.0, 0.0), omega=w)
+             for fz, w in zip(free.Fz, free.omega)]
+    loads = loads_table(wheel, poses)
+    column = {name: loads[:, k] for k, name in enumerate(WheelLoads._fields)}
+    np.testing.assert_allclose(column["kappa"], 0.0, atol=1e-9)
+    np.testing.assert_allclose(column["fxw"], free["Fx"], rtol=1e-6)
+    # and the rigs start a wheel there: the free-rolling spin of the equilibrium is MFeval's
+    for fz, w in zip(free.Fz, free.omega):
+        assert model.equilibrium(fz, 16.7).spin == pytest.approx(w, rel=1e-9)

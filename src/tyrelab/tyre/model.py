@@ -107,8 +107,8 @@ class TyreModel:
 
         ``params`` the contact record the wheel will run with (default: built
         for a flat road). Analytic models stand at the vertical law's
-        deflection at the free-rolling spin (:meth:`Tyre.rolling_deflection`);
-        a model with its own load-deflection (the ring) finds
+        deflection at the free-rolling spin (:meth:`_free_rolling`); a model
+        with its own load-deflection (the ring) finds
         its own (registry hook ``equilibrium``).
         """
         if params is None:
@@ -118,9 +118,31 @@ class TyreModel:
         if hook is not None and load > 0:
             deflection, spin, state = hook(self.tyre, load, float(speed), params, **self.options)
             return Equilibrium(float(deflection), float(spin), state)
-        deflection = self.tyre.rolling_deflection(load, float(speed)) if load > 0 else 0.0
-        return Equilibrium(deflection, float(speed) / (self.tyre.unloaded_radius - deflection),
-                           self.initial_state(load, params))
+        deflection, spin = self._free_rolling(load, float(speed))
+        return Equilibrium(deflection, spin, self.initial_state(load, params))
+
+    def _free_rolling(self, load: float, speed: float) -> tuple[float, float]:
+        """``(deflection, spin)`` of an analytic model's wheel carrying ``load`` [N] rolling
+        freely at ``speed`` [m/s]: the spin ``speed / R`` with R the handling model's
+        effective rolling radius (:attr:`~tyrelab.tyre.registry.HandlingModel.rolling_radius`),
+        else the loaded radius ``R0 - deflection``; the deflection the vertical law's at that
+        spin (its speed stiffening, :attr:`Tyre.speed_stiffening`). Each needs the other:
+        fixed point, to 1e-12."""
+        tyre, law = self.tyre, self.tyre.vertical_law
+        r0 = tyre.unloaded_radius
+        deflection = law.deflection_at(load) if load > 0 else 0.0
+        radius = self.handling_model.rolling_radius if load > 0 else None
+        handling = self.handling_params() if radius is not None else None
+        spin = speed / (r0 - deflection)
+        for _ in range(100):
+            lever = r0 - deflection if radius is None else radius(handling, load, spin)
+            new_spin = speed / lever
+            new = law.deflection_at(load, new_spin) if load > 0 else 0.0
+            done = abs(new - deflection) <= 1e-12 and abs(new_spin - spin) <= 1e-12 * abs(new_spin)
+            deflection, spin = new, new_spin
+            if done:
+                break
+        return deflection, spin
 
     def wheel(self, grid, load: float = 0.0, static: bool = False, state=None) -> Wheel:
         """The :class:`Wheel` record of this tyre on road ``grid`` at static ``load`` [N].

@@ -218,22 +218,6 @@ class Tyre:
         """Deflection [m] at which the vertical law carries ``load`` [N]."""
         return self.vertical_law.deflection_at(load)
 
-    def rolling_deflection(self, load: float, speed: float) -> float:
-        """Deflection [m] at which the vertical law carries ``load`` [N] rolling freely at
-        ``speed`` [m/s], spinning at ``speed / (R0 - deflection)`` (the speed stiffening,
-        :attr:`speed_stiffening`, needs the spin, which needs the deflection: fixed point)."""
-        law = self.vertical_law
-        deflection = law.deflection_at(load)
-        if law.speed_stiffening == 0.0 or speed == 0.0:
-            return deflection
-        for _ in range(50):
-            spin = speed / max(self.unloaded_radius - deflection, 1e-3 * self.unloaded_radius)
-            new = law.deflection_at(load, spin)
-            if abs(new - deflection) <= 1e-12:
-                return new
-            deflection = new
-        return deflection
-
     def write(self, path) -> None:
         """Write the property file (SI units) with the current values."""
         tir = self.tir

@@ -161,7 +161,11 @@ class HandlingModel:
 
     ``forces(params, fz, v_long, v_slip_x, v_slip_y, gamma)`` (compiled)
     returns ``(FXW, FYW, MZW, kappa, alpha, dFXW/dkappa)``; ``build(tyre)``
-    returns its parameter record.
+    returns its parameter record. ``rolling_radius(params, fz, omega)`` (compiled,
+    optional) is the effective rolling radius Re [m] the model's longitudinal slip is
+    defined with (``kappa = (omega Re - Vx) / |Vx|``; the Magic Formula's, from ``BREFF``,
+    ``DREFF``, ``FREFF``); without it the slip is the contact point's, whose lever is the
+    loaded radius.
     """
 
     name: str
@@ -169,6 +173,7 @@ class HandlingModel:
     build: Callable[..., Any]
     forces: Any
     summary: str = ""
+    rolling_radius: Any = None
 
 
 _CONTACT: dict[str, ContactModel] = {}

@@ -176,6 +176,26 @@ def _handling_forces(params, fz, v_long, v_slip_x, v_slip_y, gamma):
     return impl
 
 
+def handling_rolling_radius(params, fz, omega, loaded):
+    """The effective rolling radius [m] the handling model of ``params`` defines its slip
+    with (:attr:`~tyrelab.tyre.registry.HandlingModel.rolling_radius`) at load ``fz`` [N]
+    and spin ``omega`` [rad/s]; ``loaded``, the contact point's lever [m], for a model
+    without one."""
+    raise NotImplementedError("compiled only")
+
+
+@overload(handling_rolling_radius)
+def _handling_rolling_radius(params, fz, omega, loaded):
+    radius = handling_by_record(params).rolling_radius
+    if radius is None:
+        def impl(params, fz, omega, loaded):
+            return loaded
+    else:
+        def impl(params, fz, omega, loaded):
+            return radius(params, fz, omega)
+    return impl
+
+
 def has_handling(params):
     """True unless ``params`` is the record of the "none" handling model (compile time)."""
     raise NotImplementedError("compiled only")
@@ -234,7 +254,9 @@ def analytic_wheel_step(wheel, pose, geo, dt):
     (the road does not move; the contact point slides along the road
     without changing the distance to first order); the handling model adds
     FXW, FYW and an aligning moment from the slip of the contact point
-    (rigid-ring kinematics: the lever is the loaded radius), scaled by the
+    (rigid-ring kinematics: the lever is the loaded radius, or the handling
+    model's effective rolling radius if it defines its slip with one,
+    :func:`handling_rolling_radius`), scaled by the
     ground's friction scale there (:func:`~tyrelab.road.terrain.terrain_friction`;
     the whole curve scales, its slip stiffness too: the handling models take no
     friction input). A ground that is not rigid then answers the contact's forces
@@ -267,8 +289,14 @@ def analytic_wheel_step(wheel, pose, geo, dt):
         tx, ty, tz = cross(ax, ay, az, nx, ny, nz)
         wxx, wxy, wxz = unit(tx, ty, tz)
         wyx, wyy, wyz = cross(nx, ny, nz, wxx, wxy, wxz)
-        # velocity of the wheel material at the contact point: v + omega a x r
+        # velocity of the wheel material at the contact point: v + omega a x r, the lever r
+        # stretched to the handling model's effective rolling radius when it has one (the
+        # Magic Formula's slip is (omega Re - Vx) / |Vx|: its tread leaves the patch at Re,
+        # not at the loaded radius, Pacejka 2012 sec. 7.2.2)
         sx, sy, sz = cross(ax, ay, az, rx, ry, rz)
+        loaded = math.sqrt(rx * rx + ry * ry + rz * rz)
+        stretch = handling_rolling_radius(wheel.handling, fz, omega, loaded) / loaded
+        sx, sy, sz = sx * stretch, sy * stretch, sz * stretch
         v_long = dot(vx, vy, vz, wxx, wxy, wxz)
         v_slip_x = dot(vx + omega * sx, vy + omega * sy, vz + omega * sz, wxx, wxy, wxz)
         v_slip_y = dot(vx + omega * sx, vy + omega * sy, vz + omega * sz, wyx, wyy, wyz)

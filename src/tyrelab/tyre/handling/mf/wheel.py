@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 from typing import NamedTuple
 
 import numba as nb
@@ -9,6 +10,8 @@ import numpy as np
 
 from ...registry import HandlingModel, register_handling
 from ..slip import DKAPPA, slip
+from . import coefficient_index as C
+from .geometry import free_radius
 from .kernel import MFO, mf_forces
 
 #: the MFeval use mode the rigs run (limit checks and low-speed model on)
@@ -45,5 +48,27 @@ def mf_wheel_forces(params, fz, v_long, v_slip_x, v_slip_y, gamma):
     return out[MFO.Fx], out[MFO.Fy], out[MFO.Mz], kappa, alpha, (fx2 - out[MFO.Fx]) / DKAPPA
 
 
+@nb.njit(cache=True)
+def mf_rolling_radius(params, fz, omega):
+    """The effective rolling radius Re [m] the Magic Formula defines its slip with, at load
+    ``fz`` [N] and spin ``omega`` [rad/s] (Besselink et al. 2010, eqs. 1, 5 and 7; MFeval's
+    ``calculateRe`` with the spin given)::
+
+        Re = R_omega - (FNOMIN / Cz) (DREFF atan(BREFF Fz / FNOMIN) + FREFF Fz / FNOMIN)
+
+    with the free radius R_omega grown by Q_V1 with the spin and Cz = VERTICAL_STIFFNESS
+    (1 + PFZ1 dpi) at the record's pressure (its INFLPRES when 0).
+    """
+    c = params.coefficients
+    pressure = params.pressure if params.pressure > 0.0 else c[C.INFLPRES]
+    dpi = (pressure - c[C.NOMPRES]) / c[C.NOMPRES]
+    cz = c[C.VERTICAL_STIFFNESS] * (1.0 + c[C.PFZ1] * dpi)
+    fz0 = c[C.FNOMIN]
+    load = max(fz, 0.0) / fz0
+    return free_radius(c, omega) - (fz0 / cz) * (c[C.DREFF] * math.atan(c[C.BREFF] * load)
+                                                 + c[C.FREFF] * load)
+
+
 register_handling(HandlingModel("mf", MagicFormulaParams, magic_formula_params, mf_wheel_forces,
-                                "Magic Formula 5.2 / 6.1 / 6.2 (MFeval 4.3.1 agreement)"))
+                                "Magic Formula 5.2 / 6.1 / 6.2 (MFeval 4.3.1 agreement)",
+                                rolling_radius=mf_rolling_radius))
