@@ -99,3 +99,16 @@ def test_an_fmu_carries_the_moved_file(tmp_path, mf61_path):
     nominal = load_tyre(mf61_path).vertical_law.static_load(0.02)
     assert laws[312] == pytest.approx((1 + PFZ1 * DPI) * nominal, rel=1e-12)
     assert laws[360] == pytest.approx((1 + PFZ1 * 100 / 260) * nominal, rel=1e-12)
+
+
+def test_mf_curves_at_another_pressure(tmp_path, mf61_path, capsys):
+    """``tyrelab mf curves --pressure``: drawn at the moved pressure, refused outside the file's
+    range in one line with exit 2; a file stating no pressure says so (not "nan kPa")."""
+    assert main(["mf", "curves", str(mf61_path), "--pressure", "312", "-o", str(tmp_path / "c.png")]) == 0
+    assert "Magic Formula 6.1, 312 kPa" in capsys.readouterr().out
+    assert main(["mf", "curves", str(mf61_path), "--pressure", "450", "-o", str(tmp_path / "d.png")]) == 2
+    assert "outside" in capsys.readouterr().err and not (tmp_path / "d.png").exists()
+    mf52 = mf61_path.parent / "MagicFormula52_Parameters.tir"
+    assert main(["mf", "curves", str(mf52), "--pressure", "250", "-o", str(tmp_path / "e.png")]) == 2
+    text = capsys.readouterr().err
+    assert "states no inflation pressure" in text and "nan" not in text

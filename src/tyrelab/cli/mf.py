@@ -1,7 +1,7 @@
 """``tyrelab mf``: Magic Formula 5.2/6.1/6.2 property files.
 
 ``tyrelab mf curves FILE.tir -o curves.png`` plots Fx(kappa), Fy(alpha) and
-Mz(alpha) at several loads.
+Mz(alpha) at several loads (``--pressure KPA``: an MF-Tyre 6.x file at another pressure).
 """
 
 from __future__ import annotations
@@ -9,6 +9,7 @@ from __future__ import annotations
 import math
 
 from ..errors import InputError
+from ._common import pressure_kpa
 
 
 #: largest load asked for, as a fraction of FNOMIN (far beyond any file's FZMAX)
@@ -41,9 +42,15 @@ def _curves(args) -> int:
         mode = check_use_mode(args.use_mode)
     except InputError as exc:
         raise InputError(exc.reason, source="command line", field="--use-mode") from None
-    model = MagicFormula.from_tir(args.tir)
-    out = plot_curves(model, output, factors, use_mode=mode)
-    print(f"wrote {out} (Magic Formula {model.version})")
+    from ..tyre.params import Tyre
+    model = MagicFormula.from_tir(args.tir)   # its coefficients checked first
+    tyre = Tyre.from_tir(model.tir)
+    if args.pressure is not None:   # an MF-Tyre 6.x file at another pressure (tyre.pressure.at_pressure)
+        from ..tyre.pressure import at_pressure
+        tyre = at_pressure(tyre, args.pressure, args.tir)
+        model = MagicFormula.from_tir(tyre.tir)
+    out = plot_curves(model, output, factors, use_mode=mode, pressure_text=tyre.pressure_text)
+    print(f"wrote {out} (Magic Formula {model.version}, {tyre.pressure_text})")
     return 0
 
 
@@ -60,6 +67,9 @@ def register(subparsers) -> None:
                         help="loads as fractions of FNOMIN, comma separated (default 0.5,1,1.5)")
     curves.add_argument("--use-mode", type=int, default=111,
                         help="MFeval useMode: 111 (default), 121, 211 or 221")
+    curves.add_argument("--pressure", type=pressure_kpa(), default=None, metavar="KPA",
+                        help="inflation pressure in kPa (default: the file's INFLPRES); an MF-Tyre "
+                             "6.1/6.2 file with pressure terms, within its [INFLATION_PRESSURE_RANGE]")
     curves.set_defaults(func=_curves)
     # argparse errors of the nested parser go through the mf parser, whose
     # error handler the main command replaces (one line, exit 2)

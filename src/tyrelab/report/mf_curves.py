@@ -36,8 +36,10 @@ def curve_data(model, load_factors=DEFAULT_LOAD_FACTORS, kappa_max=0.3, alpha_ma
             "Fy": pure_lat["Fy"], "Mz": pure_lat["Mz"]}
 
 
-def plot_curves(model, output, load_factors=DEFAULT_LOAD_FACTORS, use_mode=111, dpi=120) -> Path:
-    """Write a three-panel figure (Fx-kappa, Fy-alpha, Mz-alpha) to ``output`` (atomically)."""
+def plot_curves(model, output, load_factors=DEFAULT_LOAD_FACTORS, use_mode=111, dpi=120,
+                pressure_text=None) -> Path:
+    """Write a three-panel figure (Fx-kappa, Fy-alpha, Mz-alpha) to ``output`` (atomically);
+    ``pressure_text`` (the pressure the file states, "250 kPa") joins the title when given."""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
@@ -57,6 +59,7 @@ def plot_curves(model, output, load_factors=DEFAULT_LOAD_FACTORS, use_mode=111, 
         ax.axvline(0.0, color="0.5", lw=0.6)
     axes[0].legend()
     fig.suptitle(f"{Path(model.source).name} -- Magic Formula {model.version}, "
-                 f"ISO-W, gamma = 0, Vx = {model.coefficient('LONGVL'):g} m/s, use_mode {use_mode}")
+                 f"ISO-W, gamma = 0, Vx = {model.coefficient('LONGVL'):g} m/s, "
+                 + (f"{pressure_text}, " if pressure_text else "") + f"use_mode {use_mode}")
     from ..io_atomic import save_figure
     return save_figure(fig, Path(output), dpi=dpi)

@@ -63,12 +63,7 @@ def load_tyre(name: str | Path = DEFAULT_TYRE, pressure: float | None = None) ->
             tyre = read_chrono_tyre(path)
         else:
             tyre = Tyre.from_tir(read_tir(path), name=path.stem)
-        if pressure is not None and not np.isfinite(tyre.pressure):
-            raise InputError(f"{path} states no inflation pressure ([OPERATING_CONDITIONS] INFLPRES "
-                             "or [TIRE_CONDITIONS] IP), so it cannot be run at a pressure given "
-                             "apart from it: leave out the pressure, or state it in the file",
-                             field="pressure")
-        if pressure is not None and not np.isclose(pressure, tyre.pressure):
+        if pressure is not None and not (np.isfinite(tyre.pressure) and np.isclose(pressure, tyre.pressure)):
             tyre = at_pressure(tyre, float(pressure), str(path))   # MF-Tyre 6.x; else refused
         return tyre
     pressures = BUILT_IN[match]

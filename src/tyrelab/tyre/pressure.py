@@ -13,6 +13,7 @@ moved to a pressure by setting ``INFLPRES``: the vertical law's ``1 + PFZ1 dpi``
 from __future__ import annotations
 
 import copy
+import math
 
 import numpy as np
 
@@ -49,6 +50,11 @@ def at_pressure(tyre: Tyre, pressure: float, source: str) -> Tyre:
     if not (np.isfinite(pressure) and pressure > 0):
         raise InputError(f"pressure must be a positive number, got {pressure}", field="pressure")
     tir = tyre.tir
+    if not math.isfinite(tyre.pressure):
+        raise InputError(f"{source} states no inflation pressure ([OPERATING_CONDITIONS] INFLPRES "
+                         "or [TIRE_CONDITIONS] IP), so it cannot be run at a pressure given "
+                         "apart from it: leave out the pressure, or state it in the file",
+                         field="pressure")
     stated = f"{tyre.pressure / 1e3:g} kPa"
     if not pressure_terms(tyre):
         raise InputError(f"{source} describes {stated} only; a single property file cannot be moved "
