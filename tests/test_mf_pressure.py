@@ -112,3 +112,42 @@ def test_mf_curves_at_another_pressure(tmp_path, mf61_path, capsys):
     assert main(["mf", "curves", str(mf52), "--pressure", "250", "-o", str(tmp_path / "e.png")]) == 2
     text = capsys.readouterr().err
     assert "states no inflation pressure" in text and "nan" not in text
+
+
+def _spec(tyre_lines):
+    return f"""\
+[study]
+name = "p"
+
+[[tyre]]
+{tyre_lines}
+
+[[model]]
+name = "A"
+contact = "point"
+
+[[test]]
+name = "cleat"
+road = "cleat:20x20"
+speeds_kmh = [20]
+loads = [5000]
+duration = 1.0
+"""
+
+
+def test_a_study_takes_an_mf_file_at_another_pressure(tmp_path, mf61_path):
+    """A study's [[tyre]] may give pressure_kpa for an MF-Tyre 6.x file: its runs take the
+    moved tyre (their keys differ by the pressure); a file that cannot move is refused at the
+    key, before any run."""
+    from tyrelab.study.spec import parse_spec
+
+    spec = parse_spec(_spec(f'name = "mf61"\nfile = "{mf61_path}"\npressure_kpa = 312'),
+                      tmp_path / "spec.toml")
+    assert spec.tyres[0].pressure == 312e3
+    run = spec.runs()[0]
+    assert run.simulate_kwargs()["pressure"] == 312e3
+    mf52 = mf61_path.parent / "CityBus_Pac02Tire.tir"
+    with pytest.raises(InputError, match=r"line 7: tyre\[1\]\.pressure_kpa: .*describes 800 kPa only") \
+            as err:
+        parse_spec(_spec(f'name = "bus"\nfile = "{mf52}"\npressure_kpa = 700'), tmp_path / "spec.toml")
+    assert "\n" not in str(err.value)

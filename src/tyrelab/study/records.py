@@ -27,7 +27,8 @@ class TyreSpec:
         The built-in tyre's name (as :data:`tyrelab.tyre.library` spells it)
         or the absolute path of a ``.tir`` file.
     pressure : float or None
-        Inflation pressure [Pa] of a built-in tyre (None: its default).
+        Inflation pressure [Pa] of a built-in tyre, or of an MF-Tyre 6.x file with pressure
+        terms (None: its default, or the file's own).
     builtin : bool
         Whether ``file`` names a built-in tyre.
     """

@@ -20,7 +20,8 @@ Schema (km/h, kPa, mm at this edge, as the command line; SI in the parsed object
     [[tyre]]                            # one or more
     name = "xzl"                        # label
     file = "xzl-16.00R20"               # built-in name, or a .tir / Chrono .json path (relative to the spec)
-    pressure_kpa = 300                  # optional, built-in tyres measured at several pressures only
+    pressure_kpa = 300                  # optional: a built-in tyre measured at several pressures, or
+                                        # an MF-Tyre 6.1/6.2 file with pressure terms (in its range)
 
     [[model]]                           # one or more model variants
     name = "OPC lk"                     # label used in every table
@@ -149,6 +150,7 @@ def _study(ck: Checker, doc):
 
 
 def _tyres(ck: Checker, doc) -> tuple[TyreSpec, ...]:
+    from ..limits import MAX_PRESSURE, MIN_PRESSURE
     from ..tyre.library import BUILT_IN, SINGLE_FILE, load_tyre
 
     builtins = {k.lower(): k for k in (*BUILT_IN, *SINGLE_FILE)}
@@ -176,12 +178,15 @@ def _tyres(ck: Checker, doc) -> tuple[TyreSpec, ...]:
                 ck.fail(path + ("file",), f"unknown tyre {json.dumps(file_text)}; expected a built-in tyre "
                         f"({', '.join([*BUILT_IN, *SINGLE_FILE])}), a .tir or a Chrono .json file")
             file = str(ck.path(file_text, path + ("file",), "tyre property file"))
-            if "pressure_kpa" in t:
-                ck.fail(path + ("pressure_kpa",), "a .tir file describes one pressure; pressure_kpa is "
-                        "for built-in tyres only")
+            if "pressure_kpa" in t:   # an MF-Tyre 6.x file moves (tyrelab.tyre.pressure.at_pressure)
+                pressure = 1e3 * ck.number(t["pressure_kpa"], path + ("pressure_kpa",),
+                                           "a pressure in kPa", low=MIN_PRESSURE / 1e3,
+                                           high=MAX_PRESSURE / 1e3, low_open=False)
         try:  # read it now: a broken property file stops the study before it starts
             tyre = load_tyre(file, pressure)
         except InputError as exc:
+            if exc.field == "pressure" and "pressure_kpa" in t:
+                ck.fail(path + ("pressure_kpa",), exc.reason)
             ck.fail(path + ("file",), f"cannot use this tyre: {exc}")
         tyres.append((TyreSpec(name, file, pressure, builtin is not None), tyre))
     return tuple(tyres)
