@@ -147,3 +147,21 @@ def test_hmmwv_is_a_complete_tyre(hmmwv):
     # Chrono's table: 53140 N at 0.1 m
     assert hmmwv.vertical_law.static_load(0.1) == pytest.approx(53140.0)
     assert hmmwv.with_stiffness("linear").vertical_law.static_load(0.01) == pytest.approx(3263.324234)
+
+
+def test_rolling_backwards_turns_the_aligning_moment_over(hp, data_dir):
+    """The pneumatic trail lies behind the contact centre in the direction of travel: rolling
+    backwards at the same slip the lateral force is the same and the aligning moment turns
+    over, as the Magic Formula's cos(alpha') = Vcx / Vc' turns it (checked on MFeval's 6.1
+    example). Before, PAC89 kept its forward sign, steering a reversing wheel into its slide."""
+    from tyrelab.tyre.handling.mf.model import MagicFormula
+    from tyrelab.tyre.handling.pac89 import pac89_wheel_forces
+
+    slide = 5.0 * math.tan(math.radians(3.0))          # the contact point slides left: alpha = 3 deg
+    fwd = pac89_wheel_forces(hp, 15000.0, 5.0, 0.0, slide, 0.0)
+    back = pac89_wheel_forces(hp, 15000.0, -5.0, 0.0, slide, 0.0)
+    assert back[4] == pytest.approx(fwd[4]) and back[1] == pytest.approx(fwd[1])
+    assert fwd[2] > 0.0 and back[2] == pytest.approx(-fwd[2])   # ISO-W: aligning when forwards
+    mf = MagicFormula.from_tir(data_dir / "mfeval" / "MagicFormula61_Parameters.tir")
+    mz = [float(mf.steady_state(6752.0, 0.0, math.radians(3.0), 0.0, v)["Mz"]) for v in (16.7, -16.7)]
+    assert mz[0] > 0.0 and mz[1] == pytest.approx(-mz[0])

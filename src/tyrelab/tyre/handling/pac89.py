@@ -183,11 +183,17 @@ def pac89_forces(hp, fz, kappa, alpha, gamma):
 def pac89_wheel_forces(hp, fz, v_long, v_slip_x, v_slip_y, gamma):
     """PAC89 from the contact point's slip velocities, with the slip stiffness.
 
-    Returns ``(FXW, FYW, MZW, kappa, alpha, dFXW/dkappa)`` (forward difference).
+    Returns ``(FXW, FYW, MZW, kappa, alpha, dFXW/dkappa)`` (forward difference). Rolling
+    backwards (``v_long < 0``) the aligning moment turns over: its pneumatic trail lies behind
+    the contact centre in the direction of travel, which is then ahead of it along the wheel's
+    x (as the Magic Formula's factor ``cos(alpha') = Vcx / Vc'`` turns its trail and residual
+    moment, Pacejka 2012 eqs. 4.E6, 4.E33, 4.E36).
     """
     kappa, alpha = slip(v_long, v_slip_x, v_slip_y)
     fx, fy, mz = pac89_forces(hp, fz, kappa, alpha, gamma)
     fx2, _, _ = pac89_forces(hp, fz, kappa + DKAPPA, alpha, gamma)
+    if v_long < 0.0:
+        mz = -mz
     return fx, fy, mz, kappa, alpha, (fx2 - fx) / DKAPPA
 
 
