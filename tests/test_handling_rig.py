@@ -61,3 +61,25 @@ def test_a_wheel_without_a_spin_inertia_in_its_file_rolls_over_a_cleat(data_dir,
     spin = run["ROTSPEED"].to_numpy()
     assert spin.min() > 2 / 3 * free and spin.max() < 4 / 3 * free
     assert np.abs(run["LONGSLIP"].to_numpy()).max() < 0.3
+
+
+def test_a_reversing_wheel_driven_backwards_is_pulled_backwards(data_dir):
+    """The CityBus (PAC2002) at -5 m/s, its wheel spinning 10 % faster backwards than it
+    travels: the road pulls it backwards, as forwards at +5 m/s and 10 % faster it pulls it
+    forwards, the Magic Formula's mirror image (its slip is -V_sx / V_x with the signed speed),
+    with the same combined-slip FYW when it also slides sideways. Before, given the rigs' slip
+    -V_sx / |V_x| there, the reversing wheel was pushed forwards (+23.9 kN) and its FYW took the
+    braked wheel's reduction."""
+    from tyrelab.road.spec import road_from_spec
+    from tyrelab.tyre.wheel import WheelLoads, loads_table, pose
+
+    model = make_tyre_model(data_dir / "tir" / "CityBus_Pac02Tire.tir", handling="mf")
+    eq = model.equilibrium(30000.0, 5.0)
+    re, height = 5.0 / eq.spin, model.tyre.unloaded_radius - eq.deflection
+    wheel = model.wheel(road_from_spec("flat").grid(), 30000.0)
+    poses = [pose(cz=height, velocity=(v, lateral, 0.0), omega=1.1 * v / re)
+             for v in (5.0, -5.0) for lateral in (0.0, 0.3)]
+    loads = loads_table(wheel, poses)
+    fxw, fyw = (loads[:, WheelLoads._fields.index(k)] for k in ("fxw", "fyw"))
+    assert fxw[0] > 20e3 and fxw[2] == pytest.approx(-fxw[0], rel=1e-9)
+    assert fyw[3] == pytest.approx(fyw[1], rel=1e-9) and fyw[1] < 0.0

@@ -37,13 +37,20 @@ def magic_formula_params(tyre) -> MagicFormulaParams:
 
 @nb.njit(cache=True)
 def mf_wheel_forces(params, fz, v_long, v_slip_x, v_slip_y, gamma):
-    """``(FXW, FYW, MZW, kappa, alpha, dFXW/dkappa)`` of the Magic Formula."""
+    """``(FXW, FYW, MZW, kappa, alpha, dFXW/dkappa)`` of the Magic Formula.
+
+    ``kappa`` is the rigs' slip, ``-V_sx / |V_x|`` (:func:`~..slip.slip`); the Magic Formula
+    takes ``-V_sx / V_x`` with the signed speed (MFeval: ``omega = (kappa Vcx + Vcx) / Re``), so
+    rolling backwards it is given ``-kappa``. Given the rigs' slip there, a reversing wheel
+    driven backwards was pushed forwards (the CityBus at -5 m/s and slip -0.1: +23.9 kN).
+    """
     kappa, alpha = slip(v_long, v_slip_x, v_slip_y)
+    sense = 1.0 if v_long >= 0.0 else -1.0
     out = np.empty(MFO.flags + 1)  # mf_forces's row: Fx ... Mz and the flag word
-    mf_forces(params.coefficients, params.use_mode, fz, kappa + DKAPPA, alpha, gamma, v_long,
-              params.pressure, out)
+    mf_forces(params.coefficients, params.use_mode, fz, sense * (kappa + DKAPPA), alpha, gamma,
+              v_long, params.pressure, out)
     fx2 = out[MFO.Fx]
-    mf_forces(params.coefficients, params.use_mode, fz, kappa, alpha, gamma, v_long,
+    mf_forces(params.coefficients, params.use_mode, fz, sense * kappa, alpha, gamma, v_long,
               params.pressure, out)
     return out[MFO.Fx], out[MFO.Fy], out[MFO.Mz], kappa, alpha, (fx2 - out[MFO.Fx]) / DKAPPA
 
