@@ -294,7 +294,7 @@ def analytic_wheel_step(wheel, pose, geo, dt):
         # Magic Formula's slip is (omega Re - Vx) / |Vx|: its tread leaves the patch at Re,
         # not at the loaded radius, Pacejka 2012 sec. 7.2.2)
         sx, sy, sz = cross(ax, ay, az, rx, ry, rz)
-        loaded = math.sqrt(rx * rx + ry * ry + rz * rz)
+        loaded = math.sqrt(sx * sx + sy * sy + sz * sz)   # r's distance from the axis
         stretch = handling_rolling_radius(wheel.handling, fz, omega, loaded) / loaded
         sx, sy, sz = sx * stretch, sy * stretch, sz * stretch
         v_long = dot(vx, vy, vz, wxx, wxy, wxz)
