@@ -41,8 +41,8 @@ def mf_wheel_forces(params, fz, v_long, v_slip_x, v_slip_y, gamma):
 
     ``kappa`` is the rigs' slip, ``-V_sx / |V_x|`` (:func:`~..slip.slip`); the Magic Formula
     takes ``-V_sx / V_x`` with the signed speed (MFeval: ``omega = (kappa Vcx + Vcx) / Re``), so
-    rolling backwards it is given ``-kappa``. Given the rigs' slip there, a reversing wheel
-    driven backwards was pushed forwards (the CityBus at -5 m/s and slip -0.1: +23.9 kN).
+    rolling backwards it is given ``-kappa``: given the rigs' slip there, a reversing wheel
+    driven backwards would be pushed forwards.
     """
     kappa, alpha = slip(v_long, v_slip_x, v_slip_y)
     sense = 1.0 if v_long >= 0.0 else -1.0
