@@ -140,11 +140,13 @@ def test_a_hysteresis_that_stays_as_the_press_slows_averages_out_at_the_turns_to
 
 def test_the_rams_travel_before_the_touch_is_taken_off(xzl, tmp_path):
     """A press logs its ram from where it starts, 20 mm above the plate: no load, then the
-    stepped loop (+-5 % hysteresis, 30 N of noise). The touch is found within 1 mm (the
-    sample step is 0.5 mm; the XZL's curve rises softly, 155 N at 1 mm, so the hinge is found
-    0.9 mm late) and the fit is the record's counted from touch: the linear stiffness within
-    2 %, the table within 3 % from 40 mm on (what 1 mm of touch moves it by). Before, the
-    20 mm of travel counted as deflection: 432 against 619 N/mm."""
+    stepped loop (+-5 % hysteresis, 30 N of noise). The touch is found within 0.25 mm (the
+    sample step is 0.5 mm; over eight noise seeds the cubic hinge's touch fell within
+    0.16 mm, the quadratic one's 0.66-0.84 mm late on this curve, which rises softly, 155 N
+    at 1 mm) and the fit is the record's counted from touch: the linear stiffness within
+    0.5 %, the table within 3 % from 10 mm on and 1 % from 40 mm on (seeds: at most 2.7 %
+    and 0.5 %; with the touch 0.83 mm late, 12.8 % and 2.5 %). Before the touch was sought,
+    the 20 mm of travel counted as deflection: 432 against 619 N/mm."""
     from tyrelab.fit.lab_files import read_load_deflection
     d, direction = _stepped_press(cycles=1)
     f = xzl.vertical_law.static_load(d) * (1.0 + 0.05 * direction)
@@ -154,12 +156,14 @@ def test_the_rams_travel_before_the_touch_is_taken_off(xzl, tmp_path):
     (tmp_path / "ram.csv").write_text("deflection_mm,load_N\n" + "".join(
         f"{1e3 * a:.3f},{b:.1f}\n" for a, b in zip(ram, load)))
     press = read_load_deflection(tmp_path / "ram.csv")
-    assert press.touch == pytest.approx(0.02, abs=1e-3)
+    assert press.touch == pytest.approx(0.02, abs=2.5e-4)
     truth = linear_stiffness(d, f + noise[40:]).stiffness
-    assert linear_stiffness(press.deflection, press.load).stiffness == pytest.approx(truth, rel=0.02)
+    assert linear_stiffness(press.deflection, press.load).stiffness == pytest.approx(truth, rel=0.005)
     table = load_deflection_table(press.deflection, press.load, step=0.005)
-    rows = table.deflection >= 0.04
-    assert table.load[rows] == pytest.approx(xzl.vertical_law.static_load(table.deflection[rows]), rel=0.03)
+    for start, share in ((0.01, 0.03), (0.04, 0.01)):
+        rows = table.deflection >= start
+        assert table.load[rows] == pytest.approx(xzl.vertical_law.static_load(table.deflection[rows]),
+                                                 rel=share)
 
 
 def test_a_static_cleat_press_is_counted_from_its_touch_too(xzl, tmp_path):
@@ -204,3 +208,18 @@ def test_a_falling_table_row_is_raised():
     table = load_deflection_table([0.0, 0.01, 0.02, 0.03], [0.0, 1000.0, 900.0, 3000.0])
     assert list(table.load) == [0.0, 1000.0, 1000.0, 3000.0]
     assert table.raised == 1
+
+
+def test_a_soft_start_that_is_not_a_polynomial_is_touched_within_a_millimetre(tmp_path):
+    """A curve rising as u^1.5 (a Hertz-like start, 126 N at 1 mm; not of the hinge's own
+    polynomial form) logged from 20 mm above the plate as the press above: the touch is found
+    within 1 mm of the truth for each of five noise seeds (0.3-0.8 mm late; a hinge without
+    the cubic term found it 1.1-1.2 mm late: near the touch the load is below the noise)."""
+    from tyrelab.fit.vertical import first_touch
+
+    d, direction = _stepped_press(cycles=1)
+    f = 4.0e6 * d ** 1.5 * (1.0 + 0.05 * direction)
+    ram = np.r_[np.arange(0.0, 0.02, 0.0005), d + 0.02]
+    for seed in range(5):
+        load = np.r_[np.zeros(40), f] + np.random.default_rng(seed).normal(0.0, 30.0, d.size + 40)
+        assert first_touch(ram, load) == pytest.approx(0.02, abs=1e-3)

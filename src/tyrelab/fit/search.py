@@ -1,7 +1,7 @@
 """A one-dimensional least-squares search, coarse to fine (the touch of a press, the release of a
 drop): the sum of squares is evaluated on a grid, and the grid is narrowed round its smallest
 value until its spacing is the resolution asked for; at each candidate the rest of the model is
-two terms fitted linearly (:func:`two_term_sse`). Memory stays at ``points`` times the
+a few terms fitted linearly (:func:`two_term_sse`, :func:`term_sse`). Memory stays at ``points`` times the
 samples, whatever the range: a slow press logged at 100 Hz has thousands of samples over the
 range searched."""
 
@@ -45,3 +45,21 @@ def two_term_sse(first, second, y) -> np.ndarray:
     beta = np.where(ok, (s11 * r2 - s12 * r1) / np.where(ok, det, 1.0), 0.0)
     out = ((alpha[:, None] * first + beta[:, None] * second - y[None, :]) ** 2).sum(1)
     return np.where(ok, out, np.inf)
+
+
+def term_sse(terms, y) -> np.ndarray:
+    """Per row, the least sum of squares of ``y ~ sum_k c_k terms[..., k]`` (``terms`` of shape
+    ``(rows, samples, k)``): the normal equations of each row solved together. A row whose terms
+    are linearly dependent on its samples (no fit to choose between them) is infinite, as in
+    :func:`two_term_sse`."""
+    terms = np.asarray(terms, float)
+    y = np.asarray(y, float)
+    gram = np.einsum("rsk,rsl->rkl", terms, terms)
+    rhs = np.einsum("rsk,s->rk", terms, y)
+    scale = np.prod(np.maximum(np.einsum("rkk->rk", gram), 1e-300), axis=1)
+    ok = np.abs(np.linalg.det(gram)) > 1e-24 * scale
+    out = np.full(terms.shape[0], np.inf)
+    if np.any(ok):
+        coef = np.linalg.solve(gram[ok], rhs[ok][..., None])[..., 0]
+        out[ok] = ((np.einsum("rsk,rk->rs", terms[ok], coef) - y[None, :]) ** 2).sum(1)
+    return out
