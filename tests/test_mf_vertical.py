@@ -205,3 +205,27 @@ def test_the_magic_formulas_slip_is_taken_at_its_effective_rolling_radius(mf61, 
     # and the rigs start a wheel there: the free-rolling spin of the equilibrium is MFeval's
     for fz, w in zip(free.Fz, free.omega):
         assert model.equilibrium(fz, 16.7).spin == pytest.approx(w, rel=1e-9)
+
+
+@pytest.mark.filterwarnings("ignore:.*no \\[CONTACT_PATCH\\] value")   # its cams are assumed
+@pytest.mark.parametrize("name", ["CityBus_Pac02Tire", "MagicFormula52_Parameters"])
+def test_an_mf52_files_own_contact_length_sizes_the_enveloping_patch(data_dir, name):
+    """An MF 5.2 file without [CONTACT_PATCH] has its own contact length,
+    a = R0 (Q_A2 z + Q_A1 sqrt z), z = Fz / FNOMIN (Q_A1, Q_A2 MFeval's estimate from
+    R0 Cz / FNOMIN when the file has neither), and the whole width: the enveloping patch at
+    each load is MFeval's 2a and 2b. Before, the thesis XZL's length law sized it (the CityBus's
+    at 35 kN 27 % longer), and the warning said so; it now names the cams only."""
+    from tyrelab.road.spec import road_from_spec
+    from tyrelab.tyre.contact.enveloping import contact_patch
+    from tyrelab.tyre.contact.patch_laws import assumed_patch
+
+    tyre = Tyre.from_tir(data_dir / "mfeval" / f"{name}.tir")
+    said = " ".join(assumed_patch(tyre.tir))   # what the (once per file) warning lists
+    assert "PAE" in said and "length law" not in said and "width law" not in said
+    params = make_tyre_model(tyre, "enveloping", handling="none").contact_params(
+        road_from_spec("flat").grid())
+    rows = pd.read_csv(data_dir / "mfeval" / f"{name}.mode111.csv.gz").groupby("Fz").first()
+    for fz, row in rows.iterrows():
+        a, b = contact_patch(params, tyre.static_deflection(fz))
+        assert 2 * a == pytest.approx(row["contact_length_2a"], rel=1e-9)
+        assert 2 * b == pytest.approx(row["contact_width_2b"], rel=1e-12)

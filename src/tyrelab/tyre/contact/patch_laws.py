@@ -30,9 +30,10 @@ def assumed_patch(tir, given=()) -> list[str]:
         return any(tir.has("CONTACT_PATCH", k) for k in keys)
 
     missing = []
-    if not has("PA1", "PA2", "Q_RA1", "Q_RA2"):
+    mf52 = mf52_length(tir) is not None      # MF 5.2 has its own length, and the whole width
+    if not has("PA1", "PA2", "Q_RA1", "Q_RA2") and not mf52:
         missing.append(f"the length law (PA1 {DEFAULTS['PA1']:g}, PA2 {DEFAULTS['PA2']:g})")
-    if tir.table("CONTACT_WIDTH_CURVE") is None and not has("PB1", "Q_RB1", "Q_RB2"):
+    if tir.table("CONTACT_WIDTH_CURVE") is None and not has("PB1", "Q_RB1", "Q_RB2") and not mf52:
         missing.append("the width law (the whole section width)")
     missing += [f"{name} {DEFAULTS[name]:g}" for name in ("PAE", "PBE", "PCE", "PLS", "N_WIDTH", "N_LENGTH")
                 if not has(name, SWIFT[name]) and name.lower() not in given]
@@ -64,13 +65,38 @@ def patch_key(tir, name):
     return DEFAULTS[name]
 
 
+def mf52_length(tir):
+    """MF-Tyre 5.2's contact half length as an MF-Swift law, ``(Q_RA1, Q_RA2)`` equivalents, or
+    None for a file that is not MF 5.2 (or whose Magic Formula does not read).
+
+    MF 5.2 writes ``a = R0 (Q_A2 z + Q_A1 sqrt(z))`` in ``z = Fz / FNOMIN`` (MFeval's contact
+    patch; ``Q_A1``, ``Q_A2`` from the file, else MFeval's estimate from ``R0 Cz / FNOMIN``).
+    With ``z = s x``, ``x = Fz / (Cz R0)`` the MF-Swift laws' argument and ``s = Cz R0 / FNOMIN``,
+    that is the MF-Swift law with ``Q_RA1 = Q_A1 sqrt(s)`` and ``Q_RA2 = Q_A2 s``.
+    """
+    from ...errors import InputError as _Unreadable
+    from ..handling.mf import MagicFormula
+    try:
+        mf = MagicFormula.from_tir(tir)
+    except _Unreadable:
+        return None
+    if mf.version != "5.2":
+        return None
+    s = mf.coefficient("VERTICAL_STIFFNESS") * mf.coefficient("UNLOADED_RADIUS") / mf.coefficient("FNOMIN")
+    return mf.coefficient("QA1_EFF") * math.sqrt(s), mf.coefficient("QA2_EFF") * s
+
+
 def length_law(tir):
-    """(mode, (c1, c2)) of the half-length law: 0 eq. 2.3 (PA1, PA2), 1 MF-Swift (Q_RA1, Q_RA2)."""
+    """(mode, (c1, c2)) of the half-length law: 0 eq. 2.3 (PA1, PA2), 1 MF-Swift (Q_RA1, Q_RA2;
+    or MF 5.2's contact length, :func:`mf52_length`); else the defaults (the thesis XZL's)."""
     if tir.has("CONTACT_PATCH", "PA1") or tir.has("CONTACT_PATCH", "PA2"):
         return 0, (tir.number("CONTACT_PATCH", "PA1", DEFAULTS["PA1"]),
                    tir.number("CONTACT_PATCH", "PA2", DEFAULTS["PA2"]))
     if tir.has("CONTACT_PATCH", "Q_RA1") or tir.has("CONTACT_PATCH", "Q_RA2"):
         return 1, (tir.number("CONTACT_PATCH", "Q_RA1", 0.0), tir.number("CONTACT_PATCH", "Q_RA2", 0.0))
+    mf52 = mf52_length(tir)
+    if mf52 is not None:
+        return 1, mf52
     return 0, (DEFAULTS["PA1"], DEFAULTS["PA2"])
 
 
