@@ -4,7 +4,7 @@ resolution asked, evaluating a bounded number of points per pass."""
 import numpy as np
 import pytest
 
-from tyrelab.fit.search import POINTS, refine_minimum, two_term_sse
+from tyrelab.fit.search import POINTS, refine_minimum, term_sse
 
 
 def test_a_known_minimum_to_the_resolution_asked():
@@ -23,19 +23,17 @@ def test_a_minimum_at_the_range_end_and_an_empty_range():
     assert refine_minimum(lambda x: x, 5.0, 5.0, 1e-6) == 5.0
 
 
-def test_two_terms_fitted_as_numpy_s_least_squares_fits_them():
-    """Each row's sum of squares equals numpy's least squares on the same two columns; a row
-    whose columns are proportional has no unique fit: infinite."""
+def test_terms_fitted_as_numpy_s_least_squares_fits_them():
+    """Each row's sum of squares equals numpy's least squares on the same columns (two or
+    three of them); a row whose columns are linearly dependent has no unique fit: infinite."""
     rng = np.random.default_rng(4)
     y = rng.normal(size=50)
-    first, second = rng.normal(size=(5, 50)), rng.normal(size=(5, 50))
-    second[4] = 2.0 * first[4]
-    got = two_term_sse(first, second, y)
-    for k in range(4):
-        _, res, *_ = np.linalg.lstsq(np.column_stack([first[k], second[k]]), y, rcond=None)
-        assert got[k] == pytest.approx(res[0], rel=1e-10)
-    assert np.isinf(got[4])
-    # one row for all: a constant beside each row's second term
-    const = two_term_sse(np.ones((1, 50)), second[:2], y)
-    _, res, *_ = np.linalg.lstsq(np.column_stack([np.ones(50), second[1]]), y, rcond=None)
-    assert const[1] == pytest.approx(res[0], rel=1e-10)
+    for k in (2, 3):
+        terms = rng.normal(size=(5, 50, k))
+        # the last row's last column a combination of its others: dependent
+        terms[4, :, -1] = 2.0 * terms[4, :, 0] - (terms[4, :, 1] if k == 3 else 0.0)
+        got = term_sse(terms, y)
+        for row in range(4):
+            _, res, *_ = np.linalg.lstsq(terms[row], y, rcond=None)
+            assert got[row] == pytest.approx(res[0], rel=1e-10)
+        assert np.isinf(got[4])

@@ -24,7 +24,7 @@ import numpy as np
 from scipy.signal import find_peaks
 
 from ..errors import InputError
-from .search import refine_minimum, two_term_sse
+from .search import refine_minimum, term_sse
 
 
 class DropTestDamping(NamedTuple):
@@ -221,7 +221,7 @@ def drop_release(time, displacement) -> float:
 
     def sse(candidates):   # z_rest, then the fall a (t - t_r)^2 / 2 from the release on
         h = 0.5 * np.clip(tw[None, :] - candidates[:, None], 0.0, None) ** 2
-        return two_term_sse(np.ones((1, tw.size)), h, zw)
+        return term_sse(np.stack([np.ones_like(h), h], axis=2), zw)
 
     return refine_minimum(sse, tw[0] - 0.05, tw[-1], 0.25 * dt)
 

@@ -1,7 +1,7 @@
 """A one-dimensional least-squares search, coarse to fine (the touch of a press, the release of a
 drop): the sum of squares is evaluated on a grid, and the grid is narrowed round its smallest
 value until its spacing is the resolution asked for; at each candidate the rest of the model is
-a few terms fitted linearly (:func:`two_term_sse`, :func:`term_sse`). Memory stays at ``points`` times the
+a few terms fitted linearly (:func:`term_sse`). Memory stays at ``points`` times the
 samples, whatever the range: a slow press logged at 100 Hz has thousands of samples over the
 range searched."""
 
@@ -32,26 +32,11 @@ def refine_minimum(sse, lo: float, hi: float, resolution: float, points: int = P
         lo, hi = xs[max(k - 2, 0)], xs[min(k + 2, points - 1)]
 
 
-def two_term_sse(first, second, y) -> np.ndarray:
-    """Per row, the least sum of squares of ``y ~ alpha first + beta second`` (both terms
-    ``(rows, samples)``, or one row for all): the two normal equations solved in closed form.
-    A row whose terms are proportional (no fit to choose between them) is infinite."""
-    first, second = np.broadcast_arrays(np.asarray(first, float), np.asarray(second, float))
-    s11, s12, s22 = (first * first).sum(1), (first * second).sum(1), (second * second).sum(1)
-    r1, r2 = first @ y, second @ y
-    det = s11 * s22 - s12 * s12
-    ok = det > 1e-30 * np.maximum(s11 * s22, 1e-300)
-    alpha = np.where(ok, (s22 * r1 - s12 * r2) / np.where(ok, det, 1.0), 0.0)
-    beta = np.where(ok, (s11 * r2 - s12 * r1) / np.where(ok, det, 1.0), 0.0)
-    out = ((alpha[:, None] * first + beta[:, None] * second - y[None, :]) ** 2).sum(1)
-    return np.where(ok, out, np.inf)
-
-
 def term_sse(terms, y) -> np.ndarray:
     """Per row, the least sum of squares of ``y ~ sum_k c_k terms[..., k]`` (``terms`` of shape
-    ``(rows, samples, k)``): the normal equations of each row solved together. A row whose terms
-    are linearly dependent on its samples (no fit to choose between them) is infinite, as in
-    :func:`two_term_sse`."""
+    ``(rows, samples, k)``):
+    the normal equations of each row solved together. A row whose terms are linearly dependent
+    on its samples (no fit to choose between them) is infinite."""
     terms = np.asarray(terms, float)
     y = np.asarray(y, float)
     gram = np.einsum("rsk,rsl->rkl", terms, terms)
