@@ -176,23 +176,25 @@ def _handling_forces(params, fz, v_long, v_slip_x, v_slip_y, gamma):
     return impl
 
 
-def handling_rolling_radius(params, fz, omega, loaded):
-    """The effective rolling radius [m] the handling model of ``params`` defines its slip
-    with (:attr:`~tyrelab.tyre.registry.HandlingModel.rolling_radius`) at load ``fz`` [N]
-    and spin ``omega`` [rad/s]; ``loaded``, the contact point's lever [m], for a model
-    without one."""
+def rolling_lever(params, fz, omega, sx, sy, sz):
+    """The lever ``a x r`` of a slip velocity's spin part, ``(sx, sy, sz)``, stretched to the
+    effective rolling radius the handling model of ``params`` defines its slip with
+    (:attr:`~tyrelab.tyre.registry.HandlingModel.rolling_radius`, at load ``fz`` [N] and spin
+    ``omega`` [rad/s]): scaled from its length ``|a x r|``, r's distance from the axis; as it
+    is for a model without one (decided at compile time: no work per step)."""
     raise NotImplementedError("compiled only")
 
 
-@overload(handling_rolling_radius)
-def _handling_rolling_radius(params, fz, omega, loaded):
+@overload(rolling_lever)
+def _rolling_lever(params, fz, omega, sx, sy, sz):
     radius = handling_by_record(params).rolling_radius
     if radius is None:
-        def impl(params, fz, omega, loaded):
-            return loaded
+        def impl(params, fz, omega, sx, sy, sz):
+            return sx, sy, sz
     else:
-        def impl(params, fz, omega, loaded):
-            return radius(params, fz, omega)
+        def impl(params, fz, omega, sx, sy, sz):
+            stretch = radius(params, fz, omega) / math.sqrt(sx * sx + sy * sy + sz * sz)
+            return sx * stretch, sy * stretch, sz * stretch
     return impl
 
 
@@ -256,7 +258,7 @@ def analytic_wheel_step(wheel, pose, geo, dt):
     FXW, FYW and an aligning moment from the slip of the contact point
     (rigid-ring kinematics: the lever is the loaded radius, or the handling
     model's effective rolling radius if it defines its slip with one,
-    :func:`handling_rolling_radius`), scaled by the
+    :func:`rolling_lever`), scaled by the
     ground's friction scale there (:func:`~tyrelab.road.terrain.terrain_friction`;
     the whole curve scales, its slip stiffness too: the handling models take no
     friction input). A ground that is not rigid then answers the contact's forces
@@ -289,14 +291,11 @@ def analytic_wheel_step(wheel, pose, geo, dt):
         tx, ty, tz = cross(ax, ay, az, nx, ny, nz)
         wxx, wxy, wxz = unit(tx, ty, tz)
         wyx, wyy, wyz = cross(nx, ny, nz, wxx, wxy, wxz)
-        # velocity of the wheel material at the contact point: v + omega a x r, the lever r
+        # velocity of the wheel material at the contact point: v + omega a x r, the lever
         # stretched to the handling model's effective rolling radius when it has one (the
-        # Magic Formula's slip is (omega Re - Vx) / |Vx|: its tread leaves the patch at Re,
-        # not at the loaded radius, Pacejka 2012 sec. 7.2.2)
-        sx, sy, sz = cross(ax, ay, az, rx, ry, rz)
-        loaded = math.sqrt(sx * sx + sy * sy + sz * sz)   # r's distance from the axis
-        stretch = handling_rolling_radius(wheel.handling, fz, omega, loaded) / loaded
-        sx, sy, sz = sx * stretch, sy * stretch, sz * stretch
+        # Magic Formula's slip is (omega Re - Vx) / Vx: its tread leaves the patch at Re, not
+        # at the loaded radius; Besselink et al. 2010 eq. 7, MFeval)
+        sx, sy, sz = rolling_lever(wheel.handling, fz, omega, *cross(ax, ay, az, rx, ry, rz))
         v_long = dot(vx, vy, vz, wxx, wxy, wxz)
         v_slip_x = dot(vx + omega * sx, vy + omega * sy, vz + omega * sz, wxx, wxy, wxz)
         v_slip_y = dot(vx + omega * sx, vy + omega * sy, vz + omega * sz, wyx, wyy, wyz)
