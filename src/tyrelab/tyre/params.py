@@ -126,6 +126,7 @@ class Tyre:
         if pressure is None:
             pressure = tir.number("TIRE_CONDITIONS", "IP", default=float("nan"))
         pressure_factor = tir_physics.pressure_factor(tir)
+        quadratic = tir_physics.quadratic_law(tir, r0, k, pressure_factor)
         return cls(
             name=name or tir.source,
             unloaded_radius=r0,
@@ -133,7 +134,7 @@ class Tyre:
             vertical_stiffness=k,
             vertical_damping=c,
             load_deflection=table,
-            stiffness="table" if table is not None or tir.has("VERTICAL", "Q_FZ2") else "linear",
+            stiffness="table" if table is not None or quadratic is not None else "linear",
             shape=shape,
             wheel_mass=tir.number("INERTIA", "WHEEL_MASS",
                                   default=tir.number("INERTIA", "MASS", default=0.0)),
@@ -143,7 +144,7 @@ class Tyre:
             damping_ramp=tir.number("VERTICAL", "DAMPING_RAMP", default=DEFAULT_DAMPING_RAMP),
             tir=tir,
             bottoming=tir_physics.bottoming(tir, r0),
-            quadratic_law=tir_physics.quadratic_law(tir, r0, k, pressure_factor),
+            quadratic_law=quadratic,
             pressure_factor=pressure_factor,
             speed_stiffening=tir_physics.speed_stiffening(tir, r0),
         )
@@ -173,6 +174,14 @@ class Tyre:
         a ``[DEFLECTION_LOAD_CURVE]`` or MF-Tyre 6.x's ``Q_FZ2``."""
         return self.load_deflection is not None or self.quadratic_law is not None
 
+    @property
+    def quadratic_in_use(self) -> tuple[float, float] | None:
+        """:attr:`quadratic_law` when it is the law :attr:`vertical_law` runs (the table
+        stiffness of a file without ``[DEFLECTION_LOAD_CURVE]``), else None."""
+        if self.stiffness == "table" and self.load_deflection is None:
+            return self.quadratic_law
+        return None
+
     # -- what the kernels take -------------------------------------------
     @property
     def spin_inertia(self) -> float:
@@ -185,7 +194,7 @@ class Tyre:
     def vertical_law(self) -> VerticalLaw:
         """The compiled-ready vertical law (rebuilt only when its inputs change)."""
         use_table = self.stiffness == "table" and self.load_deflection is not None
-        quadratic = self.quadratic_law if self.stiffness == "table" and not use_table else None
+        quadratic = self.quadratic_in_use
         bottoming = NO_BOTTOMING if self.bottoming is None else self.bottoming
         key = (use_table, quadratic, self.vertical_stiffness, self.pressure_factor,
                self.speed_stiffening, self.vertical_damping, self.damping_ramp,

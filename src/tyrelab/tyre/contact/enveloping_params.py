@@ -52,12 +52,12 @@ cam_option_values = partial(bounded_options, bounds=CAM_BOUNDS)
 def swift_coefficients(tyre) -> tuple[float, float]:
     """``(swift_c1, swift_c2)`` of :class:`EnvelopingParams` for ``tyre``: its vertical law's
     load over ``Cz = VERTICAL_STIFFNESS (1 + PFZ1 dpi)`` when the law is MF-Tyre 6.x's quadratic
-    (:attr:`~tyrelab.tyre.params.Tyre.quadratic_law`); (1, 0) for the linear law, whose load over
+    (:attr:`~tyrelab.tyre.params.Tyre.quadratic_in_use`); (1, 0) for the linear law, whose load over
     Cz is the deflection. A ``[DEFLECTION_LOAD_CURVE]`` law is taken as (1, 0) too (its load over
     Cz would need the table in the kernel)."""
-    k1k2 = tyre.quadratic_law
-    if k1k2 is None or tyre.load_deflection is not None or tyre.stiffness != "table":
-        return 1.0, 0.0   # the law in use is not the quadratic (Tyre.vertical_law)
+    k1k2 = tyre.quadratic_in_use
+    if k1k2 is None:
+        return 1.0, 0.0
     cz = tyre.vertical_stiffness * tyre.pressure_factor
     return k1k2[0] / cz, k1k2[1] / cz
 
