@@ -145,25 +145,30 @@ class VerticalLaw(NamedTuple):
         return rolling_deflection(self, float(load), float(omega))
 
 
+def mf_q_fz1(vertical_stiffness, unloaded_radius, nominal_load, q_fz2):
+    """MF-Tyre's ``Q_FZ1 = sqrt((Cz R0 / FNOMIN)^2 - 4 Q_FZ2)``, which no property file states:
+    the linear coefficient that makes the law's slope at FNOMIN (and nominal pressure) Cz =
+    ``VERTICAL_STIFFNESS`` (Besselink et al. 2010, eq. 4; MFeval 4.3.1 ``calculateRhoRl61``).
+    None when ``4 Q_FZ2`` exceeds ``(Cz R0 / FNOMIN)^2``: no such law has the slope Cz there."""
+    disc = (vertical_stiffness * unloaded_radius / nominal_load) ** 2 - 4.0 * q_fz2
+    return math.sqrt(disc) if disc >= 0.0 else None
+
+
 def mf_load_deflection(vertical_stiffness, unloaded_radius, nominal_load, q_fz2, pressure_factor=1.0):
     """Coefficients (k1 [N/m], k2 [N/m^2]) of MF-Tyre's static load-deflection law, k1 rho + k2 rho^2.
 
     Pacejka, *Tyre and Vehicle Dynamics* (2012) eq. A3.3 without its speed and force terms::
 
         Fz = (Q_FZ1 rho/R0 + Q_FZ2 (rho/R0)^2) (1 + PFZ1 dpi) FNOMIN
-        Q_FZ1 = sqrt((Cz R0 / FNOMIN)^2 - 4 Q_FZ2)
 
-    ``Q_FZ1`` is not in a property file: it is chosen so that the law's slope at FNOMIN (and
-    nominal pressure) is ``VERTICAL_STIFFNESS`` = Cz (Besselink et al. 2010, eq. 4; MFeval 4.3.1
-    ``calculateRhoRl61``). ``pressure_factor`` is ``1 + PFZ1 dpi``. Returns None when
-    ``4 Q_FZ2`` exceeds ``(Cz R0 / FNOMIN)^2``: no such law has the slope Cz at FNOMIN.
+    with ``Q_FZ1`` from :func:`mf_q_fz1`; ``pressure_factor`` is ``1 + PFZ1 dpi``. None when
+    there is no ``Q_FZ1``.
     """
-    ratio = vertical_stiffness * unloaded_radius / nominal_load
-    disc = ratio * ratio - 4.0 * q_fz2
-    if not disc >= 0.0:
+    q_fz1 = mf_q_fz1(vertical_stiffness, unloaded_radius, nominal_load, q_fz2)
+    if q_fz1 is None:
         return None
     scale = pressure_factor * nominal_load
-    return scale * math.sqrt(disc) / unloaded_radius, scale * q_fz2 / unloaded_radius ** 2
+    return scale * q_fz1 / unloaded_radius, scale * q_fz2 / unloaded_radius ** 2
 
 
 def bottoming_table(deflection=None, load=None, *, stiffness=None, start=None) -> np.ndarray:

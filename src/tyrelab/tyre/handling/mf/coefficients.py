@@ -40,6 +40,7 @@ import numpy as np
 
 from ...tir import TirFile, read_tir
 from ...tir_units import KEY_DIMENSIONS, units_factor
+from ...vertical import mf_q_fz1
 from ....errors import InputError
 
 #: (name, MFeval readTIR default). Order defines the packed vector (and
@@ -249,8 +250,8 @@ def pack(tir: TirFile, version: str | None = None) -> tuple[np.ndarray, str]:
     cz0 = values[INDEX["VERTICAL_STIFFNESS"]]
     fz0 = values[INDEX["FNOMIN"]]
     values[INDEX["VERSION"]] = VERSION_CODE[version]
-    disc = (cz0 * r0 / fz0) ** 2 - 4.0 * values[INDEX["Q_FZ2"]]
-    values[INDEX["Q_FZ1"]] = math.sqrt(max(disc, 0.0))  # rearranged load-deflection law
+    q_fz1 = mf_q_fz1(cz0, r0, fz0, values[INDEX["Q_FZ2"]])   # rearranged load-deflection law
+    values[INDEX["Q_FZ1"]] = 0.0 if q_fz1 is None else q_fz1
     qa1, qa2 = values[INDEX["Q_A1"]], values[INDEX["Q_A2"]]
     if qa1 == 0.0 and qa2 == 0.0:
         qa1, qa2 = _default_contact_length(r0, cz0, fz0)

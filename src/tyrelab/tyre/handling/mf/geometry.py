@@ -22,6 +22,16 @@ def free_radius(c, omega):
 
 
 @numba.njit(cache=True, error_model="numpy")
+def radius_drop(c, fz_u, dpi):
+    """How far the effective rolling radius lies below the free one under the load ``fz_u``
+    (Paper eq. 7): ``(Fz0 / Cz) (DREFF atan(BREFF Fz / Fz0) + FREFF Fz / Fz0)``, Cz =
+    VERTICAL_STIFFNESS (1 + PFZ1 dpi) (Paper eq. 5)."""
+    fz0 = c[C.FNOMIN]
+    cz = c[C.VERTICAL_STIFFNESS] * (1.0 + c[C.PFZ1] * dpi)
+    return (fz0 / cz) * (c[C.DREFF] * math.atan(c[C.BREFF] * fz_u / fz0) + c[C.FREFF] * fz_u / fz0)
+
+
+@numba.njit(cache=True, error_model="numpy")
 def effective_rolling_radius(c, fz_u, kappa_u, vx, dpi):
     """Effective rolling radius Re and wheel speed omega (Paper eq. 7, Pacejka eq. 2.5).
 
@@ -29,9 +39,7 @@ def effective_rolling_radius(c, fz_u, kappa_u, vx, dpi):
     by fixed-point iteration from Re = 0.965 R0, as MFeval does (to 1e-12 m
     here). Returns (Re, R_omega, omega).
     """
-    fz0 = c[C.FNOMIN]
-    cz = c[C.VERTICAL_STIFFNESS] * (1.0 + c[C.PFZ1] * dpi)  # (Paper eq. 5)
-    load = (fz0 / cz) * (c[C.DREFF] * math.atan(c[C.BREFF] * fz_u / fz0) + c[C.FREFF] * fz_u / fz0)
+    load = radius_drop(c, fz_u, dpi)
     re = 0.965 * c[C.UNLOADED_RADIUS]
     omega = 0.0
     r_omega = free_radius(c, 0.0)

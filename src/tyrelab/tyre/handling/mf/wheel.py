@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import math
 from typing import NamedTuple
 
 import numba as nb
@@ -11,7 +10,7 @@ import numpy as np
 from ...registry import HandlingModel, register_handling
 from ..slip import DKAPPA, slip
 from . import coefficient_index as C
-from .geometry import free_radius
+from .geometry import free_radius, radius_drop
 from .kernel import MFO, mf_forces
 
 #: the MFeval use mode the rigs run (limit checks and low-speed model on)
@@ -68,12 +67,7 @@ def mf_rolling_radius(params, fz, omega):
     """
     c = params.coefficients
     pressure = params.pressure if params.pressure > 0.0 else c[C.INFLPRES]
-    dpi = (pressure - c[C.NOMPRES]) / c[C.NOMPRES]
-    cz = c[C.VERTICAL_STIFFNESS] * (1.0 + c[C.PFZ1] * dpi)
-    fz0 = c[C.FNOMIN]
-    load = max(fz, 0.0) / fz0
-    return free_radius(c, omega) - (fz0 / cz) * (c[C.DREFF] * math.atan(c[C.BREFF] * load)
-                                                 + c[C.FREFF] * load)
+    return free_radius(c, omega) - radius_drop(c, max(fz, 0.0), (pressure - c[C.NOMPRES]) / c[C.NOMPRES])
 
 
 register_handling(HandlingModel("mf", MagicFormulaParams, magic_formula_params, mf_wheel_forces,
