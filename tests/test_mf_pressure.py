@@ -16,6 +16,8 @@ from tyrelab.errors import InputError
 from tyrelab.tyre.handling.mf.model import MagicFormula
 from tyrelab.tyre.library import load_tyre
 
+from spec_text import study_spec
+
 PFZ1, PPX1, PPX2, DPI = 0.88241, -0.8733, 0.7035, 0.2
 
 
@@ -114,34 +116,13 @@ def test_mf_curves_at_another_pressure(tmp_path, mf61_path, capsys):
     assert "states no inflation pressure" in text and "nan" not in text
 
 
-def _spec(tyre_lines):
-    return f"""\
-[study]
-name = "p"
-
-[[tyre]]
-{tyre_lines}
-
-[[model]]
-name = "A"
-contact = "point"
-
-[[test]]
-name = "cleat"
-road = "cleat:20x20"
-speeds_kmh = [20]
-loads = [5000]
-duration = 1.0
-"""
-
-
 def test_a_study_takes_an_mf_file_at_another_pressure(tmp_path, mf61_path):
     """A study's [[tyre]] may give pressure_kpa for an MF-Tyre 6.x file: its runs take the
     moved tyre (their keys differ by the pressure); a file that cannot move is refused at the
     key, before any run."""
     from tyrelab.study.spec import parse_spec
 
-    spec = parse_spec(_spec(f'name = "mf61"\nfile = "{mf61_path}"\npressure_kpa = 312'),
+    spec = parse_spec(study_spec(f'name = "mf61"\nfile = "{mf61_path}"\npressure_kpa = 312'),
                       tmp_path / "spec.toml")
     assert spec.tyres[0].pressure == 312e3
     run = spec.runs()[0]
@@ -149,5 +130,5 @@ def test_a_study_takes_an_mf_file_at_another_pressure(tmp_path, mf61_path):
     mf52 = mf61_path.parent / "CityBus_Pac02Tire.tir"
     with pytest.raises(InputError, match=r"line 7: tyre\[1\]\.pressure_kpa: .*describes 800 kPa only") \
             as err:
-        parse_spec(_spec(f'name = "bus"\nfile = "{mf52}"\npressure_kpa = 700'), tmp_path / "spec.toml")
+        parse_spec(study_spec(f'name = "bus"\nfile = "{mf52}"\npressure_kpa = 700'), tmp_path / "spec.toml")
     assert "\n" not in str(err.value)

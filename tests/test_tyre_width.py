@@ -9,6 +9,8 @@ from tyrelab.errors import InputError
 from tyrelab.road.spec import road_from_spec
 from tyrelab.study.spec import parse_spec
 
+from spec_text import study_spec
+
 
 @pytest.fixture
 def no_width(tmp_path, data_dir):
@@ -29,35 +31,12 @@ def test_a_model_across_the_width_refuses_a_tyre_without_one(no_width, contact, 
         model.contact_params(road_from_spec("cleat:50x50").grid())
     assert err.value.field == "WIDTH" and err.value.source.endswith("no_width.tir")
     # the point model reads the road in the wheel plane only: it runs
-    assert make_tyre_model(no_width, "point", handling="none").contact_params(
-        road_from_spec("flat").grid()) is not None
+    point = make_tyre_model(no_width, "point", handling="none").contact_params(road_from_spec("flat").grid())
+    assert point.unloaded_radius == pytest.approx(0.3943)
 
 
 def test_a_study_refuses_it_before_any_run(no_width, tmp_path):
-    spec = f"""\
-[study]
-name = "t"
-
-[[tyre]]
-name = "mf61"
-file = "{no_width}"
-
-[[model]]
-name = "A"
-contact = "point"
-
-[[model]]
-name = "B"
-contact = "volume"
-
-[[test]]
-name = "cleat"
-road = "cleat:20x20"
-speeds_kmh = [12]
-loads = [5000]
-duration = 2.0
-reference = {{ model = "A" }}
-"""
+    spec = study_spec(f'name = "mf61"\nfile = "{no_width}"', (("A", "point"), ("B", "volume")), "A")
     with pytest.raises(InputError, match="tyre 'mf61' cannot run the volume model: the volume "
                                          "model needs the tyre's width") as err:
         parse_spec(spec, tmp_path / "spec.toml")
