@@ -61,7 +61,7 @@ def test_outside_the_files_range_is_refused(mf61_path):
         load_tyre(mf61_path, 150e3)
 
 
-def _edited(tmp_path, path, old, new):
+def _replaced(tmp_path, path, old, new):
     text = path.read_text()
     assert text.count(old) == 1
     out = tmp_path / "edited.tir"
@@ -70,14 +70,14 @@ def _edited(tmp_path, path, old, new):
 
 
 def test_a_file_without_the_pressure_terms_describes_its_own_pressure_only(tmp_path, mf61_path):
-    as_52 = _edited(tmp_path, mf61_path, "FITTYP                   =    61", "FITTYP = 6")
+    as_52 = _replaced(tmp_path, mf61_path, "FITTYP                   =    61", "FITTYP = 6")
     with pytest.raises(InputError, match="describes 260 kPa only.*MF-Tyre 6.1/6.2 file with pressure"):
         load_tyre(as_52, 312e3)
 
 
 def test_a_load_deflection_table_pins_the_file_to_its_pressure(tmp_path, mf61_path):
     table = "[DEFLECTION_LOAD_CURVE]\n{pen fz}\n0.0 0.0\n0.02 6000.0\n0.04 13000.0\n"
-    with_table = _edited(tmp_path, mf61_path, "[VERTICAL_FORCE_RANGE]", table + "[VERTICAL_FORCE_RANGE]")
+    with_table = _replaced(tmp_path, mf61_path, "[VERTICAL_FORCE_RANGE]", table + "[VERTICAL_FORCE_RANGE]")
     assert load_tyre(with_table).load_deflection is not None
     with pytest.raises(InputError, match=r"\[DEFLECTION_LOAD_CURVE\] is measured at 260 kPa only"):
         load_tyre(with_table, 312e3)
