@@ -24,7 +24,9 @@ def default_handling(tyre: Tyre) -> str:
 
     PAC89 coefficients (``[LATERAL_COEFFICIENTS]`` with ``A0``) -> ``"pac89"``;
     Magic Formula 5.2/6.x (``FITTYP`` or ``PROPERTY_FILE_FORMAT`` 'MF_05',
-    'PAC2002', 'MF_61', 'MF_62') -> ``"mf"``; otherwise ``"none"``.
+    'PAC2002', 'MF_61', 'MF_62') -> ``"mf"``; TMeasy parameters (``[TYRE_LOAD] FZ_NOM``, as
+    :mod:`tyrelab.tyre.chrono_json` writes from a Chrono TMeasy JSON) -> ``"tmeasy"``;
+    otherwise ``"none"``.
     """
     tir = tyre.tir
     fmt = str(tir.get("MODEL", "PROPERTY_FILE_FORMAT", "")).upper()
@@ -39,6 +41,9 @@ def default_handling(tyre: Tyre) -> str:
             warnings.warn(f"no handling forces: {exc}", stacklevel=3)
             return "none"
         return "mf"
+    from .tyre.handling.tmeasy import LOAD_SECTION
+    if tir.has(LOAD_SECTION, "FZ_NOM"):
+        return "tmeasy"
     return "none"
 
 
@@ -120,7 +125,7 @@ def simulate(tyre: str | Tyre = DEFAULT_TYRE, model: str = "point", road=None,
         Inflation pressure [Pa] (built-in tyres only).
     stiffness : {"table", "linear"}, optional
         Vertical stiffness: load-deflection spline or linear.
-    handling : {"none", "pac89", "mf"}, optional
+    handling : {"none", "pac89", "mf", "tmeasy"}, optional
         Tangential force model; by default the one the property file describes.
     rig : str
         A registered rig (:func:`tyrelab.registry.rigs`; built in: ``"trailer"``,

@@ -77,7 +77,7 @@ Chrono file; add it if a rig needs the whole wheel.
     ``CALPHA``, ``UMIN``, ``UMAX``, the relaxation lengths and the rolling
     resistance are Fiala's handling model, which tyrelab does not have: kept
     as header comments.
-``TMeasyTire``, ``TMsimpleTire`` (vertical data only)
+``TMeasyTire`` (vertical data and TMeasy handling), ``TMsimpleTire`` (vertical data only)
     ``Design > Unloaded Radius [m]``, ``Width [m]``, ``Rim Radius [m]`` ->
     ``[DIMENSION] UNLOADED_RADIUS, WIDTH, RIM_RADIUS``; ``Design > Mass [kg]``,
     ``Inertia [kg.m2]`` -> ``[INERTIA]`` (these replace the top-level ``Mass``
@@ -105,8 +105,16 @@ Chrono file; add it if a rig needs the whole wheel.
     + 10 mm and 5 times ``d1`` (the linear stiffness; for a curve, the linear
     coefficient of Chrono's least-squares ``d1 z + d2 z^2``), written as
     ``[VERTICAL] BOTTOM_OFFST`` (bottoming radius less rim radius) and
-    ``BOTTOM_STIFF`` (:attr:`Tyre.bottoming`). Its handling parameters are not
-    carried.
+    ``BOTTOM_STIFF`` (:attr:`Tyre.bottoming`). ``TMeasyTire``'s handling parameters
+    (for the ``tmeasy`` handling model, :mod:`tyrelab.tyre.handling.tmeasy`): ``Parameters >
+    Vertical > Nominal Vertical Force [N]`` (and ``Maximum Vertical Force [N]``) ->
+    ``[TYRE_LOAD] FZ_NOM`` (``FZ_MAX``), and each pair of ``Parameters > Longitudinal``,
+    ``Lateral``, ``Aligning`` -> Chrono's TMeasy parameter-file keys ``_1``, ``_2``; a file
+    given by its load index or bearing capacity gets Chrono's guess (``GuessTruck80Par``,
+    ``GuessPassCar70Par``) for its ``Vehicle Type`` ("Truck" or "Passenger"; absent: no
+    handling parameters). Chrono picks the pattern on the bearing-capacity path from the
+    file's ``Name`` (and passes the rim radius as the rim diameter); here ``Vehicle Type``
+    picks it on both paths. ``TMsimpleTire``'s handling parameters are not carried.
 ``RigidTire`` (vertical data only)
     ``Radius`` [m] -> ``UNLOADED_RADIUS``; ``Width`` [m] -> ``WIDTH``; the
     contact material's ``Contact Material > Coefficients > Normal Stiffness``

@@ -17,6 +17,7 @@ from importlib import resources
 
 from ..errors import InputError
 from .chrono_document import _Builder, _comment, _Document, _kind
+from .handling.tmeasy import DEFAULT_MAX_LOAD_RATIO
 from .tir import TirFile
 
 
@@ -130,11 +131,102 @@ def tmeasy_tir(doc: _Document, template: str) -> TirFile:
             f"$ ({GUESS_DEFLECTION_RATIO:g} x (unloaded radius - rim radius)), damping = 2 x "
             f"{GUESS_DAMPING_RATIO:g} x sqrt(stiffness x tyre mass)."]
     _tmeasy_bottoming(doc, b, r0, rim, d1)
+    if template == "TMeasyTire":
+        if doc.has("Parameters"):
+            _tmeasy_handling_given(doc, b)
+        else:
+            _tmeasy_handling_guess(doc, b, load, keys)
     if doc.has("Inflation Pressure Use [Pa]"):
         keys = ("Inflation Pressure Use [Pa]",)
         b.put("OPERATING_CONDITIONS", "INFLPRES", doc.number(*keys, positive=True), keys)
     b.assumed_contact_patch(width)
     return b.tir
+
+
+#: TMeasy's keys in the order of Chrono's JSON arrays: (property-file section, key, JSON object, JSON key)
+_TMEASY_KEYS = (
+    ("LONGITUDINAL_PARAMETERS", "DFX0", "Longitudinal", "Initial Slopes dFx/dsx [N]"),
+    ("LONGITUDINAL_PARAMETERS", "FXMAX", "Longitudinal", "Maximum Fx Load [N]"),
+    ("LONGITUDINAL_PARAMETERS", "SXMAX", "Longitudinal", "Slip sx at Maximum Fx"),
+    ("LONGITUDINAL_PARAMETERS", "FXSLD", "Longitudinal", "Sliding Fx Load [N]"),
+    ("LONGITUDINAL_PARAMETERS", "SXSLD", "Longitudinal", "Slip sx where sliding begins"),
+    ("LATERAL_PARAMETERS", "DFY0", "Lateral", "Initial Slopes dFy/dsy [N]"),
+    ("LATERAL_PARAMETERS", "FYMAX", "Lateral", "Maximum Fy Load [N]"),
+    ("LATERAL_PARAMETERS", "SYMAX", "Lateral", "Slip sy at Maximum Fy"),
+    ("LATERAL_PARAMETERS", "FYSLD", "Lateral", "Sliding Fy Load [N]"),
+    ("LATERAL_PARAMETERS", "SYSLD", "Lateral", "Slip sy where sliding begins"),
+    ("ALIGNING_PARAMETERS", "PT_NORM", "Aligning", "Normalized Trail at Zero Slip sy"),
+    ("ALIGNING_PARAMETERS", "SY_CHSI", "Aligning", "Slip sy where Trail Changes Sign"),
+    ("ALIGNING_PARAMETERS", "SY_ZERO", "Aligning", "Slip sy where Trail Tends to Zero"),
+)
+#: TMeasy's force parameters, which the guess scales with the load (the others are slips)
+_TMEASY_FORCES = ("DFX0", "FXMAX", "FXSLD", "DFY0", "FYMAX", "FYSLD")
+#: Chrono's ``Vehicle Type`` words and the guess pattern each picks
+TMEASY_PATTERNS = {"Truck": "truck", "Passenger": "passenger"}
+
+
+def _tmeasy_guess_table() -> dict[str, dict[str, tuple[float, float]]]:
+    """``{pattern: {key: (at FZ_NOM, at 2 FZ_NOM)}}`` from ``data/tmeasy_guess.csv``."""
+    text = resources.files("tyrelab.tyre").joinpath("data", "tmeasy_guess.csv").read_text()
+    table: dict[str, dict[str, tuple[float, float]]] = {}
+    for line in text.splitlines():
+        if line and not line.startswith(("#", "pattern")):
+            pattern, key, one, two = line.split(",")
+            table.setdefault(pattern, {})[key] = (float(one), float(two))
+    return table
+
+
+def _tmeasy_handling_given(doc: _Document, b: _Builder) -> None:
+    """TMeasy's handling parameters as the JSON's ``Parameters`` state them (each a pair: at
+    the nominal load and at twice it); none when it gives only ``Vertical``."""
+    par = ("Parameters",)
+    if not any(doc.has(*par, name) for name in ("Longitudinal", "Lateral", "Aligning")):
+        b.tir.header.append("$ No TMeasy handling parameters (only 'Parameters' > 'Vertical').")
+        return
+    vert = par + ("Vertical",)
+    nominal = vert + ("Nominal Vertical Force [N]",)
+    b.put("TYRE_LOAD", "FZ_NOM", doc.number(*nominal, positive=True), nominal)
+    if doc.has(*vert, "Maximum Vertical Force [N]"):
+        keys = vert + ("Maximum Vertical Force [N]",)
+        b.put("TYRE_LOAD", "FZ_MAX", doc.number(*keys, positive=True), keys)
+    for section, key, obj, name in _TMEASY_KEYS:
+        keys = par + (obj, name)
+        pair = doc.vector(*keys, size=2)
+        b.put(section, f"{key}_1", pair[0], keys)
+        b.put(section, f"{key}_2", pair[1], keys)
+
+
+def _tmeasy_handling_guess(doc: _Document, b: _Builder, capacity: float, capacity_keys) -> None:
+    """TMeasy's handling parameters guessed from the load capacity as Chrono does
+    (``GuessTruck80Par``, ``GuessPassCar70Par``; ``data/tmeasy_guess.csv``): the nominal
+    load half the capacity, times ``(Inflation Pressure Use / Inflation Pressure Design)^0.8``
+    when the file gives both, the pattern from ``Vehicle Type``. Without a ``Vehicle Type``
+    no handling parameters (Chrono would stop)."""
+    keys = ("Vehicle Type",)
+    if not doc.has(*keys):
+        b.tir.header.append("$ No TMeasy handling parameters: the file gives no 'Vehicle Type' "
+                            "('Truck' or 'Passenger') to guess them by.")
+        return
+    kind = doc.string(*keys)
+    if kind not in TMEASY_PATTERNS:
+        raise doc.error(f"expected 'Truck' or 'Passenger', found '{kind}'", keys)
+    ratio = 1.0
+    design, use = ("Inflation Pressure Design [Pa]",), ("Inflation Pressure Use [Pa]",)
+    if doc.has(*design) and doc.has(*use):
+        ratio = doc.number(*use, positive=True) / doc.number(*design, positive=True)
+    nominal = 0.5 * capacity * ratio ** 0.8
+    b.put("TYRE_LOAD", "FZ_NOM", nominal, capacity_keys)
+    b.put("TYRE_LOAD", "FZ_MAX", DEFAULT_MAX_LOAD_RATIO * nominal, capacity_keys)
+    table = _tmeasy_guess_table()[TMEASY_PATTERNS[kind]]
+    for section, key, _, _ in _TMEASY_KEYS:
+        one, two = table[key]
+        if key in _TMEASY_FORCES:
+            one, two = one * nominal, two * 2.0 * nominal
+        b.put(section, f"{key}_1", one, keys)
+        b.put(section, f"{key}_2", two, keys)
+    b.tir.header.append(
+        f"$ TMeasy handling GUESSED as Chrono does ({kind.lower()} pattern): FZ_NOM = half the load "
+        f"capacity{' x pressure ratio^0.8' if ratio != 1.0 else ''} = {nominal:.6g} N.")
 
 
 def _linear_coefficient(curve) -> float:

@@ -40,6 +40,7 @@ BUILTIN_HANDLING = (
     "tyrelab.tyre.handling.none",
     "tyrelab.tyre.handling.pac89",
     "tyrelab.tyre.handling.mf.wheel",
+    "tyrelab.tyre.handling.tmeasy",
 )
 
 
