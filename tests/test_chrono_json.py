@@ -169,7 +169,7 @@ def test_fiala_numbers_are_the_files(tir_dir):
     assert tuple(tyre.load_deflection[-1]) == (0.080, 21699.0)
     assert tyre.stiffness == "table"  # the curve has precedence, as in Chrono
     assert tyre.wheel_mass == 37.6 and tyre.wheel_spin_inertia == 6.69
-    assert default_handling(tyre) == "none"
+    assert default_handling(tyre) == "fiala"  # its CSLIP, CALPHA, UMIN, UMAX: tests/test_fiala.py
     # and the independent parse of the text agrees on every row
     js = _strip((tir_dir / "HMMWV_FialaTire.json").read_text())
     np.testing.assert_array_equal(tyre.load_deflection, js["Fiala Parameters"]["Vertical Curve Data"])

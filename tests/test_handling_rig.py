@@ -15,6 +15,29 @@ def test_file_format_picks_the_handling_model(data_dir):
         assert default_handling(load_tyre(data_dir / "tir" / "335_65R22_5_G275MSA_40psi.tir")) == "none"
 
 
+@pytest.mark.parametrize("json,handling", [("HMMWV_TMeasyTire.json", "tmeasy"),
+                                           ("HMMWV_FialaTire.json", "fiala")])
+def test_chrono_handling_models_never_give_nan(data_dir, json, handling):
+    """Random loads and velocities, standstill included: finite forces always, none without
+    load (TMeasy's slips stay finite at standstill through its 0.01 m/s, Fiala's through
+    the slip's 1 m/s floor)."""
+    import math
+
+    from tyrelab.tyre.chrono_json import read_chrono_tyre
+    from tyrelab.tyre.registry import handling_model
+
+    model = handling_model(handling)
+    params = model.build(read_chrono_tyre(data_dir / "tir" / json))
+    rng = np.random.default_rng(3)
+    for fz, v_long, v_sx, v_sy in rng.normal(0.0, [5e3, 20.0, 20.0, 20.0], size=(400, 4)):
+        out = model.forces(params, fz, v_long, v_sx, v_sy, 0.0)
+        assert all(math.isfinite(v) for v in out)
+        if fz <= 0:
+            assert out[:3] == (0.0, 0.0, 0.0)
+    for v in (0.0, 1e-300):
+        assert all(math.isfinite(x) for x in model.forces(params, 4000.0, v, v, 0.0, 0.0))
+
+
 def test_magic_formula_wheel_settles_at_free_rolling(data_dir):
     """With no drive torque the spin must settle where the Magic Formula's Fx vanishes
     (I dw/dt = -r Fx); a slip sign opposite to MF's would make the spin run away."""

@@ -180,18 +180,6 @@ def test_aligning_moment_is_the_trail_times_the_lateral_force(van):
     assert back[2] == pytest.approx(-ahead[2], rel=1e-12)
 
 
-def test_never_nan_and_nothing_without_load(van):
-    p = tmeasy_params(van)
-    rng = np.random.default_rng(3)
-    for fz, v_long, v_sx, v_sy in rng.normal(0.0, [5e3, 20.0, 20.0, 20.0], size=(400, 4)):
-        out = tmeasy_wheel_forces(p, fz, v_long, v_sx, v_sy, 0.0)
-        assert all(math.isfinite(v) for v in out)
-        if fz <= 0:
-            assert out[:3] == (0.0, 0.0, 0.0)
-    for v in (0.0, 1e-300):  # at standstill the slips stay finite (V_NUM)
-        assert all(math.isfinite(x) for x in tmeasy_wheel_forces(p, 1900.0, v, v, 0.0, 0.0))
-
-
 # --- the wheel on the rigs ---------------------------------------------------------------------
 
 def test_the_slip_stiffness_is_the_spin_moments_derivative(van):

@@ -125,15 +125,15 @@ def test_drop_test_overshoots_the_static_deflection_but_less_than_twice(toy_resu
 def test_unknown_models_fail_with_the_known_names():
     tyre = load_tyre("xzl-16.00R20")
     with pytest.raises(InputError) as err:
-        TyreModel(tyre, "fiala")
+        TyreModel(tyre, "brush")
     for name in ("point", "volume", "enveloping", "ring", "ring-tp"):
         assert name in str(err.value)
     with pytest.raises(InputError) as err:
-        TyreModel(tyre, "point", handling="fiala")
+        TyreModel(tyre, "point", handling="brush")
     assert "pac89" in str(err.value) and "mf" in str(err.value)
 
 
 def test_registry_lists_every_builtin_model_once():
     assert list(contact_models()) == ["point", "volume", "enveloping", "enveloping-edge", "ring", "ring-tp",
                                       "rigid"]
-    assert list(handling_models()) == ["none", "pac89", "mf", "tmeasy"]
+    assert list(handling_models()) == ["none", "pac89", "mf", "tmeasy", "fiala"]

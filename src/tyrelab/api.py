@@ -25,8 +25,9 @@ def default_handling(tyre: Tyre) -> str:
     PAC89 coefficients (``[LATERAL_COEFFICIENTS]`` with ``A0``) -> ``"pac89"``;
     Magic Formula 5.2/6.x (``FITTYP`` or ``PROPERTY_FILE_FORMAT`` 'MF_05',
     'PAC2002', 'MF_61', 'MF_62') -> ``"mf"``; TMeasy parameters (``[TYRE_LOAD] FZ_NOM``, as
-    :mod:`tyrelab.tyre.chrono_json` writes from a Chrono TMeasy JSON) -> ``"tmeasy"``;
-    otherwise ``"none"``.
+    :mod:`tyrelab.tyre.chrono_json` writes from a Chrono TMeasy JSON) -> ``"tmeasy"``; Fiala
+    (``PROPERTY_FILE_FORMAT`` 'FIALA', or ``[PARAMETER] CSLIP``) -> ``"fiala"``; otherwise
+    ``"none"``.
     """
     tir = tyre.tir
     fmt = str(tir.get("MODEL", "PROPERTY_FILE_FORMAT", "")).upper()
@@ -44,6 +45,8 @@ def default_handling(tyre: Tyre) -> str:
     from .tyre.handling.tmeasy import LOAD_SECTION
     if tir.has(LOAD_SECTION, "FZ_NOM"):
         return "tmeasy"
+    if fmt == "FIALA" or tir.has("PARAMETER", "CSLIP"):
+        return "fiala"
     return "none"
 
 
@@ -125,7 +128,7 @@ def simulate(tyre: str | Tyre = DEFAULT_TYRE, model: str = "point", road=None,
         Inflation pressure [Pa] (built-in tyres only).
     stiffness : {"table", "linear"}, optional
         Vertical stiffness: load-deflection spline or linear.
-    handling : {"none", "pac89", "mf", "tmeasy"}, optional
+    handling : {"none", "pac89", "mf", "tmeasy", "fiala"}, optional
         Tangential force model; by default the one the property file describes.
     rig : str
         A registered rig (:func:`tyrelab.registry.rigs`; built in: ``"trailer"``,

@@ -70,13 +70,14 @@ Chrono file; add it if a rig needs the whole wheel.
     Every top-level object whose name is an ADAMS section name (upper case:
     ``MODEL``, ``DIMENSION``, ``VERTICAL``, ...) is that section with its keys;
     the embedded ``UNITS`` apply as in a ``.tir``.
-``FialaTire`` (vertical data only)
+``FialaTire`` (vertical data and Fiala handling)
     ``Fiala Parameters > Unloaded Radius`` [m], ``Width`` [m], ``Vertical
     Stiffness`` [N/m] (optional with a curve), ``Vertical Damping`` [N s/m],
-    ``Vertical Curve Data`` [m, N] -> as for ``Pac89Tire``. ``CSLIP``,
-    ``CALPHA``, ``UMIN``, ``UMAX``, the relaxation lengths and the rolling
-    resistance are Fiala's handling model, which tyrelab does not have: kept
-    as header comments.
+    ``Vertical Curve Data`` [m, N] -> as for ``Pac89Tire``. ``CSLIP`` [N],
+    ``CALPHA`` [N/rad], ``UMIN``, ``UMAX`` -> ``[PARAMETER]`` with ``[MODEL]
+    PROPERTY_FILE_FORMAT = 'FIALA'`` (ADAMS's Fiala layout; the ``fiala``
+    handling model, :mod:`tyrelab.tyre.handling.fiala`): all four or none. The
+    relaxation lengths and the rolling resistance are kept as header comments.
 ``TMeasyTire`` (vertical data and TMeasy handling), ``TMsimpleTire`` (vertical data only)
     ``Design > Unloaded Radius [m]``, ``Width [m]``, ``Rim Radius [m]`` ->
     ``[DIMENSION] UNLOADED_RADIUS, WIDTH, RIM_RADIUS``; ``Design > Mass [kg]``,

@@ -69,15 +69,23 @@ def pac89_tir(doc: _Document) -> TirFile:
     return b.tir
 
 
+#: the Fiala handling parameters of Chrono's JSON, written to the ADAMS Fiala layout's [PARAMETER]
+FIALA_HANDLING = ("CSLIP", "CALPHA", "UMIN", "UMAX")
+
+
 def fiala_tir(doc: _Document) -> TirFile:
     fp = ("Fiala Parameters",)
-    header = [f"$ Fiala handling parameters ({name}) not used by tyrelab: {json.dumps(doc.value(*fp, name))}"
-              for name in ("CSLIP", "CALPHA", "UMIN", "UMAX", "Rolling Resistance")
+    header = [f"$ Fiala parameter {name} not used by tyrelab: {json.dumps(doc.value(*fp, name))}"
+              for name in ("Rolling Resistance", "X Relaxation Length", "Y Relaxation Length")
               if doc.has(*fp, name)]
     b = _Builder(doc, "FialaTire", header)
     _, width = b.dimensions(fp + ("Unloaded Radius",), width_keys=fp + ("Width",))
     b.mass_and_inertia()
     b.vertical(fp + ("Vertical Stiffness",), fp + ("Vertical Damping",), fp + ("Vertical Curve Data",))
+    if any(doc.has(*fp, key) for key in FIALA_HANDLING):  # the fiala handling model's
+        b.put("MODEL", "PROPERTY_FILE_FORMAT", "FIALA")
+        for key in FIALA_HANDLING:
+            b.put("PARAMETER", key, doc.number(*fp, key, positive=True), fp + (key,))
     b.assumed_contact_patch(width)
     return b.tir
 

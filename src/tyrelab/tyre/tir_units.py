@@ -57,6 +57,8 @@ KEY_DIMENSIONS: dict[str, tuple[int, int, int, int, int]] = {
     # [STRUCTURAL]
     "LONGITUDINAL_STIFFNESS": _dim(F=1, L=-1), "LATERAL_STIFFNESS": _dim(F=1, L=-1),
     "YAW_STIFFNESS": _dim(F=1, L=1, A=-1),
+    # Fiala (ADAMS's [PARAMETER]): slip stiffness per unit slip, cornering stiffness per angle
+    "CSLIP": _dim(F=1), "CALPHA": _dim(F=1, A=-1),
     # TMeasy (Chrono's parameter file): loads, and each curve's forces and initial slope
     "FZ_NOM": _dim(F=1), "FZ_MAX": _dim(F=1),
     **{f"{key}_{level}": _dim(F=1) for key in ("DFX0", "FXMAX", "FXSLD", "DFY0", "FYMAX", "FYSLD")
