@@ -62,6 +62,19 @@ def count(name: str, low: int, high: int):
     return parse
 
 
+def comma_numbers(text: str, field: str, most: int, accept, what: str) -> list[float]:
+    """1 to ``most`` finite numbers separated by commas, each one ``accept(value)`` takes; else
+    one :class:`InputError` line on ``field``: "expected 1 to N {what} separated by commas"."""
+    try:
+        values = [float(v) for v in text.split(",") if v.strip()]
+    except ValueError:
+        values = []
+    if not values or len(values) > most or any(not (math.isfinite(v) and accept(v)) for v in values):
+        raise InputError(f"expected 1 to {most} {what} separated by commas, found '{text}'",
+                         source="command line", field=field)
+    return values
+
+
 def load_value(text: str):
     """A load case name (LC1..LC3) or a wheel load in N (finite, at least the limits' minimum)."""
     from ..limits import MIN_LOAD

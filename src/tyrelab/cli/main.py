@@ -34,9 +34,8 @@ from .. import stop
 from ..errors import InputError
 
 #: subcommand modules, in the order ``tyrelab --help`` lists them
-SUBCOMMANDS = ["simulate", "plot", "static", "road", "fit", "modal", "validate", "mf", "study", "soil",
-               "export",
-               "models"]
+SUBCOMMANDS = ["simulate", "plot", "static", "road", "fit", "modal", "validate", "mf", "curves", "study",
+               "soil", "export", "models"]
 #: longest message printed for an unexpected error [characters]
 MAX_MESSAGE = 400
 

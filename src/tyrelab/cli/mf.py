@@ -6,10 +6,8 @@ Mz(alpha) at several loads (``--pressure KPA``: an MF-Tyre 6.x file at another p
 
 from __future__ import annotations
 
-import math
-
 from ..errors import InputError
-from ._common import pressure_kpa
+from ._common import comma_numbers, pressure_kpa
 
 
 #: largest load asked for, as a fraction of FNOMIN (far beyond any file's FZMAX)
@@ -19,16 +17,8 @@ MAX_LOADS = 20
 
 
 def _load_factors(text: str) -> list[float]:
-    try:
-        values = [float(v) for v in text.split(",") if v.strip()]
-    except ValueError:
-        values = []
-    if not values or any(not (math.isfinite(v) and 0.0 < v <= MAX_LOAD_FACTOR) for v in values) \
-            or len(values) > MAX_LOADS:
-        raise InputError(f"expected 1 to {MAX_LOADS} numbers 0 < f <= {MAX_LOAD_FACTOR:g} (fractions of "
-                         f"FNOMIN) separated by commas, found '{text}'",
-                         source="command line", field="--loads")
-    return values
+    return comma_numbers(text, "--loads", MAX_LOADS, lambda v: 0.0 < v <= MAX_LOAD_FACTOR,
+                         f"numbers 0 < f <= {MAX_LOAD_FACTOR:g} (fractions of FNOMIN)")
 
 
 def _curves(args) -> int:
