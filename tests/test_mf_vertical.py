@@ -69,6 +69,27 @@ def test_the_law_is_mfevals_at_every_row_of_its_table(mf61, mfeval):
     np.testing.assert_allclose(rolling - standing * softening, mfeval["Fz"], rtol=1e-12)
 
 
+def test_the_wheel_carries_mfevals_load_under_its_forces(mf61, mfeval):
+    """Every row without camber (507; combined slip to |kappa| = |alpha| = 0.3): the point
+    model's wheel at MFeval's deflection, spin and speed (Vx, Vx tan alpha) carries MFeval's
+    load and forces. The forces soften the law by up to 14 % of the load here (Q_FCY Fy /
+    FNOMIN)^2: without that term the load was up to 16 % high, and the forces with it."""
+    from tyrelab.road.spec import road_from_spec
+
+    model = make_tyre_model(mf61, "point", handling="mf")
+    wheel = model.wheel(road_from_spec("flat").grid(), FZ0)
+    rows = mfeval[mfeval.gamma == 0]
+    poses = [pose(cz=R0 - r.rho, velocity=(r.Vx, r.Vx * math.tan(r.alpha), 0.0), omega=r.omega)
+             for r in rows.itertuples()]
+    loads = loads_table(wheel, poses)
+    column = {name: loads[:, k] for k, name in enumerate(WheelLoads._fields)}
+    softening = (Q_FCX * rows.Fx / FZ0) ** 2 + (Q_FCY * rows.Fy / FZ0) ** 2
+    assert softening.max() > 0.13
+    np.testing.assert_allclose(column["fzw"], rows.Fz, rtol=1e-6)
+    np.testing.assert_allclose(column["fxw"], rows.Fx, rtol=1e-5, atol=1e-3)
+    np.testing.assert_allclose(column["fyw"], rows.Fy, rtol=1e-5, atol=1e-3)
+
+
 def test_free_rolling_deflection_is_mfevals(mf61, mfeval):
     """At zero slip (|Fx|, |Fy| <= 172 N, whose softening is below 2e-5 of the load) the
     deflection that carries each load at MFeval's spin is MFeval's rho."""
@@ -164,6 +185,18 @@ def test_q_fz2_needs_fnomin(tmp_path, mf61_path):
         Tyre.from_tir(_edited(tmp_path, mf61_path, "VERTICAL", "FNOMIN", 0, drop=True))
 
 
+def test_the_force_softening_needs_fnomin(tmp_path, mf61_path):
+    no_q_fz2 = _edited(tmp_path, mf61_path, "VERTICAL", "Q_FZ2", 0, drop=True)
+    with pytest.raises(InputError, match=r"line \d+: Q_FCX: Q_FCX and Q_FCY need FNOMIN"):
+        Tyre.from_tir(_edited(tmp_path, no_q_fz2, "VERTICAL", "FNOMIN", 0, drop=True))
+
+
+def test_the_force_softening_is_the_files(mf61):
+    assert mf61.force_softening == pytest.approx(((Q_FCX / FZ0) ** 2, (Q_FCY / FZ0) ** 2), rel=1e-15)
+    law = mf61.vertical_law
+    assert (law.force_softening_x, law.force_softening_y) == mf61.force_softening
+
+
 @pytest.mark.parametrize("stiffness", ["table", "linear"])
 def test_the_enveloping_patch_is_mfevals_at_each_load(mf61, mfeval, stiffness):
     """MF-Swift's patch laws are written in Fz / (Cz R0) (Besselink et al. 2010, eqs. 9, 10):
@@ -185,7 +218,7 @@ def test_the_enveloping_patch_is_mfevals_at_each_load(mf61, mfeval, stiffness):
 def test_the_magic_formulas_slip_is_taken_at_its_effective_rolling_radius(mf61, mfeval):
     """MFeval's free-rolling rows (kappa = alpha = gamma = 0, Vx = 16.7 m/s) give the spin at
     which the Magic Formula's slip is zero: omega = Vx / Re, Re from BREFF, DREFF, FREFF. The
-    point model's wheel at that spin, pressed to carry the row's load, has zero slip and
+    point model's wheel at that spin, pressed to MFeval's deflection, has zero slip and
     MFeval's Fx (to 1e-6). The contact point's lever, the loaded radius, is 1.1-5.8 % shorter
     than Re at these loads: the slip taken there was -1.1 to -5.8 % and FXW -1.0 to -10.1 kN,
     a braked wheel where MFeval's rolls freely (27 to 172 N)."""
@@ -194,9 +227,9 @@ def test_the_magic_formulas_slip_is_taken_at_its_effective_rolling_radius(mf61, 
     model = make_tyre_model(mf61, "point", handling="mf")
     wheel = model.wheel(road_from_spec("flat").grid(), FZ0)
     free = mfeval[(mfeval.kappa == 0) & (mfeval.alpha == 0) & (mfeval.gamma == 0)]
-    law = mf61.vertical_law
-    poses = [pose(cz=R0 - law.deflection_at(fz, w), velocity=(16.7, 0.0, 0.0), omega=w)
-             for fz, w in zip(free.Fz, free.omega)]
+    # at MFeval's own deflection, which its small Fx and Fy soften (Q_FCX, Q_FCY)
+    poses = [pose(cz=R0 - rho, velocity=(16.7, 0.0, 0.0), omega=w)
+             for rho, w in zip(free.rho, free.omega)]
     loads = loads_table(wheel, poses)
     column = {name: loads[:, k] for k, name in enumerate(WheelLoads._fields)}
     np.testing.assert_allclose(column["kappa"], 0.0, atol=1e-9)

@@ -68,6 +68,10 @@ class Tyre:
         ``Q_V2 R0 / LONGVL`` [s] (MF-Tyre, LONGVL 16.7 m/s if the file has none): the vertical
         law stiffens by ``1 + speed_stiffening |omega|`` with the spin (Pacejka 2012, eq. A3.3),
         in each stiffness mode; 0 without ``Q_V2``.
+    force_softening : tuple
+        ``((Q_FCX / FNOMIN)^2, (Q_FCY / FNOMIN)^2)`` [1/N^2]: MF-Tyre's law softens by
+        ``- force_softening[0] Fx^2 - force_softening[1] Fy^2`` in the same factor (Pacejka
+        2012, eq. A3.3), in each stiffness mode; zeros without ``Q_FCX``, ``Q_FCY``.
     tir : TirFile
         The whole property file, for models that need more.
     """
@@ -89,6 +93,7 @@ class Tyre:
     quadratic_law: tuple[float, float] | None = None
     pressure_factor: float = 1.0
     speed_stiffening: float = 0.0
+    force_softening: tuple[float, float] = (0.0, 0.0)
 
     # -- construction ---------------------------------------------------
     @classmethod
@@ -147,6 +152,7 @@ class Tyre:
             quadratic_law=quadratic,
             pressure_factor=pressure_factor,
             speed_stiffening=tir_physics.speed_stiffening(tir, r0),
+            force_softening=tir_physics.force_softening(tir),
         )
 
     def with_stiffness(self, mode: str) -> "Tyre":
@@ -197,7 +203,7 @@ class Tyre:
         quadratic = self.quadratic_in_use
         bottoming = NO_BOTTOMING if self.bottoming is None else self.bottoming
         key = (use_table, quadratic, self.vertical_stiffness, self.pressure_factor,
-               self.speed_stiffening, self.vertical_damping, self.damping_ramp,
+               self.speed_stiffening, self.force_softening, self.vertical_damping, self.damping_ramp,
                self.load_deflection.tobytes() if use_table else b"", bottoming.tobytes())
         cached = self.__dict__.get("_law")
         if cached is not None and cached[0] == key:
@@ -206,15 +212,18 @@ class Tyre:
             t = self.load_deflection
             law = VerticalLaw.table(t[:, 0], t[:, 1], self.vertical_damping, self.damping_ramp,
                                     stiffness=self.vertical_stiffness, source=self.tir.source,
-                                    bottoming=bottoming, speed_stiffening=self.speed_stiffening)
+                                    bottoming=bottoming, speed_stiffening=self.speed_stiffening,
+                                    force_softening=self.force_softening)
         elif quadratic is not None:
             law = VerticalLaw.quadratic(*quadratic, self.vertical_damping, self.damping_ramp,
                                         stiffness=self.vertical_stiffness, up_to=self.unloaded_radius,
-                                        bottoming=bottoming, speed_stiffening=self.speed_stiffening)
+                                        bottoming=bottoming, speed_stiffening=self.speed_stiffening,
+                                        force_softening=self.force_softening)
         else:
             law = VerticalLaw.linear(self.vertical_stiffness * self.pressure_factor,
                                      self.vertical_damping, self.damping_ramp, bottoming=bottoming,
-                                     speed_stiffening=self.speed_stiffening)
+                                     speed_stiffening=self.speed_stiffening,
+                                     force_softening=self.force_softening)
         self.__dict__["_law"] = (key, law)
         return law
 

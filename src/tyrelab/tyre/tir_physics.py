@@ -132,6 +132,22 @@ def speed_stiffening(tir: TirFile, r0: float) -> float:
     return q_v2 * r0 / (longvl or MF_REFERENCE_SPEED)
 
 
+def force_softening(tir: TirFile) -> tuple[float, float]:
+    """``((Q_FCX / FNOMIN)^2, (Q_FCY / FNOMIN)^2)`` [1/N^2]: how MF-Tyre's vertical law softens
+    with the horizontal forces (Pacejka 2012, eq. A3.3); zeros without them. MF 6.2's load
+    and camber dependence of the lateral term (``Q_FCY2``, ``Q_FYS1-3``) is left out."""
+    q_fcx = _bounded(tir, "VERTICAL", "Q_FCX", -limits.MAX_TIR_MAGNITUDE, limits.MAX_TIR_MAGNITUDE, "") or 0.0
+    q_fcy = _bounded(tir, "VERTICAL", "Q_FCY", -limits.MAX_TIR_MAGNITUDE, limits.MAX_TIR_MAGNITUDE, "") or 0.0
+    if not (q_fcx or q_fcy):
+        return 0.0, 0.0
+    nominal = tir.get("VERTICAL", "FNOMIN")
+    if nominal is None:
+        _fail(tir, "Q_FCX and Q_FCY need FNOMIN: the forces' softening is written in FNOMIN",
+              "VERTICAL", "Q_FCX" if q_fcx else "Q_FCY")
+    nominal = _bounded(tir, "VERTICAL", "FNOMIN", 0.0, limits.MAX_TIR_MAGNITUDE, "N")
+    return (q_fcx / nominal) ** 2, (q_fcy / nominal) ** 2
+
+
 def quadratic_law(tir: TirFile, r0: float, stiffness: float, pressure_factor: float):
     """MF-Tyre 6.x's load-deflection law (k1, k2) if ``[VERTICAL]`` gives ``Q_FZ2``, else None.
 

@@ -69,6 +69,11 @@ class VerticalLaw(NamedTuple):
         MF-Tyre's stiffening with spin, ``Q_V2 R0 / LONGVL`` [s]: k(rho) (bottoming not
         included) is multiplied by ``1 + speed_stiffening |omega|`` (Pacejka 2012, eq. A3.3);
         0: no speed effect.
+    force_softening_x, force_softening_y : float
+        MF-Tyre's softening with the horizontal forces, ``(Q_FCX / FNOMIN)^2`` and
+        ``(Q_FCY / FNOMIN)^2`` [1/N^2]: the same factor becomes
+        ``1 + speed_stiffening |omega| - force_softening_x Fx^2 - force_softening_y Fy^2``
+        (Pacejka 2012, eq. A3.3); 0: the forces do not soften the tyre.
     """
 
     stiffness: float
@@ -79,17 +84,20 @@ class VerticalLaw(NamedTuple):
     coefs: np.ndarray
     bottoming: np.ndarray = NO_BOTTOMING
     speed_stiffening: float = 0.0
+    force_softening_x: float = 0.0
+    force_softening_y: float = 0.0
 
     @classmethod
     def linear(cls, stiffness, damping, damping_ramp=DEFAULT_DAMPING_RAMP, bottoming=NO_BOTTOMING,
-               speed_stiffening=0.0):
+               speed_stiffening=0.0, force_softening=(0.0, 0.0)):
         return cls(float(stiffness), float(damping), float(damping_ramp), False, np.zeros(2),
-                   np.zeros((1, 4)), _bottoming_rows(bottoming), float(speed_stiffening))
+                   np.zeros((1, 4)), _bottoming_rows(bottoming), float(speed_stiffening),
+                   *map(float, force_softening))
 
     @classmethod
     def table(cls, deflection, load, damping, damping_ramp=DEFAULT_DAMPING_RAMP,
               stiffness=0.0, source="load-deflection table", bottoming=NO_BOTTOMING,
-              speed_stiffening=0.0):
+              speed_stiffening=0.0, force_softening=(0.0, 0.0)):
         d = np.asarray(deflection, float)
         f = np.asarray(load, float)
         if d.ndim != 1 or d.shape != f.shape or d.size < 2:
@@ -116,11 +124,11 @@ class VerticalLaw(NamedTuple):
         coefs = np.ascontiguousarray(spline.c.T)  # (n-1, 4), highest power first
         return cls(float(stiffness), float(damping), float(damping_ramp), True,
                    np.ascontiguousarray(d, np.float64), coefs, _bottoming_rows(bottoming),
-                   float(speed_stiffening))
+                   float(speed_stiffening), *map(float, force_softening))
 
     @classmethod
     def quadratic(cls, linear, quadratic, damping, damping_ramp=DEFAULT_DAMPING_RAMP, stiffness=0.0,
-                  up_to=1.0, bottoming=NO_BOTTOMING, speed_stiffening=0.0):
+                  up_to=1.0, bottoming=NO_BOTTOMING, speed_stiffening=0.0, force_softening=(0.0, 0.0)):
         """k(rho) = ``linear`` rho + ``quadratic`` rho^2 [N] (``linear`` in N/m, ``quadratic`` in
         N/m^2; :func:`mf_load_deflection`), exact up to the deflection ``up_to`` [m] (one
         spline interval holding the polynomial) and continued with its slope there."""
@@ -129,7 +137,7 @@ class VerticalLaw(NamedTuple):
         coefs = np.array([[0.0, float(quadratic), float(linear), 0.0]])
         return cls(float(stiffness), float(damping), float(damping_ramp), True,
                    np.array([0.0, float(up_to)]), coefs, _bottoming_rows(bottoming),
-                   float(speed_stiffening))
+                   float(speed_stiffening), *map(float, force_softening))
 
     def static_load(self, rho, omega=0.0):
         """Load k(rho) [N] at deflections ``rho`` [m] (vectorised), the wheel standing or spinning
@@ -217,13 +225,17 @@ def static_load(law, rho):
 
 
 @nb.njit(cache=True)
-def rolling_load(law, rho, omega):
-    """Elastic part [N] of ``law`` at deflection ``rho`` [m] spinning at ``omega`` [rad/s]:
-    ``k(rho) (1 + speed_stiffening |omega|)`` plus the bottoming load (Pacejka 2012, eq. A3.3:
-    the speed term scales the tyre's law, not the rim's); zero for rho <= 0."""
+def rolling_load(law, rho, omega, fx=0.0, fy=0.0):
+    """Elastic part [N] of ``law`` at deflection ``rho`` [m] spinning at ``omega`` [rad/s] under
+    the horizontal forces ``fx``, ``fy`` [N] (W-axis): ``k(rho) (1 + speed_stiffening |omega| -
+    force_softening_x fx^2 - force_softening_y fy^2)`` (that factor at least 0) plus the
+    bottoming load (Pacejka 2012, eq. A3.3: these terms scale the tyre's law, not the rim's);
+    zero for rho <= 0."""
     if rho <= 0.0:
         return 0.0
-    value = _carcass_load(law, rho) * (1.0 + law.speed_stiffening * abs(omega))
+    factor = (1.0 + law.speed_stiffening * abs(omega) - law.force_softening_x * fx * fx
+              - law.force_softening_y * fy * fy)
+    value = _carcass_load(law, rho) * max(factor, 0.0)
     if law.bottoming.shape[0] > 0:
         value += bottoming_load(law.bottoming, rho)
     return value
@@ -260,9 +272,10 @@ def _carcass_load(law, rho):
 
 
 @nb.njit(cache=True)
-def normal_force(law, rho, rho_dot, omega):
-    """Normal force [N] of eq. 2.2 of a wheel spinning at ``omega`` [rad/s]
-    (:func:`rolling_load`), with damping ramped in near zero deflection.
+def normal_force(law, rho, rho_dot, omega, fx=0.0, fy=0.0):
+    """Normal force [N] of eq. 2.2 of a wheel spinning at ``omega`` [rad/s] under the
+    horizontal forces ``fx``, ``fy`` [N] (:func:`rolling_load`), with damping ramped in near
+    zero deflection.
 
     Never negative, zero after lift-off (rho <= 0).
     """
@@ -273,7 +286,7 @@ def normal_force(law, rho, rho_dot, omega):
     if rho < ramp:
         t = rho / ramp
         c = c * t * t * (3.0 - 2.0 * t)
-    f = rolling_load(law, rho, omega) + c * rho_dot
+    f = rolling_load(law, rho, omega, fx, fy) + c * rho_dot
     return f if f > 0.0 else 0.0
 
 

@@ -42,6 +42,10 @@ from .vertical import VerticalLaw, normal_force
 
 #: speed below which slip is computed with this speed instead [m/s]
 VXLOW = 1.0
+#: the fixed point of a load that softens with its forces (MF-Tyre's Q_FCX, Q_FCY): at most
+#: this many passes, done when the load moves by less than this fraction of itself
+MAX_SOFTENING_PASSES = 60
+SOFTENING_TOLERANCE = 1e-10
 
 
 class WheelPose(NamedTuple):
@@ -261,7 +265,9 @@ def analytic_wheel_step(wheel, pose, geo, dt):
     :func:`rolling_lever`), scaled by the
     ground's friction scale there (:func:`~tyrelab.road.terrain.terrain_friction`;
     the whole curve scales, its slip stiffness too: the handling models take no
-    friction input). A ground that is not rigid then answers the contact's forces
+    friction input). A law that softens with the horizontal forces (MF-Tyre's
+    ``Q_FCX``, ``Q_FCY``) and the forces at its load are solved together (the
+    load that carries its own forces). A ground that is not rigid then answers the contact's forces
     (:func:`~tyrelab.road.terrain.terrain_contact`, a point contact: area 0);
     on the rigid road that branch is compiled out.
     """
@@ -291,23 +297,43 @@ def analytic_wheel_step(wheel, pose, geo, dt):
         tx, ty, tz = cross(ax, ay, az, nx, ny, nz)
         wxx, wxy, wxz = unit(tx, ty, tz)
         wyx, wyy, wyz = cross(nx, ny, nz, wxx, wxy, wxz)
-        # velocity of the wheel material at the contact point: v + omega a x r, the lever
-        # stretched to the handling model's effective rolling radius when it has one (the
-        # Magic Formula's slip is (omega Re - Vx) / Vx: its tread leaves the patch at Re, not
-        # at the loaded radius; Besselink et al. 2010 eq. 7, MFeval)
-        sx, sy, sz = rolling_lever(wheel.handling, fz, omega, *cross(ax, ay, az, rx, ry, rz))
         v_long = dot(vx, vy, vz, wxx, wxy, wxz)
-        v_slip_x = dot(vx + omega * sx, vy + omega * sy, vz + omega * sz, wxx, wxy, wxz)
-        v_slip_y = dot(vx + omega * sx, vy + omega * sy, vz + omega * sz, wyx, wyy, wyz)
         gamma = math.asin(max(-1.0, min(1.0, dot(ax, ay, az, nx, ny, nz))))
-        fxw, fyw, mzw, kappa, alpha, dfx = handling_forces(wheel.handling, fz, v_long, v_slip_x,
-                                                           v_slip_y, gamma)
         # the ground's friction scale (1 on the rigid road, where the products are exact)
         mu = terrain_friction(wheel.road, px, py)
-        fxw *= mu
-        fyw *= mu
-        mzw *= mu
-        dfx *= mu
+        ax_r, ay_r, az_r = cross(ax, ay, az, rx, ry, rz)
+        softens = wheel.law.force_softening_x != 0.0 or wheel.law.force_softening_y != 0.0
+        sx = sy = sz = dfx = 0.0
+        low, high = 0.0, fz  # the softened load lies between none and the unsoftened load
+        for _ in range(MAX_SOFTENING_PASSES):
+            # velocity of the wheel material at the contact point: v + omega a x r, the lever
+            # stretched to the handling model's effective rolling radius when it has one (the
+            # Magic Formula's slip is (omega Re - Vx) / Vx: its tread leaves the patch at Re, not
+            # at the loaded radius; Besselink et al. 2010 eq. 7, MFeval)
+            sx, sy, sz = rolling_lever(wheel.handling, fz, omega, ax_r, ay_r, az_r)
+            v_slip_x = dot(vx + omega * sx, vy + omega * sy, vz + omega * sz, wxx, wxy, wxz)
+            v_slip_y = dot(vx + omega * sx, vy + omega * sy, vz + omega * sz, wyx, wyy, wyz)
+            fxw, fyw, mzw, kappa, alpha, dfx = handling_forces(wheel.handling, fz, v_long, v_slip_x,
+                                                               v_slip_y, gamma)
+            fxw *= mu
+            fyw *= mu
+            mzw *= mu
+            dfx *= mu
+            if not softens:
+                break
+            # MF-Tyre's law softens with the forces it carries, which grow with the load
+            # (Pacejka 2012, eq. A3.3): the load that carries its own forces, by fixed point
+            # (a contraction where the softening is a few per cent of the load), kept inside
+            # the bracket of the root and halving it where a step would leave it
+            softened = normal_force(wheel.law, rho, rho_dot, omega, fxw, fyw)
+            if abs(softened - fz) <= SOFTENING_TOLERANCE * max(softened, 1.0):
+                fz = softened
+                break
+            if softened > fz:
+                low = fz
+            else:
+                high = fz
+            fz = softened if low < softened < high else 0.5 * (low + high)
         if dfx != 0.0:
             # spin moment of FXW at the contact point: ((r x w_x) . a) FXW, and
             # d kappa / d omega = -((a x r) . w_x) / max(|V_x|, VXLOW)
