@@ -2,7 +2,9 @@
 
 ``tyrelab curves hmmwv-pac89 HMMWV_TMeasyTire.json HMMWV_FialaTire.json --loads 4900 -o c.png``
 draws Fx(kappa), Fy(alpha) and Mz(alpha) of each tyre under its own handling model (the one
-its file describes, or ``--handling``): three parameterisations of one tyre compared.
+its file describes, or ``--handling``, once for all or once per tyre): three
+parameterisations of one tyre compared, or one file under two models (``tyrelab curves
+mf.tir mf.tir --handling mf --handling tmeasy`` after ``tyrelab fit tmeasy``).
 """
 
 from __future__ import annotations
@@ -33,14 +35,18 @@ def _run(args) -> int:
         raise InputError(f"at most {MAX_TYRES} tyres in one figure, got {len(args.tyres)}",
                          source="command line", field="TYRE")
     loads = _loads(args.loads) if args.loads is not None else None
-    if args.handling is not None:
-        handling_model(args.handling)  # an unknown name is refused before any tyre is read
+    chosen = args.handling or []
+    if len(chosen) not in (0, 1, len(args.tyres)):
+        raise InputError(f"give --handling once (every tyre) or once per tyre ({len(args.tyres)}), "
+                         f"got {len(chosen)}", source="command line", field="--handling")
+    for name in chosen:
+        handling_model(name)  # an unknown name is refused before any tyre is read
     sets = []
-    for name in args.tyres:
+    for k, name in enumerate(args.tyres):
         tyre = load_tyre(name)
-        handling = args.handling or default_handling(tyre)
+        handling = (chosen[k] if len(chosen) > 1 else chosen[0]) if chosen else default_handling(tyre)
         if handling == "none":
-            reason = ("'none' has no forces to draw" if args.handling else
+            reason = ("'none' has no forces to draw" if chosen else
                       "this tyre's file describes no handling model")
             raise InputError(f"{reason}; give --handling (tyrelab models lists them)", source=str(name),
                              field="--handling")
@@ -71,8 +77,9 @@ def register(subparsers) -> None:
     p.add_argument("tyres", nargs="+", metavar="TYRE",
                    help="built-in tyre name, .tir or Chrono .json file (up to 6)")
     p.add_argument("-o", "--output", required=True, help="image file to write (e.g. curves.png)")
-    p.add_argument("--handling", default=None,
-                   help="handling model for every tyre (default: each file's own)")
+    p.add_argument("--handling", action="append", default=None, metavar="NAME",
+                   help="handling model: once for every tyre, or once per tyre in their order "
+                        "(default: each file's own)")
     p.add_argument("--loads", default=None,
                    help="wheel loads in N, comma separated (default: 0.5, 1 and 1.5 times the "
                         "file's nominal load FNOMIN or FZ_NOM)")

@@ -14,7 +14,8 @@ tyre's ring from the thesis's tables. ``fit cams``
 runs the enveloping model's cam-count study (:mod:`tyrelab.fit.cams`, thesis
 6.2): a CSV table, an error-against-cost PNG beside it, the recommended
 N_LENGTH x N_WIDTH printed (and, with ``--into BASE``, written into a copy of
-BASE named after the output, ``NAME.tir``).
+BASE named after the output, ``NAME.tir``). ``fit tmeasy TYRE`` fits TMeasy's
+parameters to the tyre's own handling model's curves (:mod:`tyrelab.cli.fit_tmeasy`).
 """
 
 from __future__ import annotations
@@ -76,6 +77,8 @@ def register(sub):
     _outputs(a)
     a.set_defaults(func=run_all)
     _register_cams(fsub)
+    from .fit_tmeasy import register_tmeasy
+    register_tmeasy(fsub)
     p.set_defaults(func=lambda args: (p.print_help(), 1)[1])
 
 

@@ -206,6 +206,19 @@ def tmeasy_params(tyre) -> TMeasyParams:
                         (_trail(tir, 1), _trail(tir, 2)))
 
 
+def tmeasy_entries(nominal_load, max_load, longitudinal, lateral, trail):
+    """``[(section, key, value)]`` of a property file holding these TMeasy parameters (each
+    curve and trail a pair: at FZ_NOM and 2 FZ_NOM): what :func:`tmeasy_params` reads back."""
+    out = [(LOAD_SECTION, "FZ_NOM", float(nominal_load)), (LOAD_SECTION, "FZ_MAX", float(max_load))]
+    for direction, levels in (("x", longitudinal), ("y", lateral)):
+        for level, curve in enumerate(levels, start=1):
+            out += [(CURVE_SECTIONS[direction], key, float(value))
+                    for key, value in zip(_curve_keys(direction, level), curve)]
+    for level, t in enumerate(trail, start=1):
+        out += [(TRAIL_SECTION, f"{key}_{level}", float(value)) for key, value in zip(TRAIL_KEYS, t)]
+    return out
+
+
 # --- the compiled law ------------------------------------------------------------------------
 
 @nb.njit(cache=True)
@@ -283,17 +296,23 @@ def normalized_trail(sy, at_zero, sign_change, vanish):
 
 
 @nb.njit(cache=True)
-def tmeasy_deflection(tp, fz):
+def law_deflection(d1, d2, fz):
     """The deflection [m] carrying ``fz`` [N] under TMeasy's law ``d1 z + d2 z^2``."""
     if not fz > 0.0:
         return 0.0
-    if tp.d2 == 0.0:
-        return fz / tp.d1
-    disc = tp.d1 * tp.d1 + 4.0 * tp.d2 * fz
+    if d2 == 0.0:
+        return fz / d1
+    disc = d1 * d1 + 4.0 * d2 * fz
     if disc <= 0.0:  # a softening law past its top: at its top
-        return -tp.d1 / (2.0 * tp.d2)
+        return -d1 / (2.0 * d2)
     # the root near fz / d1, written without cancellation
-    return 2.0 * fz / (tp.d1 + math.sqrt(disc))
+    return 2.0 * fz / (d1 + math.sqrt(disc))
+
+
+@nb.njit(cache=True)
+def tmeasy_deflection(tp, fz):
+    """The deflection [m] carrying ``fz`` [N] under the record's law (:func:`law_deflection`)."""
+    return law_deflection(tp.d1, tp.d2, fz)
 
 
 @nb.njit(cache=True)
