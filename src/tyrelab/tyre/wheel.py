@@ -267,9 +267,9 @@ def analytic_wheel_step(wheel, pose, geo, dt):
     the whole curve scales, its slip stiffness too: the handling models take no
     friction input). A law that softens with the horizontal forces (MF-Tyre's
     ``Q_FCX``, ``Q_FCY``) and the forces at its load are solved together (the
-    load that carries its own forces). A ground that is not rigid then answers the contact's forces
-    (:func:`~tyrelab.road.terrain.terrain_contact`, a point contact: area 0);
-    on the rigid road that branch is compiled out.
+    load that carries its own forces). A ground that is not rigid then answers
+    the contact's forces (:func:`~tyrelab.road.terrain.terrain_contact`, a point
+    contact: area 0); on the rigid road that branch is compiled out.
     """
     rho = geo.deflection
     nx, ny, nz = geo.nx, geo.ny, geo.nz
