@@ -1,17 +1,18 @@
-"""TMeasy's parameters fitted to another handling model's curves: a Magic Formula, PAC89 or
-Fiala file converted to TMeasy (as Chrono's TMeasy data sets were gained from PAC2002 files).
+"""TMeasy's parameters fitted to pure-slip curves: another handling model's (a Magic Formula,
+PAC89 or Fiala file converted to TMeasy, as Chrono's TMeasy data sets were gained from
+PAC2002 files) or measured ones (a flat-track or trailer test's slip sweeps).
 
-At the nominal load and twice it, the source's pure-slip forces are sampled at TMeasy's own
-slips (:mod:`tyrelab.tyre.handling.tmeasy`; transport speed ``Re omega + v_N``) -- ``s_x = s``
-driving at the ISO slip ratio ``(V + s v_N) / (V (1 - s)) - 1``, ``s_x = -s`` braking at
-``(V - s v_N) / (V (1 + s)) - 1``, ``s_y = s`` at ``tan alpha = s (V + v_N) / V`` -- averaged
-over the two signs
-(TMeasy's curves are odd; a file's offsets are not carried) and fitted by least squares:
-each direction's characteristic (dF0, FM, sM, FS, sS) and the normalised pneumatic trail
-(its value at zero slip, where it changes sign, where it vanishes) to the aligning moment
-``Mz = -L n Fy``, L the contact length (a Magic Formula's residual moment has no place in
-TMeasy: the trail takes what it can). The fit keeps every parameter inside what TMeasy's property file
-accepts (dF0 >= 2 FM / sM, FS <= FM, sM < sS).
+Samples are put in TMeasy's own terms (:mod:`tyrelab.tyre.handling.tmeasy`; transport speed
+``Re omega + v_N``): the slip ``s_x = kappa / (1 + kappa)`` (ISO ``kappa``; a sampled
+model is evaluated at the ``kappa`` that gives ``s_x`` exactly, ``v_N`` included) with FXW,
+``s_y = -tan alpha`` with FYW and MZW, at their loads. Each direction's characteristic at
+FZ_NOM and at 2 FZ_NOM (dF0, FM, sM, FS, sS each; TMeasy's load interpolation between) is
+fitted by least squares to every sample at once, the curve odd in the slip (a file's offsets
+are not carried), keeping every parameter inside what TMeasy's property file accepts
+(dF0 >= 2 FM / sM, FS <= FM, sM < sS); then the normalised pneumatic trail (its value at zero
+slip, where it changes sign, where it vanishes) to the aligning moment ``Mz = -L n Fy``, L
+the contact length, where the tyre grips (lateral slips up to :data:`TRAIL_SLIPS` times the
+fitted peak slip; a Magic Formula's residual moment has no place in TMeasy).
 """
 
 from __future__ import annotations
@@ -22,11 +23,11 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..errors import InputError
-from ..tyre.handling.tmeasy import (DEFAULT_MAX_LOAD_RATIO, V_NUM, SlipCurve, Trail, characteristic,
-                                    law_deflection, normalized_trail, tmeasy_entries,
-                                    vertical_coefficients)
+from ..tyre.handling.tmeasy import (DEFAULT_MAX_LOAD_RATIO, V_NUM, SlipCurve, Trail,
+                                    characteristic_at_loads, curve_at, law_deflection,
+                                    tmeasy_entries, trail_moments, vertical_coefficients)
 
-#: samples per curve, and the largest TMeasy slips sampled where the source states no range
+#: samples per curve and load, and the largest TMeasy slips sampled where the source states no range
 SAMPLES = 80
 MAX_SLIP_X = 0.9
 MAX_SLIP_Y = 1.5
@@ -34,13 +35,30 @@ MAX_SLIP_Y = 1.5
 TRAIL_SLIPS = 3.0
 #: forward speed of the sampling [m/s]
 SPEED = 10.0
+#: a measured sample is pure slip when the other slip is at most this (rad for the angle)
+PURE = 1e-3
+#: the least-squares fits' stopping tolerances (scipy's default 1e-8 leaves 1e-7 on exact data)
+TOLERANCES = {"ftol": 1e-12, "xtol": 1e-12, "gtol": 1e-12}
+#: channels a measured sweep must have
+SWEEP_CHANNELS = ("FZW", "LONGSLIP", "SLIPANGL", "FXW", "FYW", "MZW")
+
+
+@dataclass
+class Samples:
+    """One direction's pure-slip samples in TMeasy's terms: the signed slip, the load [N],
+    the force along the slip [N] (FXW; FYW); lateral samples also the aligning moment [N m]."""
+
+    slip: np.ndarray
+    load: np.ndarray
+    force: np.ndarray
+    moment: np.ndarray | None = None
 
 
 @dataclass
 class TMeasyFit:
-    """The fitted parameters (each a pair: at FZ_NOM and 2 FZ_NOM), the loads [N], and the
-    RMS error of each fitted curve over its samples, in % of the sampled curve's peak
-    (``rms_pct``: keys ``Fx``, ``Fy``, ``Mz`` and the level 1 or 2)."""
+    """The fitted parameters (each a pair: at FZ_NOM and 2 FZ_NOM), the loads [N], the RMS
+    error of each fitted curve over its samples in % of their largest magnitude (``rms_pct``:
+    ``Fx``, ``Fy``, ``Mz``) and the largest TMeasy slips sampled."""
 
     nominal_load: float
     max_load: float
@@ -56,63 +74,113 @@ class TMeasyFit:
                               self.trail)
 
 
-def fit_characteristic(s, f) -> tuple[SlipCurve, float]:
-    """The TMeasy characteristic closest (least squares) to forces ``f`` [N] at slips
-    ``s`` > 0, and its RMS error in % of ``max(f)``."""
-    from scipy.optimize import least_squares
+def _curve(p) -> SlipCurve:
+    """A characteristic from (FM, sM, dF0 - 2 FM/sM, FS/FM, sS - sM): inside TMeasy's bounds."""
+    peak, peak_slip, excess, ratio, gap = (float(v) for v in p)
+    return SlipCurve(2.0 * peak / peak_slip + excess, peak, peak_slip, ratio * peak, peak_slip + gap)
 
-    s, f = np.asarray(s, float), np.asarray(f, float)
-    peak = float(f.max())
-    if not peak > 0:
-        raise InputError("the source gives no force in this direction to fit TMeasy to",
-                         field="handling")
+
+def _binned(s, f, bins: int = 40):
+    """Mean slip and force in ``bins`` slip bins of equal count (sorted by slip)."""
+    order = np.argsort(s)
+    parts = np.array_split(order, min(bins, s.size))
+    return (np.array([s[k].mean() for k in parts]), np.array([f[k].mean() for k in parts]))
+
+
+def _start(s, f) -> list[float]:
+    """A first guess (the :func:`_curve` parameters) from a curve's samples at positive slip."""
+    s, f = _binned(s, f)
     i = int(f.argmax())
-
-    def curve(p):
-        peak, peak_slip, excess, ratio, gap = p
-        return SlipCurve(2.0 * peak / peak_slip + excess, peak, peak_slip, ratio * peak,
-                         peak_slip + gap)
-
-    def residual(p):
-        c = curve(p)
-        return np.array([characteristic(x, *c) for x in s]) - f
-
-    slope = f[0] / s[0]
-    start = [peak, s[i], max(slope - 2.0 * peak / s[i], 0.0) + 1e-6 * slope,
-             min(max(f[-1] / peak, 0.0), 1.0), max(s[-1] - s[i], 1e-3)]
-    lower = [1e-9 * peak, 1e-4, 0.0, 0.0, 1e-4]
-    upper = [10.0 * peak, s[-1], np.inf, 1.0, 10.0]
-    start = np.clip(start, lower, upper)
-    best = least_squares(residual, start, bounds=(lower, upper), x_scale="jac", max_nfev=4000)
-    c = curve(best.x)
-    return c, 100.0 * math.sqrt(np.mean(residual(best.x) ** 2)) / peak
+    peak = float(f[i])
+    slope = f[0] / s[0] if s[0] > 0 else 2.0 * peak / s[i]
+    return [peak, float(s[i]), max(slope - 2.0 * peak / s[i], 0.0) + 1e-6 * abs(slope),
+            min(max(f[-1] / peak, 0.0), 1.0), max(float(s[-1] - s[i]), 1e-3)]
 
 
-def fit_trail(s, fy, mz, length) -> tuple[Trail, float]:
-    """The normalised pneumatic trail whose moment ``-length n(s) fy`` is closest (least
-    squares) to ``mz`` [N m] at lateral slips ``s`` > 0, with the lateral forces ``fy`` [N]
-    there and the contact length ``length`` [m]; and its RMS error in % of ``max |mz|``. The
-    moment, not the trail, is fitted: the trail matters where the force is large."""
+def fit_direction(samples: Samples, nominal: float, max_load: float) -> tuple[tuple, float]:
+    """The characteristics at FZ_NOM and 2 FZ_NOM closest (least squares) to every sample, the
+    curve odd in the slip; and the RMS error in % of the largest force magnitude."""
     from scipy.optimize import least_squares
 
-    s, fy, mz = (np.asarray(v, float) for v in (s, fy, mz))
-    scale = max(float(np.abs(mz).max()), 1e-12)
-
-    def trail(p):
-        return Trail(p[0], p[1], p[1] + p[2])
+    s, f = samples.slip, samples.force
+    q = np.minimum(samples.load, max_load) / nominal
+    scale = float(np.abs(f).max())
+    moving = np.abs(s) > 0
+    if not (scale > 0 and moving.any()):
+        raise InputError("the samples show no force in this direction to fit TMeasy to",
+                         field="handling")
+    # a first guess from the force per unit load ratio: forces and slope twice at 2 FZ_NOM
+    per_load = np.sign(s[moving]) * f[moving] / q[moving]
+    peak, peak_slip, excess, ratio, gap = _start(np.abs(s[moving]), per_load)
+    start = np.array([peak, peak_slip, excess, ratio, gap, 2.0 * peak, peak_slip, 2.0 * excess, ratio, gap])
+    s_top = float(np.abs(s).max())
+    lower = np.tile([1e-9 * scale, 1e-4, 0.0, 0.0, 1e-4], 2)
+    upper = np.tile([10.0 * scale, max(s_top, 2e-4), np.inf, 1.0, 10.0], 2)
+    out = np.empty_like(f)
 
     def residual(p):
-        t = trail(p)
-        return -length * fy * np.array([normalized_trail(x, *t) for x in s]) - mz
+        characteristic_at_loads(s, q, (_curve(p[:5]), _curve(p[5:])), out)
+        return (out - f) / scale
 
-    n = -mz / np.where(np.abs(fy) > 0, length * fy, np.inf)
-    crossing = np.flatnonzero(n <= 0.0)
-    s0 = float(s[crossing[0]]) if crossing.size else 0.5 * float(s[-1])
-    start = [max(float(n[0]), 0.0), s0, max(float(s[-1]) - s0, 1e-3)]
-    lower, upper = [0.0, 1e-4, 0.0], [10.0, 10.0, 10.0]
     best = least_squares(residual, np.clip(start, lower, upper), bounds=(lower, upper),
-                         x_scale="jac", max_nfev=4000)
-    return trail(best.x), 100.0 * math.sqrt(np.mean(residual(best.x) ** 2)) / scale
+                         x_scale="jac", max_nfev=4000, **TOLERANCES)
+    rms = 100.0 * math.sqrt(np.mean(residual(best.x) ** 2))
+    return (_curve(best.x[:5]), _curve(best.x[5:])), rms
+
+
+def fit_trail(samples: Samples, nominal: float, max_load: float, lateral: tuple,
+              tyre) -> tuple[tuple, float]:
+    """The normalised trails at FZ_NOM and 2 FZ_NOM whose moments ``-L n Fy`` (L the contact
+    length ``2 sqrt(R0 z)``, z the deflection of TMeasy's law fitted to ``tyre``'s,
+    :func:`~tyrelab.tyre.handling.tmeasy.vertical_coefficients`) are closest to the samples' where
+    the tyre grips (|s_y| up to :data:`TRAIL_SLIPS` times the fitted peak slip at its load);
+    and the RMS error in % of the largest moment magnitude there. The moment, not the trail,
+    is fitted: the trail matters where the force is large."""
+    from scipy.optimize import least_squares
+
+    q = np.minimum(samples.load, max_load) / nominal
+    grip = np.array([abs(s) <= TRAIL_SLIPS * curve_at(lateral, qi).peak_slip
+                     for s, qi in zip(samples.slip, q)])
+    s, q, fy, mz = samples.slip[grip], q[grip], samples.force[grip], samples.moment[grip]
+    d1, d2 = vertical_coefficients(tyre.vertical_law)
+    length = np.array([2.0 * math.sqrt(tyre.unloaded_radius * law_deflection(d1, d2, fz))
+                       for fz in samples.load[grip]])
+    scale = max(float(np.abs(mz).max()), 1e-12)
+    out = np.empty_like(mz)
+
+    def trails(p):
+        return Trail(p[0], p[1], p[1] + p[2]), Trail(p[3], p[4], p[4] + p[5])
+
+    def residual(p):
+        trail_moments(np.abs(s), q, length, fy, trails(p), out)
+        return (out - mz) / scale
+
+    carries = np.abs(fy) > 1e-3 * np.abs(fy).max()
+    n = -mz[carries] / (length[carries] * fy[carries])
+    a = np.abs(s[carries])
+    order = np.argsort(a)
+    n0 = max(float(np.median(n[order[:max(3, order.size // 10)]])), 0.0)
+    crossing = a[order][n[order] <= 0.0]
+    s0 = float(crossing[0]) if crossing.size else 0.5 * float(a.max())
+    one = [n0, s0, max(float(a.max()) - s0, 1e-3)]
+    lower, upper = np.tile([0.0, 1e-4, 0.0], 2), np.tile([10.0, 10.0, 10.0], 2)
+    best = least_squares(residual, np.clip(one + one, lower, upper), bounds=(lower, upper),
+                         x_scale="jac", max_nfev=4000, **TOLERANCES)
+    return trails(best.x), 100.0 * math.sqrt(np.mean(residual(best.x) ** 2))
+
+
+def fit_tmeasy(x: Samples, y: Samples, nominal: float, tyre, slip_range=(0.0, 0.0)) -> TMeasyFit:
+    """TMeasy from longitudinal samples ``x`` and lateral ``y`` (with moments) at nominal load
+    ``nominal`` [N] (FZ_MAX 3.5 times it, Chrono's default); ``tyre``'s vertical law gives the
+    contact length."""
+    if not (math.isfinite(nominal) and nominal > 0):
+        raise InputError(f"expected a positive nominal load in N, got {nominal!r}", field="--nominal-load")
+    maximum = DEFAULT_MAX_LOAD_RATIO * nominal
+    longitudinal, rms_x = fit_direction(x, nominal, maximum)
+    lateral, rms_y = fit_direction(y, nominal, maximum)
+    trail, rms_m = fit_trail(y, nominal, maximum, lateral, tyre)
+    return TMeasyFit(nominal, maximum, longitudinal, lateral, trail,
+                     {"Fx": rms_x, "Fy": rms_y, "Mz": rms_m}, slip_range)
 
 
 def _slip_limits(tyre) -> tuple[float, float]:
@@ -130,47 +198,65 @@ def _slip_limits(tyre) -> tuple[float, float]:
 
 
 def tmeasy_from_handling(tyre, handling: str, nominal_load: float, speed: float = SPEED) -> TMeasyFit:
-    """TMeasy's parameters fitted to ``tyre``'s curves under handling model ``handling`` at
-    ``nominal_load`` [N] and twice it (module docstring); FZ_MAX 3.5 times the nominal load."""
+    """TMeasy fitted to ``tyre``'s curves under handling model ``handling``, sampled at
+    ``nominal_load`` [N] and twice it at TMeasy's own slips (module docstring)."""
     from ..tyre.registry import handling_model
 
-    if not (math.isfinite(nominal_load) and nominal_load > 0):
-        raise InputError(f"expected a positive nominal load in N, got {nominal_load!r}",
-                         field="--nominal-load")
     model = handling_model(handling)
     params = model.build(tyre)
-    d1, d2 = vertical_coefficients(tyre.vertical_law)
     s_x_max, s_y_max = _slip_limits(tyre)
-    s_x = np.linspace(0.0, s_x_max, SAMPLES + 1)[1:]
-    s_y = np.linspace(0.0, s_y_max, SAMPLES + 1)[1:]
+    grid = np.linspace(0.0, 1.0, SAMPLES + 1)[1:]
 
     def forces(fz, kappa, tan_alpha):
         return model.forces(params, fz, speed, -kappa * speed, tan_alpha * speed, 0.0)
 
-    def driving(s):
+    def kappa(s):  # the ISO slip ratio at which TMeasy's transport speed gives s_x = s
         return (speed + s * V_NUM) / (speed * (1.0 - s)) - 1.0
 
-    def braking(s):
-        return (speed - s * V_NUM) / (speed * (1.0 + s)) - 1.0
+    lean = (speed + V_NUM) / speed  # s_y > 0 slides right: tan alpha = -s_y (V + v_N) / V
+    xs, ys = [], []
+    for fz in (nominal_load, 2.0 * nominal_load):
+        for sign in (1.0, -1.0):
+            xs += [(sign * s, fz, forces(fz, kappa(sign * s), 0.0)[0]) for s in s_x_max * grid]
+            ys += [(sign * s, fz, *forces(fz, 0.0, -sign * s * lean)[1:3]) for s in s_y_max * grid]
+    x, y = np.array(xs), np.array(ys)
+    return fit_tmeasy(Samples(x[:, 0], x[:, 1], x[:, 2]), Samples(y[:, 0], y[:, 1], y[:, 2], y[:, 3]),
+                      nominal_load, tyre, (s_x_max, s_y_max))
 
-    curves = {"x": [], "y": [], "trail": []}
-    rms = {}
-    for level in (1, 2):
-        fz = level * nominal_load
-        fx = np.array([0.5 * (forces(fz, driving(s), 0.0)[0] - forces(fz, braking(s), 0.0)[0]) for s in s_x])
-        lean = (speed + V_NUM) / speed
-        # TMeasy's s_y > 0 slides right: the slip angle's tangent is -s_y (V + v_N) / V
-        lateral = [(forces(fz, 0.0, -s * lean), forces(fz, 0.0, s * lean)) for s in s_y]
-        fy = np.array([0.5 * (a[1] - b[1]) for a, b in lateral])
-        mz = np.array([0.5 * (a[2] - b[2]) for a, b in lateral])
-        cx, rms[f"Fx{level}"] = fit_characteristic(s_x, fx)
-        cy, rms[f"Fy{level}"] = fit_characteristic(s_y, fy)
-        length = 2.0 * math.sqrt(tyre.unloaded_radius * law_deflection(d1, d2, fz))
-        # the moment where the tyre grips: up to TRAIL_SLIPS times the lateral force's peak slip
-        grip = s_y <= TRAIL_SLIPS * cy.peak_slip
-        trail, rms[f"Mz{level}"] = fit_trail(s_y[grip], fy[grip], mz[grip], length)
-        curves["x"].append(cx)
-        curves["y"].append(cy)
-        curves["trail"].append(trail)
-    return TMeasyFit(nominal_load, DEFAULT_MAX_LOAD_RATIO * nominal_load, tuple(curves["x"]),
-                     tuple(curves["y"]), tuple(curves["trail"]), rms, (s_x_max, s_y_max))
+
+def samples_from_runs(runs) -> tuple[Samples, Samples]:
+    """Pure-slip samples from measured sweeps (tables with :data:`SWEEP_CHANNELS`, SI, W-axis:
+    :func:`tyrelab.measure.io.read_run`): rows with load whose other slip is at most
+    :data:`PURE` (longitudinal: ``s_x = kappa / (1 + kappa)``; lateral: ``s_y = -tan alpha``)."""
+    xs, ys = [], []
+    for run in runs:
+        missing = [c for c in SWEEP_CHANNELS if c not in run.columns]
+        if missing:
+            raise InputError(f"a slip sweep needs the channels {', '.join(SWEEP_CHANNELS)}; missing "
+                             f"{', '.join(missing)}", source=run.attrs.get("path"), field=missing[0])
+        d = run[list(SWEEP_CHANNELS)].to_numpy(dtype=float)
+        fz, kappa, alpha, fx, fy, mz = d.T
+        ok = np.isfinite(d).all(axis=1) & (fz > 0) & (kappa > -1.0) & (np.abs(alpha) < 1.5)
+        pure_x = ok & (np.abs(alpha) <= PURE) & (np.abs(kappa) > 0)
+        pure_y = ok & (np.abs(kappa) <= PURE) & (np.abs(alpha) > 0)
+        xs.append(np.c_[kappa[pure_x] / (1.0 + kappa[pure_x]), fz[pure_x], fx[pure_x]])
+        ys.append(np.c_[-np.tan(alpha[pure_y]), fz[pure_y], fy[pure_y], mz[pure_y]])
+    x, y = np.vstack(xs), np.vstack(ys)
+    for name, part in (("longitudinal", x), ("lateral", y)):
+        if part.shape[0] < 10:
+            raise InputError(f"too few pure {name}-slip samples ({part.shape[0]}) to fit TMeasy: "
+                             f"the sweeps need rows with the other slip at most {PURE:g}",
+                             field="--measured")
+    return Samples(x[:, 0], x[:, 1], x[:, 2]), Samples(y[:, 0], y[:, 1], y[:, 2], y[:, 3])
+
+
+def tmeasy_from_runs(tyre, runs, nominal_load: float | None = None) -> TMeasyFit:
+    """TMeasy fitted to measured slip sweeps (:func:`samples_from_runs`); the contact length
+    from ``tyre``'s vertical law. ``nominal_load`` [N] default: half the largest measured load
+    (so that 2 FZ_NOM is the heaviest sweep)."""
+    x, y = samples_from_runs(runs)
+    if nominal_load is None:
+        nominal_load = 0.5 * float(max(x.load.max(), y.load.max()))
+    top = (float(np.abs(x.slip).max()), float(np.abs(y.slip).max()))
+    return fit_tmeasy(x, y, nominal_load, tyre, top)
+

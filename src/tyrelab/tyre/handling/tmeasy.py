@@ -55,6 +55,8 @@ from .slip import DKAPPA, VXLOW, slip
 V_NUM = 0.01
 #: FZ_MAX when a file gives none: Chrono's ``3.5 FZ_NOM``
 DEFAULT_MAX_LOAD_RATIO = 3.5
+#: how far below ``2 FM / sM`` a file's initial slope may be written (its rounding) [-]
+SLOPE_ROUNDING = 1e-9
 
 #: property-file sections and keys (Chrono's TMeasy parameter file, ``ExportParameterFile``);
 #: ``_1`` at FZ_NOM, ``_2`` at 2 FZ_NOM
@@ -133,8 +135,9 @@ def _slip_curve(tir, direction: str, level: int) -> SlipCurve:
         raise _refuse(tir, section, slide, f"expected {slide} between 0 and {peak}: the sliding "
                       "force is at most the maximum")
     # below 2 FM / sM the curve's slope would rise past dF0 on the way to its peak (Chrono
-    # raises dF0 to that bound silently; a file that needs it is refused here)
-    if curve.slope < 2.0 * curve.peak / curve.peak_slip:
+    # raises dF0 to that bound silently; a file that needs it is refused here). A slope at the
+    # bound, as a fit may leave it, is allowed its last written digit (1e-9 of it)
+    if curve.slope < 2.0 * curve.peak / curve.peak_slip * (1.0 - SLOPE_ROUNDING):
         raise _refuse(tir, section, slope, f"expected {slope} >= 2 {peak} / {peak_slip} = "
                       f"{2 * curve.peak / curve.peak_slip:.6g} N: a lower initial slope would "
                       "not be the curve's steepest")
@@ -293,6 +296,30 @@ def normalized_trail(sy, at_zero, sign_change, vanish):
         return (1.0 - w) * at_zero * (1.0 - sn) + w * at_zero * (1.0 - (3.0 - 2.0 * sn) * sn * sn)
     sn = (vanish - s) / (vanish - sign_change)
     return -at_zero * (1.0 - w) * (s - sign_change) / sign_change * sn * sn
+
+
+@nb.njit(cache=True)
+def characteristic_at_loads(slip, q, levels, out):
+    """Each signed slip's force into ``out`` [N]: the characteristic (odd in the slip) of the
+    curve at load ratio ``q`` from ``levels`` (the curves at FZ_NOM and 2 FZ_NOM) -- what a
+    fit compares with samples at many loads."""
+    for i in range(slip.shape[0]):
+        c = curve_at(levels, q[i])
+        f = characteristic(abs(slip[i]), c.slope, c.peak, c.peak_slip, c.slide, c.slide_slip)
+        out[i] = f if slip[i] >= 0.0 else -f
+
+
+@nb.njit(cache=True)
+def trail_moments(slip, q, length, fy, trail, out):
+    """Each sample's aligning moment ``-L n(|s_y|) Fy`` into ``out`` [N m]: contact length
+    ``length`` [m] and lateral force ``fy`` [N] given, the trail at load ratio ``q`` from
+    ``trail`` (at FZ_NOM and 2 FZ_NOM)."""
+    a, b = trail
+    for i in range(slip.shape[0]):
+        n = normalized_trail(slip[i], load_linear(a.at_zero, b.at_zero, q[i]),
+                             load_linear(a.sign_change, b.sign_change, q[i]),
+                             load_linear(a.vanish, b.vanish, q[i]))
+        out[i] = -length[i] * n * fy[i]
 
 
 @nb.njit(cache=True)
