@@ -24,13 +24,18 @@ from tyrelab.tyre.library import load_tyre
 from tmeasy_van import VAN_NOMINAL, VAN_TRAIL, VAN_X, VAN_Y, fixed_van
 
 
+def _assert_the_vans_curves(longitudinal, lateral, rel):
+    """Each fitted characteristic parameter at both loads is the van file's, to ``rel``."""
+    for got, want in ((longitudinal, VAN_X), (lateral, VAN_Y)):
+        for level in (0, 1):
+            for name in got[level]._fields:
+                assert getattr(got[level], name) == pytest.approx(want[name][level], rel=rel), name
+
+
 def test_a_round_trip_recovers_the_files_parameters(data_dir, tmp_path):
     van = fixed_van(data_dir / "tir", tmp_path)
     fit = tmeasy_from_handling(van, "tmeasy", VAN_NOMINAL)
-    for got, want in ((fit.longitudinal, VAN_X), (fit.lateral, VAN_Y)):
-        for level in (0, 1):
-            for name in got[level]._fields:
-                assert getattr(got[level], name) == pytest.approx(want[name][level], rel=1e-7), name
+    _assert_the_vans_curves(fit.longitudinal, fit.lateral, rel=1e-7)
     for level in (0, 1):
         assert fit.trail[level].at_zero == pytest.approx(VAN_TRAIL["at_zero"][level], rel=1e-6)
         assert fit.trail[level].sign_change == pytest.approx(VAN_TRAIL["sign_change"][level], rel=1e-6)
@@ -74,10 +79,7 @@ def test_measured_sweeps_at_other_loads_give_the_parameters_back(data_dir, tmp_p
                  "--nominal-load", str(VAN_NOMINAL), "-o", str(out)]) == 0
     assert "TMeasy fitted to 1 measured sweep file(s), FZ_NOM 1900 N" in capsys.readouterr().out
     got = tmeasy_params(load_tyre(out))
-    for fitted, want in ((got.longitudinal, VAN_X), (got.lateral, VAN_Y)):
-        for level in (0, 1):
-            for name in fitted[level]._fields:
-                assert getattr(fitted[level], name) == pytest.approx(want[name][level], rel=1e-4), name
+    _assert_the_vans_curves(got.longitudinal, got.lateral, rel=1e-4)
     for level in (0, 1):
         assert got.trail[level].at_zero == pytest.approx(VAN_TRAIL["at_zero"][level], rel=1e-4)
 
