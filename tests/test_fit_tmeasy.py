@@ -146,3 +146,24 @@ def test_a_sweep_without_a_channel_or_pure_slip_is_refused(data_dir, tmp_path, c
         err = capsys.readouterr().err.strip()
         assert len(err.splitlines()) == 1 and re.search(match, err), err
         assert not out.exists()
+
+
+def test_a_lab_csv_in_its_own_units_through_a_column_map(data_dir, tmp_path, capsys):
+    """A logger's CSV (kN, percent, degrees, kN m) read through a column map as ``tyrelab
+    validate`` reads one: the same parameters as the SI sweeps, to the same 1e-4."""
+    import math
+
+    van = fixed_van(data_dir / "tir", tmp_path)
+    table = _sweeps(van, [0.8 * VAN_NOMINAL, 2.2 * VAN_NOMINAL])
+    lab = tmp_path / "lab.csv"
+    lab.write_text("Fz kN,slip %,angle deg,Fx kN,Fy kN,Mz kNm\n" + "".join(
+        f"{r.FZW / 1e3!r},{100 * r.LONGSLIP!r},{math.degrees(r.SLIPANGL)!r},{r.FXW / 1e3!r},"
+        f"{r.FYW / 1e3!r},{r.MZW / 1e3!r}\n" for r in table.itertuples()))
+    columns = tmp_path / "map.csv"
+    columns.write_text("source,channel,unit\nFz kN,FZW,kN\nslip %,LONGSLIP,%\nangle deg,SLIPANGL,deg\n"
+                       "Fx kN,FXW,kN\nFy kN,FYW,kN\nMz kNm,MZW,kN m\n")
+    out = tmp_path / "fitted.tir"
+    assert main(["fit", "tmeasy", str(tmp_path / "van.json"), "--measured", str(lab), "--column-map",
+                 str(columns), "--nominal-load", str(VAN_NOMINAL), "-o", str(out)]) == 0
+    got = tmeasy_params(load_tyre(out))
+    _assert_the_vans_curves(got.longitudinal, got.lateral, rel=1e-4)

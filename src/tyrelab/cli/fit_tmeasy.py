@@ -23,6 +23,9 @@ def register_tmeasy(fsub) -> None:
     t.add_argument("--measured", nargs="+", default=None, metavar="FILE",
                    help="measured pure-slip sweeps to fit instead (TYDEX .tdx, or .csv/.parquet with "
                         "the channels FZW, LONGSLIP, SLIPANGL, FXW, FYW, MZW in SI, W-axis)")
+    t.add_argument("--column-map", default=None, metavar="FILE",
+                   help="column map for measured .csv sweeps (lines source,channel,unit, as "
+                        "tyrelab validate takes)")
     t.add_argument("--nominal-load", type=positive_float("--nominal-load"), default=None, metavar="N",
                    help="TMeasy's nominal load FZ_NOM in N (default: the file's FNOMIN or FZ_NOM; "
                         "with --measured, half the largest measured load)")
@@ -42,13 +45,14 @@ def run_tmeasy(args) -> int:
     from ..tyre.tir import write_tir
     from ._common import input_files
 
-    out = check_output_path(args.output, (".tir",), "-o", input_files(args.tyre, *(args.measured or [])))
+    out = check_output_path(args.output, (".tir",), "-o",
+                            input_files(args.tyre, args.column_map, *(args.measured or [])))
     tyre = load_tyre(args.tyre)
     if args.measured:
         from ..fit.tmeasy import tmeasy_from_runs
         from ..measure.io import read_run
 
-        runs = [read_run(path) for path in args.measured]
+        runs = [read_run(path, column_map=args.column_map) for path in args.measured]
         fit = tmeasy_from_runs(tyre, runs, args.nominal_load)
         source = f"{len(runs)} measured sweep file(s)"
     else:
