@@ -299,6 +299,16 @@ def normalized_trail(sy, at_zero, sign_change, vanish):
 
 
 @nb.njit(cache=True)
+def trail_at(trail, q, sy):
+    """The normalised trail at lateral slip ``sy`` and load ratio ``q`` from ``trail`` (at
+    FZ_NOM and 2 FZ_NOM; each parameter linear in the load, Chrono's ``InterpL``)."""
+    a, b = trail
+    return normalized_trail(sy, load_linear(a.at_zero, b.at_zero, q),
+                            load_linear(a.sign_change, b.sign_change, q),
+                            load_linear(a.vanish, b.vanish, q))
+
+
+@nb.njit(cache=True)
 def characteristic_at_loads(slip, q, levels, out):
     """Each signed slip's force into ``out`` [N]: the characteristic (odd in the slip) of the
     curve at load ratio ``q`` from ``levels`` (the curves at FZ_NOM and 2 FZ_NOM) -- what a
@@ -314,12 +324,8 @@ def trail_moments(slip, q, length, fy, trail, out):
     """Each sample's aligning moment ``-L n(|s_y|) Fy`` into ``out`` [N m]: contact length
     ``length`` [m] and lateral force ``fy`` [N] given, the trail at load ratio ``q`` from
     ``trail`` (at FZ_NOM and 2 FZ_NOM)."""
-    a, b = trail
     for i in range(slip.shape[0]):
-        n = normalized_trail(slip[i], load_linear(a.at_zero, b.at_zero, q[i]),
-                             load_linear(a.sign_change, b.sign_change, q[i]),
-                             load_linear(a.vanish, b.vanish, q[i]))
-        out[i] = -length[i] * n * fy[i]
+        out[i] = -length[i] * trail_at(trail, q[i], slip[i]) * fy[i]
 
 
 @nb.njit(cache=True)
@@ -375,12 +381,8 @@ def tmeasy_forces(tp, fz, v_long, v_slip_x, v_slip_y):
                        math.hypot(x.slide_slip * c, y.slide_slip * n))
     fx = f * c if s > 0.0 else 0.0
     fy = f * n if s > 0.0 else 0.0
-    a, b = tp.trail
-    trail = normalized_trail(sy, load_linear(a.at_zero, b.at_zero, q),
-                             load_linear(a.sign_change, b.sign_change, q),
-                             load_linear(a.vanish, b.vanish, q))
     z = min(tmeasy_deflection(tp, fz), tp.unloaded_radius)
-    mz = -2.0 * math.sqrt(tp.unloaded_radius * z) * trail * fy
+    mz = -2.0 * math.sqrt(tp.unloaded_radius * z) * trail_at(tp.trail, q, sy) * fy
     if v_long < 0.0:  # rolling backwards the trail lies ahead of the centre along x
         mz = -mz
     if not (math.isfinite(fx) and math.isfinite(fy) and math.isfinite(mz)):
