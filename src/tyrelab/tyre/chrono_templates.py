@@ -17,8 +17,9 @@ from importlib import resources
 
 from ..errors import InputError
 from .chrono_document import _Builder, _comment, _Document, _kind
-from .handling.tmeasy import DEFAULT_MAX_LOAD_RATIO
+from .handling.tmeasy import DEFAULT_MAX_LOAD_RATIO, KEY_SECTIONS, LOAD_SECTION
 from .tir import TirFile
+from .tir_units import KEY_DIMENSIONS
 
 
 #: Chrono's TMeasy "engineer's guess": deflection at the load capacity per section height,
@@ -151,24 +152,23 @@ def tmeasy_tir(doc: _Document, template: str) -> TirFile:
     return b.tir
 
 
-#: TMeasy's keys in the order of Chrono's JSON arrays: (property-file section, key, JSON object, JSON key)
+#: TMeasy's keys (stems: the section is :data:`~.handling.tmeasy.KEY_SECTIONS`'s) with the JSON
+#: object and key that state each as a pair (at the nominal load and at twice it)
 _TMEASY_KEYS = (
-    ("LONGITUDINAL_PARAMETERS", "DFX0", "Longitudinal", "Initial Slopes dFx/dsx [N]"),
-    ("LONGITUDINAL_PARAMETERS", "FXMAX", "Longitudinal", "Maximum Fx Load [N]"),
-    ("LONGITUDINAL_PARAMETERS", "SXMAX", "Longitudinal", "Slip sx at Maximum Fx"),
-    ("LONGITUDINAL_PARAMETERS", "FXSLD", "Longitudinal", "Sliding Fx Load [N]"),
-    ("LONGITUDINAL_PARAMETERS", "SXSLD", "Longitudinal", "Slip sx where sliding begins"),
-    ("LATERAL_PARAMETERS", "DFY0", "Lateral", "Initial Slopes dFy/dsy [N]"),
-    ("LATERAL_PARAMETERS", "FYMAX", "Lateral", "Maximum Fy Load [N]"),
-    ("LATERAL_PARAMETERS", "SYMAX", "Lateral", "Slip sy at Maximum Fy"),
-    ("LATERAL_PARAMETERS", "FYSLD", "Lateral", "Sliding Fy Load [N]"),
-    ("LATERAL_PARAMETERS", "SYSLD", "Lateral", "Slip sy where sliding begins"),
-    ("ALIGNING_PARAMETERS", "PT_NORM", "Aligning", "Normalized Trail at Zero Slip sy"),
-    ("ALIGNING_PARAMETERS", "SY_CHSI", "Aligning", "Slip sy where Trail Changes Sign"),
-    ("ALIGNING_PARAMETERS", "SY_ZERO", "Aligning", "Slip sy where Trail Tends to Zero"),
+    ("DFX0", "Longitudinal", "Initial Slopes dFx/dsx [N]"),
+    ("FXMAX", "Longitudinal", "Maximum Fx Load [N]"),
+    ("SXMAX", "Longitudinal", "Slip sx at Maximum Fx"),
+    ("FXSLD", "Longitudinal", "Sliding Fx Load [N]"),
+    ("SXSLD", "Longitudinal", "Slip sx where sliding begins"),
+    ("DFY0", "Lateral", "Initial Slopes dFy/dsy [N]"),
+    ("FYMAX", "Lateral", "Maximum Fy Load [N]"),
+    ("SYMAX", "Lateral", "Slip sy at Maximum Fy"),
+    ("FYSLD", "Lateral", "Sliding Fy Load [N]"),
+    ("SYSLD", "Lateral", "Slip sy where sliding begins"),
+    ("PT_NORM", "Aligning", "Normalized Trail at Zero Slip sy"),
+    ("SY_CHSI", "Aligning", "Slip sy where Trail Changes Sign"),
+    ("SY_ZERO", "Aligning", "Slip sy where Trail Tends to Zero"),
 )
-#: TMeasy's force parameters, which the guess scales with the load (the others are slips)
-_TMEASY_FORCES = ("DFX0", "FXMAX", "FXSLD", "DFY0", "FYMAX", "FYSLD")
 #: Chrono's ``Vehicle Type`` words and the guess pattern each picks
 TMEASY_PATTERNS = {"Truck": "truck", "Passenger": "passenger"}
 
@@ -193,15 +193,15 @@ def _tmeasy_handling_given(doc: _Document, b: _Builder) -> None:
         return
     vert = par + ("Vertical",)
     nominal = vert + ("Nominal Vertical Force [N]",)
-    b.put("TYRE_LOAD", "FZ_NOM", doc.number(*nominal, positive=True), nominal)
+    b.put(LOAD_SECTION, "FZ_NOM", doc.number(*nominal, positive=True), nominal)
     if doc.has(*vert, "Maximum Vertical Force [N]"):
         keys = vert + ("Maximum Vertical Force [N]",)
-        b.put("TYRE_LOAD", "FZ_MAX", doc.number(*keys, positive=True), keys)
-    for section, key, obj, name in _TMEASY_KEYS:
+        b.put(LOAD_SECTION, "FZ_MAX", doc.number(*keys, positive=True), keys)
+    for key, obj, name in _TMEASY_KEYS:
         keys = par + (obj, name)
         pair = doc.vector(*keys, size=2)
-        b.put(section, f"{key}_1", pair[0], keys)
-        b.put(section, f"{key}_2", pair[1], keys)
+        b.put(KEY_SECTIONS[key], f"{key}_1", pair[0], keys)
+        b.put(KEY_SECTIONS[key], f"{key}_2", pair[1], keys)
 
 
 def _tmeasy_handling_guess(doc: _Document, b: _Builder, capacity: float, capacity_keys) -> None:
@@ -223,15 +223,15 @@ def _tmeasy_handling_guess(doc: _Document, b: _Builder, capacity: float, capacit
     if doc.has(*design) and doc.has(*use):
         ratio = doc.number(*use, positive=True) / doc.number(*design, positive=True)
     nominal = 0.5 * capacity * ratio ** 0.8
-    b.put("TYRE_LOAD", "FZ_NOM", nominal, capacity_keys)
-    b.put("TYRE_LOAD", "FZ_MAX", DEFAULT_MAX_LOAD_RATIO * nominal, capacity_keys)
+    b.put(LOAD_SECTION, "FZ_NOM", nominal, capacity_keys)
+    b.put(LOAD_SECTION, "FZ_MAX", DEFAULT_MAX_LOAD_RATIO * nominal, capacity_keys)
     table = _tmeasy_guess_table()[TMEASY_PATTERNS[kind]]
-    for section, key, _, _ in _TMEASY_KEYS:
+    for key, _, _ in _TMEASY_KEYS:
         one, two = table[key]
-        if key in _TMEASY_FORCES:
+        if f"{key}_1" in KEY_DIMENSIONS:  # forces and slopes [N] scale with the load; slips not
             one, two = one * nominal, two * 2.0 * nominal
-        b.put(section, f"{key}_1", one, keys)
-        b.put(section, f"{key}_2", two, keys)
+        b.put(KEY_SECTIONS[key], f"{key}_1", one, keys)
+        b.put(KEY_SECTIONS[key], f"{key}_2", two, keys)
     b.tir.header.append(
         f"$ TMeasy handling GUESSED as Chrono does ({kind.lower()} pattern): FZ_NOM = half the load "
         f"capacity{' x pressure ratio^0.8' if ratio != 1.0 else ''} = {nominal:.6g} N.")

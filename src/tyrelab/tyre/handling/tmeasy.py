@@ -65,6 +65,10 @@ CURVE_SECTIONS = {"x": "LONGITUDINAL_PARAMETERS", "y": "LATERAL_PARAMETERS"}
 CURVE_KEYS = ("DF{d}0", "F{D}MAX", "S{D}MAX", "F{D}SLD", "S{D}SLD")
 TRAIL_SECTION = "ALIGNING_PARAMETERS"
 TRAIL_KEYS = ("PT_NORM", "SY_CHSI", "SY_ZERO")
+#: each key's section, by its stem (the key without ``_1`` / ``_2``)
+KEY_SECTIONS = {**{key.format(d=d, D=d.upper()).upper(): CURVE_SECTIONS[d]
+                   for d in "xy" for key in CURVE_KEYS},
+                **{key: TRAIL_SECTION for key in TRAIL_KEYS}}
 
 
 class SlipCurve(NamedTuple):
