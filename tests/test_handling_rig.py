@@ -16,6 +16,7 @@ def test_file_format_picks_the_handling_model(data_dir):
 
 
 @pytest.mark.parametrize("json,handling", [("HMMWV_TMeasyTire.json", "tmeasy"),
+                                           ("HMMWV_TMsimpleTire.json", "tmsimple"),
                                            ("HMMWV_FialaTire.json", "fiala")])
 def test_chrono_handling_models_never_give_nan(data_dir, json, handling):
     """Random loads and velocities, standstill included: finite forces always, none without

@@ -136,4 +136,4 @@ def test_unknown_models_fail_with_the_known_names():
 def test_registry_lists_every_builtin_model_once():
     assert list(contact_models()) == ["point", "volume", "enveloping", "enveloping-edge", "ring", "ring-tp",
                                       "rigid"]
-    assert list(handling_models()) == ["none", "pac89", "mf", "tmeasy", "fiala"]
+    assert list(handling_models()) == ["none", "pac89", "mf", "tmeasy", "tmsimple", "fiala"]

@@ -25,7 +25,8 @@ def default_handling(tyre: Tyre) -> str:
     PAC89 coefficients (``[LATERAL_COEFFICIENTS]`` with ``A0``) -> ``"pac89"``;
     Magic Formula 5.2/6.x (``FITTYP`` or ``PROPERTY_FILE_FORMAT`` 'MF_05',
     'PAC2002', 'MF_61', 'MF_62') -> ``"mf"``; TMeasy parameters (``[TYRE_LOAD] FZ_NOM``, as
-    :mod:`tyrelab.tyre.chrono_json` writes from a Chrono TMeasy JSON) -> ``"tmeasy"``; Fiala
+    :mod:`tyrelab.tyre.chrono_json` writes from a Chrono TMeasy JSON) -> ``"tmeasy"``, under
+    ``PROPERTY_FILE_FORMAT`` 'TMSIMPLE' (a Chrono TMsimple JSON's) -> ``"tmsimple"``; Fiala
     (``PROPERTY_FILE_FORMAT`` 'FIALA', or ``[PARAMETER] CSLIP``) -> ``"fiala"``; otherwise
     ``"none"``.
     """
@@ -43,6 +44,8 @@ def default_handling(tyre: Tyre) -> str:
             return "none"
         return "mf"
     from .tyre.handling.tmeasy import LOAD_SECTION
+    if fmt == "TMSIMPLE":
+        return "tmsimple"
     if tir.has(LOAD_SECTION, "FZ_NOM"):
         return "tmeasy"
     if fmt == "FIALA" or tir.has("PARAMETER", "CSLIP"):
@@ -128,7 +131,7 @@ def simulate(tyre: str | Tyre = DEFAULT_TYRE, model: str = "point", road=None,
         Inflation pressure [Pa] (built-in tyres only).
     stiffness : {"table", "linear"}, optional
         Vertical stiffness: load-deflection spline or linear.
-    handling : {"none", "pac89", "mf", "tmeasy", "fiala"}, optional
+    handling : {"none", "pac89", "mf", "tmeasy", "tmsimple", "fiala"}, optional
         Tangential force model; by default the one the property file describes.
     rig : str
         A registered rig (:func:`tyrelab.registry.rigs`; built in: ``"trailer"``,

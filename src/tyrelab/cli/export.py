@@ -44,8 +44,8 @@ def register(sub):
     fmu.add_argument("--stiffness", choices=("table", "linear"), default=None,
                      help="vertical stiffness: load-deflection spline (table) or linear")
     fmu.add_argument("--handling", default=None,
-                     help="tangential force model: none, pac89, mf, tmeasy, fiala (default: what the "
-                          "property file describes)")
+                     help="tangential force model: none, pac89, mf, tmeasy, tmsimple, fiala (default: "
+                          "what the property file describes)")
     fmu.add_argument("--load", type=load_value, default=0.0,
                      help="INITIAL_LOAD's default: the static load in N (or LC1-LC3) at which the "
                           "model starts in equilibrium (default: none, the model starts unloaded)")

@@ -42,8 +42,9 @@ def register(sub):
                    help="vertical stiffness: load-deflection spline (table, default when the file has one) "
                         "or linear")
     p.add_argument("--handling", default=None,
-                   help="tangential force model: none, pac89, mf, tmeasy, fiala or a plugin's (tyrelab "
-                        "models lists them; default: what the property file describes)")
+                   help="tangential force model: none, pac89, mf, tmeasy, tmsimple, fiala or a "
+                        "plugin's (tyrelab models lists them; default: what the property file "
+                        "describes)")
     p.add_argument("--terrain", default=None, metavar="SOIL",
                    help="the ground over the road: a built-in soil (lete-sand, dry-sand, sandy-loam, "
                         "clayey-soil, snow, chrono-demo), a soil file FILE.toml, or a plugin's terrain "

@@ -78,7 +78,7 @@ Chrono file; add it if a rig needs the whole wheel.
     PROPERTY_FILE_FORMAT = 'FIALA'`` (ADAMS's Fiala layout; the ``fiala``
     handling model, :mod:`tyrelab.tyre.handling.fiala`): all four or none. The
     relaxation lengths and the rolling resistance are kept as header comments.
-``TMeasyTire`` (vertical data and TMeasy handling), ``TMsimpleTire`` (vertical data only)
+``TMeasyTire``, ``TMsimpleTire`` (vertical data and their handling)
     ``Design > Unloaded Radius [m]``, ``Width [m]``, ``Rim Radius [m]`` ->
     ``[DIMENSION] UNLOADED_RADIUS, WIDTH, RIM_RADIUS``; ``Design > Mass [kg]``,
     ``Inertia [kg.m2]`` -> ``[INERTIA]`` (these replace the top-level ``Mass``
@@ -115,7 +115,11 @@ Chrono file; add it if a rig needs the whole wheel.
     ``GuessPassCar70Par``) for its ``Vehicle Type`` ("Truck" or "Passenger"; absent: no
     handling parameters). Chrono picks the pattern on the bearing-capacity path from the
     file's ``Name`` (and passes the rim radius as the rim diameter); here ``Vehicle Type``
-    picks it on both paths. ``TMsimpleTire``'s handling parameters are not carried.
+    picks it on both paths. ``TMsimpleTire`` likewise, for the ``tmsimple`` model
+    (:mod:`tyrelab.tyre.handling.tmsimple`): its ``Longitudinal`` and ``Lateral`` pairs
+    (slopes, maximum and sliding forces; no slips, no trail) or ``ChTMsimpleTire``'s own guess,
+    under ``PROPERTY_FILE_FORMAT = 'TMSIMPLE'`` (TMeasy's files: 'TMEASY'). Its damping is
+    ``Vertical Tire Damping [Ns/m]``, as Chrono's TMsimple reader spells it.
 ``RigidTire`` (vertical data only)
     ``Radius`` [m] -> ``UNLOADED_RADIUS``; ``Width`` [m] -> ``WIDTH``; the
     contact material's ``Contact Material > Coefficients > Normal Stiffness``

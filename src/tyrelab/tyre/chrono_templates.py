@@ -91,6 +91,17 @@ def fiala_tir(doc: _Document) -> TirFile:
     return b.tir
 
 
+#: the vertical damping's key in each template's ``Parameters > Vertical`` (Chrono's readers
+#: spell them differently)
+DAMPING_KEY = {"TMeasyTire": "Tire Vertical Damping [Ns/m]", "TMsimpleTire": "Vertical Tire Damping [Ns/m]"}
+#: the keys each template's handling model has (TMsimple: no slips and no trail), and the
+#: property-file format its parameters are written under
+HANDLING_KEYS = {"TMeasyTire": ("DFX0", "FXMAX", "SXMAX", "FXSLD", "SXSLD", "DFY0", "FYMAX", "SYMAX",
+                                "FYSLD", "SYSLD", "PT_NORM", "SY_CHSI", "SY_ZERO"),
+                 "TMsimpleTire": ("DFX0", "FXMAX", "FXSLD", "DFY0", "FYMAX", "FYSLD")}
+HANDLING_FORMAT = {"TMeasyTire": "TMEASY", "TMsimpleTire": "TMSIMPLE"}
+
+
 def tmeasy_tir(doc: _Document, template: str) -> TirFile:
     design = ("Design",)
     b = _Builder(doc, template)
@@ -110,10 +121,9 @@ def tmeasy_tir(doc: _Document, template: str) -> TirFile:
             d1 = doc.number(*stiffness, positive=True)
             b.put("VERTICAL", "VERTICAL_STIFFNESS", d1, stiffness)
             b.put("VERTICAL", "VERTICAL_DAMPING",
-                  doc.number(*vert, "Tire Vertical Damping [Ns/m]", minimum=0.0),
-                  vert + ("Tire Vertical Damping [Ns/m]",))
+                  doc.number(*vert, DAMPING_KEY[template], minimum=0.0), vert + (DAMPING_KEY[template],))
         else:
-            b.vertical(stiffness, vert + ("Tire Vertical Damping [Ns/m]",), curve)
+            b.vertical(stiffness, vert + (DAMPING_KEY[template],), curve)
             d1 = _linear_coefficient(b.tir.table("DEFLECTION_LOAD_CURVE"))
     else:
         if doc.has("Load Index"):
@@ -140,11 +150,10 @@ def tmeasy_tir(doc: _Document, template: str) -> TirFile:
             f"$ ({GUESS_DEFLECTION_RATIO:g} x (unloaded radius - rim radius)), damping = 2 x "
             f"{GUESS_DAMPING_RATIO:g} x sqrt(stiffness x tyre mass)."]
     _tmeasy_bottoming(doc, b, r0, rim, d1)
-    if template == "TMeasyTire":
-        if doc.has("Parameters"):
-            _tmeasy_handling_given(doc, b)
-        else:
-            _tmeasy_handling_guess(doc, b, load, keys)
+    if doc.has("Parameters"):
+        _tmeasy_handling_given(doc, b, template)
+    else:
+        _tmeasy_handling_guess(doc, b, load, keys, template)
     if doc.has("Inflation Pressure Use [Pa]"):
         keys = ("Inflation Pressure Use [Pa]",)
         b.put("OPERATING_CONDITIONS", "INFLPRES", doc.number(*keys, positive=True), keys)
@@ -184,35 +193,38 @@ def _tmeasy_guess_table() -> dict[str, dict[str, tuple[float, float]]]:
     return table
 
 
-def _tmeasy_handling_given(doc: _Document, b: _Builder) -> None:
-    """TMeasy's handling parameters as the JSON's ``Parameters`` state them (each a pair: at
-    the nominal load and at twice it); none when it gives only ``Vertical``."""
+def _tmeasy_handling_given(doc: _Document, b: _Builder, template: str) -> None:
+    """The template's handling parameters as the JSON's ``Parameters`` state them (each a
+    pair: at the nominal load and at twice it); none when it gives only ``Vertical``."""
     par = ("Parameters",)
     if not any(doc.has(*par, name) for name in ("Longitudinal", "Lateral", "Aligning")):
-        b.tir.header.append("$ No TMeasy handling parameters (only 'Parameters' > 'Vertical').")
+        b.tir.header.append("$ No handling parameters (only 'Parameters' > 'Vertical').")
         return
     vert = par + ("Vertical",)
     nominal = vert + ("Nominal Vertical Force [N]",)
+    b.put("MODEL", "PROPERTY_FILE_FORMAT", HANDLING_FORMAT[template])
     b.put(LOAD_SECTION, "FZ_NOM", doc.number(*nominal, positive=True), nominal)
     if doc.has(*vert, "Maximum Vertical Force [N]"):
         keys = vert + ("Maximum Vertical Force [N]",)
         b.put(LOAD_SECTION, "FZ_MAX", doc.number(*keys, positive=True), keys)
     for key, obj, name in _TMEASY_KEYS:
-        keys = par + (obj, name)
-        pair = doc.vector(*keys, size=2)
-        b.put(KEY_SECTIONS[key], f"{key}_1", pair[0], keys)
-        b.put(KEY_SECTIONS[key], f"{key}_2", pair[1], keys)
+        if key in HANDLING_KEYS[template]:
+            keys = par + (obj, name)
+            pair = doc.vector(*keys, size=2)
+            b.put(KEY_SECTIONS[key], f"{key}_1", pair[0], keys)
+            b.put(KEY_SECTIONS[key], f"{key}_2", pair[1], keys)
 
 
-def _tmeasy_handling_guess(doc: _Document, b: _Builder, capacity: float, capacity_keys) -> None:
-    """TMeasy's handling parameters guessed from the load capacity as Chrono does
-    (``GuessTruck80Par``, ``GuessPassCar70Par``; ``data/tmeasy_guess.csv``): the nominal
-    load half the capacity, times ``(Inflation Pressure Use / Inflation Pressure Design)^0.8``
-    when the file gives both, the pattern from ``Vehicle Type``. Without a ``Vehicle Type``
-    no handling parameters (Chrono would stop)."""
+def _tmeasy_handling_guess(doc: _Document, b: _Builder, capacity: float, capacity_keys,
+                           template: str) -> None:
+    """The template's handling parameters guessed from the load capacity as Chrono does
+    (``GuessTruck80Par``, ``GuessPassCar70Par`` of ``ChTMeasyTire`` or ``ChTMsimpleTire``;
+    ``data/tmeasy_guess.csv``): the nominal load half the capacity, times ``(Inflation Pressure
+    Use / Inflation Pressure Design)^0.8`` when the file gives both, the pattern from ``Vehicle
+    Type``. Without a ``Vehicle Type`` no handling parameters (Chrono would stop)."""
     keys = ("Vehicle Type",)
     if not doc.has(*keys):
-        b.tir.header.append("$ No TMeasy handling parameters: the file gives no 'Vehicle Type' "
+        b.tir.header.append("$ No handling parameters: the file gives no 'Vehicle Type' "
                             "('Truck' or 'Passenger') to guess them by.")
         return
     kind = doc.string(*keys)
@@ -223,18 +235,20 @@ def _tmeasy_handling_guess(doc: _Document, b: _Builder, capacity: float, capacit
     if doc.has(*design) and doc.has(*use):
         ratio = doc.number(*use, positive=True) / doc.number(*design, positive=True)
     nominal = 0.5 * capacity * ratio ** 0.8
+    b.put("MODEL", "PROPERTY_FILE_FORMAT", HANDLING_FORMAT[template])
     b.put(LOAD_SECTION, "FZ_NOM", nominal, capacity_keys)
     b.put(LOAD_SECTION, "FZ_MAX", DEFAULT_MAX_LOAD_RATIO * nominal, capacity_keys)
-    table = _tmeasy_guess_table()[TMEASY_PATTERNS[kind]]
-    for key, _, _ in _TMEASY_KEYS:
+    pattern = TMEASY_PATTERNS[kind] if template == "TMeasyTire" else f"tmsimple-{TMEASY_PATTERNS[kind]}"
+    table = _tmeasy_guess_table()[pattern]
+    for key in HANDLING_KEYS[template]:
         one, two = table[key]
         if f"{key}_1" in KEY_DIMENSIONS:  # forces and slopes [N] scale with the load; slips not
             one, two = one * nominal, two * 2.0 * nominal
         b.put(KEY_SECTIONS[key], f"{key}_1", one, keys)
         b.put(KEY_SECTIONS[key], f"{key}_2", two, keys)
     b.tir.header.append(
-        f"$ TMeasy handling GUESSED as Chrono does ({kind.lower()} pattern): FZ_NOM = half the load "
-        f"capacity{' x pressure ratio^0.8' if ratio != 1.0 else ''} = {nominal:.6g} N.")
+        f"$ {template[:-4]} handling GUESSED as Chrono does ({kind.lower()} pattern): FZ_NOM = half the "
+        f"load capacity{' x pressure ratio^0.8' if ratio != 1.0 else ''} = {nominal:.6g} N.")
 
 
 def _linear_coefficient(curve) -> float:

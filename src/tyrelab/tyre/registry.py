@@ -41,6 +41,7 @@ BUILTIN_HANDLING = (
     "tyrelab.tyre.handling.pac89",
     "tyrelab.tyre.handling.mf.wheel",
     "tyrelab.tyre.handling.tmeasy",
+    "tyrelab.tyre.handling.tmsimple",
     "tyrelab.tyre.handling.fiala",
 )
 
