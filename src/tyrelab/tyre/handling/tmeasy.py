@@ -360,6 +360,21 @@ def tmeasy_rolling_radius(tp, fz, omega):
 
 
 @nb.njit(cache=True)
+def tmeasy_slip(v_long, v_slip_x, v_slip_y):
+    """TMeasy's combined slip ``s`` and its direction ``(cos phi, sin phi)``, and ``s_y``, from
+    the wheel centre's speed along the heading and the contact point's slip velocity [m/s]:
+    ``s_x = -v_sx / v_t``, ``s_y = -v_sy / v_t``, ``v_t = Re |omega| + v_N`` with ``Re omega =
+    v_long - v_sx`` (module docstring); the direction (1, 1)/sqrt 2 without slip."""
+    v_t = abs(v_long - v_slip_x) + V_NUM
+    sx = -v_slip_x / v_t
+    sy = -v_slip_y / v_t
+    s = math.hypot(sx, sy)
+    if s > 0.0:
+        return s, sx / s, sy / s, sy
+    return s, math.sqrt(0.5), math.sqrt(0.5), sy
+
+
+@nb.njit(cache=True)
 def tmeasy_forces(tp, fz, v_long, v_slip_x, v_slip_y):
     """``(FXW, FYW, MZW)`` [N, N, N m] of TMeasy at load ``fz`` [N] from the wheel centre's
     speed along the heading and the contact point's slip velocity [m/s] (W-axis; module
@@ -368,15 +383,7 @@ def tmeasy_forces(tp, fz, v_long, v_slip_x, v_slip_y):
     if not (fz > 0.0) or not math.isfinite(fz):
         return 0.0, 0.0, 0.0
     q = min(fz, tp.max_load) / tp.nominal_load
-    v_t = abs(v_long - v_slip_x) + V_NUM
-    sx = -v_slip_x / v_t
-    sy = -v_slip_y / v_t
-    s = math.hypot(sx, sy)
-    if s > 0.0:
-        c = sx / s
-        n = sy / s
-    else:
-        c = n = math.sqrt(0.5)
+    s, c, n, sy = tmeasy_slip(v_long, v_slip_x, v_slip_y)
     x = curve_at(tp.longitudinal, q)
     y = curve_at(tp.lateral, q)
     f = characteristic(s, math.hypot(x.slope * c, y.slope * n), math.hypot(x.peak * c, y.peak * n),

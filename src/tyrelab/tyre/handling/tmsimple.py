@@ -25,8 +25,8 @@ import numba as nb
 from ...errors import InputError
 from ..registry import HandlingModel, register_handling
 from .slip import DKAPPA, VXLOW, slip
-from .tmeasy import (CURVE_SECTIONS, DEFAULT_MAX_LOAD_RATIO, LOAD_SECTION, V_NUM, load_quadratic,
-                     tmeasy_rolling_radius, vertical_coefficients)
+from .tmeasy import (CURVE_SECTIONS, DEFAULT_MAX_LOAD_RATIO, LOAD_SECTION, load_quadratic,
+                     tmeasy_rolling_radius, tmeasy_slip, vertical_coefficients)
 
 
 class SimpleCurve(NamedTuple):
@@ -104,14 +104,9 @@ def tmsimple_forces(tp, fz, v_long, v_slip_x, v_slip_y):
     if not (fz > 0.0) or not math.isfinite(fz):
         return 0.0, 0.0
     q = min(fz, tp.max_load) / tp.nominal_load
-    v_t = abs(v_long - v_slip_x) + V_NUM
-    sx = -v_slip_x / v_t
-    sy = -v_slip_y / v_t
-    s = math.hypot(sx, sy)
+    s, c, n, _ = tmeasy_slip(v_long, v_slip_x, v_slip_y)
     if not s > 0.0:
         return 0.0, 0.0
-    c = sx / s
-    n = sy / s
     (x1, x2), (y1, y2) = tp.longitudinal, tp.lateral
     f = simple_characteristic(
         s, math.hypot(load_quadratic(x1.slope, x2.slope, q) * c, load_quadratic(y1.slope, y2.slope, q) * n),
