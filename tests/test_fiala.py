@@ -151,3 +151,45 @@ def test_a_freely_rolling_wheel_stays_free(hmmwv):
     out = simulate(hmmwv, "point", road="flat", speed=8.0, load=4900.0, handling="fiala",
                    rig="rolling", duration=1.0)
     assert np.abs(out["FXW"]).max() < 1.0
+
+
+ADAMS_FIALA = """[MDI_HEADER]
+FILE_TYPE = 'tir'
+[UNITS]
+LENGTH = 'mm'
+FORCE = 'newton'
+ANGLE = 'degree'
+MASS = 'kg'
+TIME = 'second'
+[MODEL]
+PROPERTY_FILE_FORMAT = 'FIALA'
+[DIMENSION]
+UNLOADED_RADIUS = 326.0
+WIDTH = 245.0
+[PARAMETER]
+VERTICAL_STIFFNESS = {stiffness}
+VERTICAL_DAMPING = 3.1
+CSLIP = 75000.0
+CALPHA = 1000.0
+UMIN = 0.8
+UMAX = 1.0
+"""
+
+
+def test_an_adams_fiala_file_keeps_its_vertical_law_in_parameter(tmp_path):
+    """ADAMS's Fiala layout: the vertical stiffness and damping in [PARAMETER] beside CSLIP
+    (here in N/mm, N s/mm and N/deg): read as 310 kN/m, 3.1 kN s/m and 1000 N/deg = 57.3 kN/rad.
+    Before, the file was refused for a missing [VERTICAL] VERTICAL_STIFFNESS."""
+    from tyrelab.tyre.library import load_tyre
+
+    path = tmp_path / "adams_fiala.tir"
+    path.write_text(ADAMS_FIALA.format(stiffness=310.0))
+    tyre = load_tyre(path)
+    assert (tyre.vertical_stiffness, tyre.vertical_damping) == pytest.approx((310e3, 3.1e3), rel=1e-12)
+    assert default_handling(tyre) == "fiala"
+    fp = fiala_params(tyre)
+    assert fp.cornering_stiffness == pytest.approx(1000.0 * 180.0 / math.pi, rel=1e-12)
+    assert (fp.slip_stiffness, fp.width) == pytest.approx((75000.0, 0.245), rel=1e-12)
+    path.write_text(ADAMS_FIALA.format(stiffness=-5.0))
+    with pytest.raises(InputError, match=r"line 15: VERTICAL_STIFFNESS: .* is not physical"):
+        load_tyre(path)

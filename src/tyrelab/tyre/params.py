@@ -101,6 +101,7 @@ class Tyre:
         """Tyre from a parsed or on-disk property file."""
         if not isinstance(tir, TirFile):
             tir = read_tir(tir)
+        tir = tir_physics.adams_fiala_layout(tir)
         src = tir.source
         tir_physics.check_physics(tir)
         r0 = tir.number("DIMENSION", "UNLOADED_RADIUS", required=True)

@@ -175,6 +175,29 @@ def quadratic_law(tir: TirFile, r0: float, stiffness: float, pressure_factor: fl
     return law
 
 
+#: the vertical law's keys an ADAMS Fiala file keeps in [PARAMETER] (its layout), not [VERTICAL]
+FIALA_VERTICAL_KEYS = ("VERTICAL_STIFFNESS", "VERTICAL_DAMPING")
+
+
+def adams_fiala_layout(tir: TirFile) -> TirFile:
+    """``tir`` with an ADAMS Fiala file's vertical law where every other file has it: a file
+    of ``PROPERTY_FILE_FORMAT = 'FIALA'`` keeps ``VERTICAL_STIFFNESS`` and ``VERTICAL_DAMPING``
+    in ``[PARAMETER]`` (with CSLIP, CALPHA, ...); without a ``[VERTICAL]`` section they are
+    copied there, each with its line. Other files are returned as they are."""
+    fmt = str(tir.get("MODEL", "PROPERTY_FILE_FORMAT", "")).upper()
+    if fmt != "FIALA" or tir.has("VERTICAL") or not tir.has("PARAMETER", "VERTICAL_STIFFNESS"):
+        return tir
+    import copy
+
+    out = copy.deepcopy(tir)
+    source = out.sections["PARAMETER"]
+    for key in FIALA_VERTICAL_KEYS:
+        if key in source.entries:
+            out.set("VERTICAL", key, source.entries[key])
+            out.sections["VERTICAL"].lines[key] = source.lines.get(key, 0)
+    return out
+
+
 def check_physics(tir: TirFile) -> None:
     """Check a property file's values for physical sense, naming file and line.
 
