@@ -75,6 +75,31 @@ def comma_numbers(text: str, field: str, most: int, accept, what: str) -> list[f
     return values
 
 
+def handling_for(tyre, chosen, source, purpose: str, hint: str) -> str:
+    """The handling model a command runs ``tyre`` under: ``chosen`` (an option's value), else
+    the one its file describes; "none" is an :class:`InputError` on ``--handling`` saying why
+    there is nothing ``purpose`` ("to draw") and what to give instead (``hint``)."""
+    from ..api import default_handling
+
+    handling = chosen or default_handling(tyre)
+    if handling == "none":
+        reason = "'none' has no forces" if chosen else "this tyre's file describes no handling model"
+        raise InputError(f"{reason} {purpose}; give {hint}", source=str(source), field="--handling")
+    return handling
+
+
+def nominal_load_for(tyre, given, source, option: str) -> float:
+    """``given`` [N], else the load the tyre's file calls nominal (FNOMIN, FZ_NOM); a file that
+    names none is an :class:`InputError` on ``option``."""
+    from ..report.handling_curves import nominal_load
+
+    nominal = given or nominal_load(tyre)
+    if nominal is None:
+        raise InputError(f"the file names no nominal load (FNOMIN, FZ_NOM): give {option} in N",
+                         source=str(source), field=option)
+    return nominal
+
+
 def load_value(text: str):
     """A load case name (LC1..LC3) or a wheel load in N (finite, at least the limits' minimum)."""
     from ..limits import MIN_LOAD

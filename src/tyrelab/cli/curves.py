@@ -11,7 +11,7 @@ from __future__ import annotations
 
 from ..errors import InputError
 from ..limits import MAX_SPEED, MIN_LOAD, MIN_SPEED
-from ._common import bounded_float, comma_numbers
+from ._common import bounded_float, comma_numbers, handling_for, nominal_load_for
 
 #: most loads per tyre, and most tyres, in one figure
 MAX_LOADS = 6
@@ -24,9 +24,8 @@ def _loads(text: str) -> list[float]:
 
 
 def _run(args) -> int:
-    from ..api import default_handling
     from ..io_atomic import IMAGE_SUFFIXES, check_output_path
-    from ..report.handling_curves import DEFAULT_LOAD_FACTORS, curve_set, nominal_load, plot_curve_sets
+    from ..report.handling_curves import DEFAULT_LOAD_FACTORS, curve_set, plot_curve_sets
     from ..tyre.library import load_tyre
     from ..tyre.registry import handling_model
 
@@ -44,18 +43,11 @@ def _run(args) -> int:
     sets = []
     for k, name in enumerate(args.tyres):
         tyre = load_tyre(name)
-        handling = (chosen[k] if len(chosen) > 1 else chosen[0]) if chosen else default_handling(tyre)
-        if handling == "none":
-            reason = ("'none' has no forces to draw" if chosen else
-                      "this tyre's file describes no handling model")
-            raise InputError(f"{reason}; give --handling (tyrelab models lists them)", source=str(name),
-                             field="--handling")
+        handling = handling_for(tyre, chosen[k if len(chosen) > 1 else 0] if chosen else None, name,
+                                "to draw", "--handling (tyrelab models lists them)")
         tyre_loads = loads
         if tyre_loads is None:
-            nominal = nominal_load(tyre)
-            if nominal is None:
-                raise InputError("the file names no nominal load (FNOMIN, FZ_NOM): give --loads in N",
-                                 source=str(name), field="--loads")
+            nominal = nominal_load_for(tyre, None, name, "--loads")
             tyre_loads = [f * nominal for f in DEFAULT_LOAD_FACTORS]
         try:
             sets.append(curve_set(tyre, handling, tyre_loads, args.speed, label=tyre.name))

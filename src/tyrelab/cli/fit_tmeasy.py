@@ -35,15 +35,12 @@ def register_tmeasy(fsub) -> None:
 def run_tmeasy(args) -> int:
     import copy
 
-    from ..api import default_handling
-    from ..errors import InputError
     from ..fit.property_file import FIT_SECTION, tidy
     from ..fit.tmeasy import tmeasy_from_handling
     from ..io_atomic import check_output_path
-    from ..report.handling_curves import nominal_load
     from ..tyre.library import load_tyre
     from ..tyre.tir import write_tir
-    from ._common import input_files
+    from ._common import handling_for, input_files, nominal_load_for
 
     out = check_output_path(args.output, (".tir",), "-o",
                             input_files(args.tyre, args.column_map, *(args.measured or [])))
@@ -56,14 +53,9 @@ def run_tmeasy(args) -> int:
         fit = tmeasy_from_runs(tyre, runs, args.nominal_load)
         source = f"{len(runs)} measured sweep file(s)"
     else:
-        handling = args.handling or default_handling(tyre)
-        if handling == "none":
-            raise InputError("no handling model to fit TMeasy to: the file describes none; give "
-                             "--handling or --measured", source=str(args.tyre), field="--handling")
-        nominal = args.nominal_load or nominal_load(tyre)
-        if nominal is None:
-            raise InputError("the file names no nominal load (FNOMIN, FZ_NOM): give --nominal-load "
-                             "in N", source=str(args.tyre), field="--nominal-load")
+        handling = handling_for(tyre, args.handling, args.tyre, "to fit TMeasy to",
+                                "--handling or --measured")
+        nominal = nominal_load_for(tyre, args.nominal_load, args.tyre, "--nominal-load")
         fit = tmeasy_from_handling(tyre, handling, nominal)
         source = f"its {handling} curves"
     tir = copy.deepcopy(tyre.tir)
