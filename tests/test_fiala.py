@@ -19,6 +19,8 @@ from tyrelab.tyre.handling.fiala import fiala_forces, fiala_params, fiala_wheel_
 from tyrelab.tyre.params import Tyre
 from tyrelab.tyre.tir import read_tir, write_tir
 
+from file_edit import edited
+
 CSLIP, CALPHA, UMIN, UMAX, WIDTH = 193929.0, 50000.0, 0.5568, 0.9835, 0.318
 
 
@@ -126,20 +128,15 @@ def read_tir_copy(tyre, tmp_path, key, value):
 
 
 def test_a_json_with_only_part_of_the_fiala_parameters_is_refused(data_dir, tmp_path):
-    text = (data_dir / "tir" / "HMMWV_FialaTire.json").read_text().replace('"UMAX": 0.9835,', "")
-    path = tmp_path / "f.json"
-    path.write_text(text)
+    path = edited(data_dir / "tir" / "HMMWV_FialaTire.json", tmp_path / "f.json", ('"UMAX": 0.9835,', ""))
     with pytest.raises(InputError, match=r"Fiala Parameters > UMAX: missing key"):
         read_chrono_tyre(path)
 
 
 def test_without_fiala_parameters_the_tyre_has_no_handling(data_dir, tmp_path):
-    text = (data_dir / "tir" / "HMMWV_FialaTire.json").read_text()
-    for key in ('"CSLIP": 193929.0,', '"CALPHA": 50000.0,', '"UMIN": 0.5568,', '"UMAX": 0.9835,'):
-        text = text.replace(key, "")
-    path = tmp_path / "f.json"
-    path.write_text(text)
-    tyre = read_chrono_tyre(path)
+    keys = ('"CSLIP": 193929.0,', '"CALPHA": 50000.0,', '"UMIN": 0.5568,', '"UMAX": 0.9835,')
+    tyre = read_chrono_tyre(edited(data_dir / "tir" / "HMMWV_FialaTire.json", tmp_path / "f.json",
+                                   *((key, "") for key in keys)))
     assert default_handling(tyre) == "none"
     with pytest.raises(InputError, match=r"no Fiala parameter CSLIP in section \[PARAMETER\]"):
         fiala_params(tyre)

@@ -16,6 +16,7 @@ from tyrelab.errors import InputError
 from tyrelab.tyre.handling.mf.model import MagicFormula
 from tyrelab.tyre.library import load_tyre
 
+from file_edit import edited
 from spec_text import study_spec
 
 PFZ1, PPX1, PPX2, DPI = 0.88241, -0.8733, 0.7035, 0.2
@@ -62,11 +63,7 @@ def test_outside_the_files_range_is_refused(mf61_path):
 
 
 def _replaced(tmp_path, path, old, new):
-    text = path.read_text()
-    assert text.count(old) == 1
-    out = tmp_path / "edited.tir"
-    out.write_text(text.replace(old, new))
-    return out
+    return edited(path, tmp_path / "edited.tir", (old, new))
 
 
 def test_a_file_without_the_pressure_terms_describes_its_own_pressure_only(tmp_path, mf61_path):

@@ -21,6 +21,7 @@ from tyrelab.tyre.handling.tmeasy import characteristic, tmeasy_params, tmeasy_w
 from tyrelab.tyre.model import TyreModel
 from tyrelab.tyre.wheel import WheelLoads, loads_table, pose
 
+from file_edit import edited
 from tmeasy_van import VAN_NOMINAL, VAN_TRAIL, VAN_X, VAN_Y, fixed_van
 
 #: Chrono's ``m_vnum``, the speed TMeasy adds to the transport speed [m/s]
@@ -206,9 +207,8 @@ def test_the_van_file_is_refused_for_its_misspelt_damping(tir_dir):
 
 
 def test_the_van_files_bottoming_radius_above_its_radius_is_refused(tir_dir, tmp_path):
-    text = (tir_dir / "van_TMeasyTireFull.json").read_text()
-    path = tmp_path / "van.json"
-    path.write_text(text.replace('"Vertical Tire Damping [Ns/m]"', '"Tire Vertical Damping [Ns/m]"'))
+    path = edited(tir_dir / "van_TMeasyTireFull.json", tmp_path / "van.json",
+                  ('"Vertical Tire Damping [Ns/m]"', '"Tire Vertical Damping [Ns/m]"'))
     with pytest.raises(InputError, match=r"bottoming radius 0.396 m must lie between the rim radius "
                                          r"0.1778 m and the unloaded radius 0.376 m"):
         read_chrono_tyre(path)
@@ -265,18 +265,15 @@ def test_a_load_index_gives_chronos_guess(tir_dir, name, pattern, nominal):
 
 
 def test_a_vehicle_type_chrono_does_not_know_is_refused(tir_dir, tmp_path):
-    text = (tir_dir / "HMMWV_TMeasyTire.json").read_text().replace('"Truck"', '"Tractor"')
-    path = tmp_path / "t.json"
-    path.write_text(text)
+    path = edited(tir_dir / "HMMWV_TMeasyTire.json", tmp_path / "t.json",
+                  ('"Vehicle Type": "Truck"', '"Vehicle Type": "Tractor"'))
     with pytest.raises(InputError, match=r"Vehicle Type: expected 'Truck' or 'Passenger', found 'Tractor'"):
         read_chrono_tyre(path)
 
 
 def test_without_a_vehicle_type_the_tyre_has_no_handling(tir_dir, tmp_path):
-    text = (tir_dir / "HMMWV_TMeasyTire.json").read_text().replace('"Vehicle Type": "Truck",', "")
-    path = tmp_path / "t.json"
-    path.write_text(text)
-    tyre = read_chrono_tyre(path)
+    tyre = read_chrono_tyre(edited(tir_dir / "HMMWV_TMeasyTire.json", tmp_path / "t.json",
+                                   ('"Vehicle Type": "Truck",', "")))
     assert default_handling(tyre) == "none"
     with pytest.raises(InputError, match=r"missing key FZ_NOM in section \[TYRE_LOAD\]"):
         tmeasy_params(tyre)

@@ -17,6 +17,8 @@ from tyrelab.errors import InputError
 from tyrelab.tyre.chrono_json import read_chrono_tyre
 from tyrelab.tyre.handling.tmsimple import simple_characteristic, tmsimple_params, tmsimple_wheel_forces
 
+from file_edit import edited
+
 #: Chrono's m_vnum [m/s]
 V_NUM = 0.01
 TRUCK = {"DFX0": (19.1677, 15.1285), "FXMAX": (0.91432, 0.79538), "FXSLD": (0.52273, 0.48517),
@@ -33,10 +35,8 @@ def tir_dir(data_dir):
 @pytest.fixture
 def van(tir_dir, tmp_path):
     """van_TMsimpleTireFull.json without its bottoming radius (0.396 m, above its 0.376 m)."""
-    text = (tir_dir / "van_TMsimpleTireFull.json").read_text()
-    path = tmp_path / "van.json"
-    path.write_text(text.replace('"Tire Bottoming Radius [m]": 0.396,', ""))
-    return read_chrono_tyre(path)
+    return read_chrono_tyre(edited(tir_dir / "van_TMsimpleTireFull.json", tmp_path / "van.json",
+                                   ('"Tire Bottoming Radius [m]": 0.396,', "")))
 
 
 def forces(params, fz, sx, sy, rolling_speed=10.0):

@@ -3,6 +3,8 @@ mended so that it reads, and its parameters typed from the file: shared by the T
 
 from tyrelab.tyre.chrono_json import read_chrono_tyre
 
+from file_edit import edited
+
 #: van_TMeasyTireFull.json's parameters, typed from the file: (at FZ_NOM, at 2 FZ_NOM)
 VAN_NOMINAL = 1900.0
 VAN_X = {"slope": (34910.7021, 73974.3082), "peak": (2145.5102, 4140.6407),
@@ -17,11 +19,8 @@ VAN_TRAIL = {"at_zero": (0.178, 0.19), "sign_change": (0.16337, 0.20355)}
 def fixed_van(tir_dir, tmp_path):
     """The van's full file with its two faults mended: the damping under the key Chrono
     reads, and no bottoming radius (0.396 m, above its unloaded radius of 0.376 m)."""
-    text = (tir_dir / "van_TMeasyTireFull.json").read_text()
-    text = text.replace('"Vertical Tire Damping [Ns/m]"', '"Tire Vertical Damping [Ns/m]"')
-    text = text.replace('"Tire Bottoming Radius [m]": 0.396,', "")
-    path = tmp_path / "van.json"
-    path.write_text(text)
-    return read_chrono_tyre(path)
+    return read_chrono_tyre(edited(tir_dir / "van_TMeasyTireFull.json", tmp_path / "van.json",
+                                   ('"Vertical Tire Damping [Ns/m]"', '"Tire Vertical Damping [Ns/m]"'),
+                                   ('"Tire Bottoming Radius [m]": 0.396,', "")))
 
 
