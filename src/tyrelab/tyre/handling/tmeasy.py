@@ -375,48 +375,53 @@ def tmeasy_slip(v_long, v_slip_x, v_slip_y):
 
 
 @nb.njit(cache=True)
-def tmeasy_forces(tp, fz, v_long, v_slip_x, v_slip_y):
-    """``(FXW, FYW, MZW)`` [N, N, N m] of TMeasy at load ``fz`` [N] from the wheel centre's
-    speed along the heading and the contact point's slip velocity [m/s] (W-axis; module
-    docstring). The rolling speed ``Re omega`` is ``v_long - v_slip_x`` (the slip velocity is
-    the tread's at the rolling radius: :func:`tmeasy_rolling_radius`)."""
-    if not (fz > 0.0) or not math.isfinite(fz):
-        return 0.0, 0.0, 0.0
-    q = min(fz, tp.max_load) / tp.nominal_load
+def tmeasy_tangential(x, y, v_long, v_slip_x, v_slip_y):
+    """``(FXW, FYW, s_y)`` [N, N, -] of TMeasy's curves ``x``, ``y`` at one load
+    (:func:`curve_at`) from the wheel centre's speed along the heading and the contact point's
+    slip velocity [m/s] (W-axis; module docstring): the combined characteristic along the
+    slip's direction (:func:`tmeasy_slip`)."""
     s, c, n, sy = tmeasy_slip(v_long, v_slip_x, v_slip_y)
-    x = curve_at(tp.longitudinal, q)
-    y = curve_at(tp.lateral, q)
+    if not s > 0.0:
+        return 0.0, 0.0, sy
     f = characteristic(s, math.hypot(x.slope * c, y.slope * n), math.hypot(x.peak * c, y.peak * n),
                        math.hypot(x.peak_slip * c, y.peak_slip * n),
                        math.hypot(x.slide * c, y.slide * n),
                        math.hypot(x.slide_slip * c, y.slide_slip * n))
-    fx = f * c if s > 0.0 else 0.0
-    fy = f * n if s > 0.0 else 0.0
-    z = min(tmeasy_deflection(tp, fz), tp.unloaded_radius)
-    mz = -2.0 * math.sqrt(tp.unloaded_radius * z) * trail_at(tp.trail, q, sy) * fy
-    if v_long < 0.0:  # rolling backwards the trail lies ahead of the centre along x
-        mz = -mz
-    if not (math.isfinite(fx) and math.isfinite(fy) and math.isfinite(mz)):
-        return 0.0, 0.0, 0.0
-    return fx, fy, mz
+    return f * c, f * n, sy
 
 
 @nb.njit(cache=True)
 def tmeasy_wheel_forces(tp, fz, v_long, v_slip_x, v_slip_y, gamma):
     """TMeasy from the contact point's slip velocities, with the slip stiffness.
 
-    Returns ``(FXW, FYW, MZW, kappa, alpha, dFXW/dkappa)``: kappa and alpha are the
-    ISO slips every handling model reports (:func:`~.slip.slip`), not TMeasy's own, and the
-    stiffness is FXW's change per unit of that kappa with the wheel's spin (a forward
+    Returns ``(FXW, FYW, MZW, kappa, alpha, dFXW/dkappa)`` [N, N, N m, -, rad, N] at load
+    ``fz`` [N]. The rolling speed ``Re omega`` is ``v_long - v_slip_x`` (the slip velocity is
+    the tread's at the rolling radius: :func:`tmeasy_rolling_radius`). kappa and alpha are
+    the ISO slips every handling model reports (:func:`~.slip.slip`), not TMeasy's own, and
+    the stiffness is FXW's change per unit of that kappa with the wheel's spin (a forward
     difference moving ``v_slip_x`` by ``-DKAPPA max(|v_long|, VXLOW)``; TMeasy's transport
-    speed moves with it), which is what the rigs' implicit spin step needs. Camber is not
-    used (module docstring).
+    speed moves with it), which is what the rigs' implicit spin step needs; both FXW are at
+    the same load, whose curves are found once. The aligning moment is the trail times FYW,
+    turned over rolling backwards (the trail then lies ahead of the centre along x). Camber
+    is not used (module docstring). No forces without a finite positive load.
     """
     kappa, alpha = slip(v_long, v_slip_x, v_slip_y)
-    fx, fy, mz = tmeasy_forces(tp, fz, v_long, v_slip_x, v_slip_y)
+    if not (fz > 0.0) or not math.isfinite(fz):
+        return 0.0, 0.0, 0.0, kappa, alpha, 0.0
+    q = min(fz, tp.max_load) / tp.nominal_load
+    x = curve_at(tp.longitudinal, q)
+    y = curve_at(tp.lateral, q)
+    fx, fy, sy = tmeasy_tangential(x, y, v_long, v_slip_x, v_slip_y)
+    z = min(tmeasy_deflection(tp, fz), tp.unloaded_radius)
+    mz = -2.0 * math.sqrt(tp.unloaded_radius * z) * trail_at(tp.trail, q, sy) * fy
+    if v_long < 0.0:
+        mz = -mz
     vref = max(abs(v_long), VXLOW)
-    fx2, _, _ = tmeasy_forces(tp, fz, v_long, v_slip_x - DKAPPA * vref, v_slip_y)
-    return fx, fy, mz, kappa, alpha, (fx2 - fx) / DKAPPA
+    fx2, _, _ = tmeasy_tangential(x, y, v_long, v_slip_x - DKAPPA * vref, v_slip_y)
+    dfx = (fx2 - fx) / DKAPPA
+    if not (math.isfinite(fx) and math.isfinite(fy) and math.isfinite(mz) and math.isfinite(dfx)):
+        return 0.0, 0.0, 0.0, kappa, alpha, 0.0
+    return fx, fy, mz, kappa, alpha, dfx
 
 
 register_handling(HandlingModel("tmeasy", TMeasyParams, tmeasy_params, tmeasy_wheel_forces,

@@ -99,21 +99,23 @@ def simple_characteristic(s, slope, peak, slide):
 
 
 @nb.njit(cache=True)
-def tmsimple_forces(tp, fz, v_long, v_slip_x, v_slip_y):
-    """``(FXW, FYW)`` [N] of TMsimple at load ``fz`` [N] (TMeasy's slips and combination)."""
-    if not (fz > 0.0) or not math.isfinite(fz):
-        return 0.0, 0.0
-    q = min(fz, tp.max_load) / tp.nominal_load
+def simple_curve_at(levels, q):
+    """The :class:`SimpleCurve` at load ratio ``q`` from the curves at FZ_NOM and 2 FZ_NOM
+    (each parameter quadratic in the load, as TMeasy's forces)."""
+    a, b = levels
+    return SimpleCurve(load_quadratic(a.slope, b.slope, q), load_quadratic(a.peak, b.peak, q),
+                       load_quadratic(a.slide, b.slide, q))
+
+
+@nb.njit(cache=True)
+def tmsimple_tangential(x, y, v_long, v_slip_x, v_slip_y):
+    """``(FXW, FYW)`` [N] of TMsimple's curves ``x``, ``y`` at one load (TMeasy's slips and
+    combination, :func:`.tmeasy.tmeasy_slip`)."""
     s, c, n, _ = tmeasy_slip(v_long, v_slip_x, v_slip_y)
     if not s > 0.0:
         return 0.0, 0.0
-    (x1, x2), (y1, y2) = tp.longitudinal, tp.lateral
-    f = simple_characteristic(
-        s, math.hypot(load_quadratic(x1.slope, x2.slope, q) * c, load_quadratic(y1.slope, y2.slope, q) * n),
-        math.hypot(load_quadratic(x1.peak, x2.peak, q) * c, load_quadratic(y1.peak, y2.peak, q) * n),
-        math.hypot(load_quadratic(x1.slide, x2.slide, q) * c, load_quadratic(y1.slide, y2.slide, q) * n))
-    if not math.isfinite(f):
-        return 0.0, 0.0
+    f = simple_characteristic(s, math.hypot(x.slope * c, y.slope * n), math.hypot(x.peak * c, y.peak * n),
+                              math.hypot(x.slide * c, y.slide * n))
     return f * c, f * n
 
 
@@ -121,12 +123,20 @@ def tmsimple_forces(tp, fz, v_long, v_slip_x, v_slip_y):
 def tmsimple_wheel_forces(tp, fz, v_long, v_slip_x, v_slip_y, gamma):
     """TMsimple from the contact point's slip velocities: ``(FXW, FYW, 0, kappa, alpha,
     dFXW/dkappa)``, the slips and the stiffness as :func:`.tmeasy.tmeasy_wheel_forces` gives
-    them."""
+    them (the curves at the load found once); no forces without a finite positive load."""
     kappa, alpha = slip(v_long, v_slip_x, v_slip_y)
-    fx, fy = tmsimple_forces(tp, fz, v_long, v_slip_x, v_slip_y)
+    if not (fz > 0.0) or not math.isfinite(fz):
+        return 0.0, 0.0, 0.0, kappa, alpha, 0.0
+    q = min(fz, tp.max_load) / tp.nominal_load
+    x = simple_curve_at(tp.longitudinal, q)
+    y = simple_curve_at(tp.lateral, q)
+    fx, fy = tmsimple_tangential(x, y, v_long, v_slip_x, v_slip_y)
     vref = max(abs(v_long), VXLOW)
-    fx2, _ = tmsimple_forces(tp, fz, v_long, v_slip_x - DKAPPA * vref, v_slip_y)
-    return fx, fy, 0.0, kappa, alpha, (fx2 - fx) / DKAPPA
+    fx2, _ = tmsimple_tangential(x, y, v_long, v_slip_x - DKAPPA * vref, v_slip_y)
+    dfx = (fx2 - fx) / DKAPPA
+    if not (math.isfinite(fx) and math.isfinite(fy) and math.isfinite(dfx)):
+        return 0.0, 0.0, 0.0, kappa, alpha, 0.0
+    return fx, fy, 0.0, kappa, alpha, dfx
 
 
 register_handling(HandlingModel("tmsimple", TMsimpleParams, tmsimple_params, tmsimple_wheel_forces,
