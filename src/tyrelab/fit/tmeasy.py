@@ -97,11 +97,20 @@ def _start(s, f) -> list[float]:
             min(max(f[-1] / peak, 0.0), 1.0), max(float(s[-1] - s[i]), 1e-3)]
 
 
+def _least_squares(residual, start, lower, upper):
+    """The parameters inside ``[lower, upper]`` that minimise ``residual``'s squares (started
+    at ``start``, clipped into the bounds), and the residual's RMS in % (the residuals are
+    fractions of a scale)."""
+    from scipy.optimize import least_squares
+
+    best = least_squares(residual, np.clip(start, lower, upper), bounds=(lower, upper),
+                         x_scale="jac", max_nfev=4000, **TOLERANCES)
+    return best.x, 100.0 * math.sqrt(np.mean(residual(best.x) ** 2))
+
+
 def fit_direction(samples: Samples, nominal: float, max_load: float) -> tuple[tuple, float]:
     """The characteristics at FZ_NOM and 2 FZ_NOM closest (least squares) to every sample, the
     curve odd in the slip; and the RMS error in % of the largest force magnitude."""
-    from scipy.optimize import least_squares
-
     s, f = samples.slip, samples.force
     q = np.minimum(samples.load, max_load) / nominal
     scale = float(np.abs(f).max())
@@ -122,10 +131,8 @@ def fit_direction(samples: Samples, nominal: float, max_load: float) -> tuple[tu
         characteristic_at_loads(s, q, (_curve(p[:5]), _curve(p[5:])), out)
         return (out - f) / scale
 
-    best = least_squares(residual, np.clip(start, lower, upper), bounds=(lower, upper),
-                         x_scale="jac", max_nfev=4000, **TOLERANCES)
-    rms = 100.0 * math.sqrt(np.mean(residual(best.x) ** 2))
-    return (_curve(best.x[:5]), _curve(best.x[5:])), rms
+    p, rms = _least_squares(residual, start, lower, upper)
+    return (_curve(p[:5]), _curve(p[5:])), rms
 
 
 def fit_trail(samples: Samples, nominal: float, max_load: float, lateral: tuple,
@@ -136,8 +143,6 @@ def fit_trail(samples: Samples, nominal: float, max_load: float, lateral: tuple,
     the tyre grips (|s_y| up to :data:`TRAIL_SLIPS` times the fitted peak slip at its load);
     and the RMS error in % of the largest moment magnitude there. The moment, not the trail,
     is fitted: the trail matters where the force is large."""
-    from scipy.optimize import least_squares
-
     q = np.minimum(samples.load, max_load) / nominal
     grip = np.array([abs(s) <= TRAIL_SLIPS * curve_at(lateral, qi).peak_slip
                      for s, qi in zip(samples.slip, q)])
@@ -164,9 +169,8 @@ def fit_trail(samples: Samples, nominal: float, max_load: float, lateral: tuple,
     s0 = float(crossing[0]) if crossing.size else 0.5 * float(a.max())
     one = [n0, s0, max(float(a.max()) - s0, 1e-3)]
     lower, upper = np.tile([0.0, 1e-4, 0.0], 2), np.tile([10.0, 10.0, 10.0], 2)
-    best = least_squares(residual, np.clip(one + one, lower, upper), bounds=(lower, upper),
-                         x_scale="jac", max_nfev=4000, **TOLERANCES)
-    return trails(best.x), 100.0 * math.sqrt(np.mean(residual(best.x) ** 2))
+    p, rms = _least_squares(residual, one + one, lower, upper)
+    return trails(p), rms
 
 
 def fit_tmeasy(x: Samples, y: Samples, nominal: float, tyre, slip_range=(0.0, 0.0)) -> TMeasyFit:
