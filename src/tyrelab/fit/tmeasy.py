@@ -211,18 +211,16 @@ def tmeasy_from_handling(tyre, handling: str, nominal_load: float, speed: float 
     s_x_max, s_y_max = _slip_limits(tyre)
     grid = np.linspace(0.0, 1.0, SAMPLES + 1)[1:]
 
-    def forces(fz, kappa, tan_alpha):
-        return model.forces(params, fz, speed, -kappa * speed, tan_alpha * speed, 0.0)
-
     def kappa(s):  # the ISO slip ratio at which TMeasy's transport speed gives s_x = s
         return (speed + s * V_NUM) / (speed * (1.0 - s)) - 1.0
 
     lean = (speed + V_NUM) / speed  # s_y > 0 slides right: tan alpha = -s_y (V + v_N) / V
     xs, ys = [], []
     for fz in (nominal_load, 2.0 * nominal_load):
-        for sign in (1.0, -1.0):
-            xs += [(sign * s, fz, forces(fz, kappa(sign * s), 0.0)[0]) for s in s_x_max * grid]
-            ys += [(sign * s, fz, *forces(fz, 0.0, -sign * s * lean)[1:3]) for s in s_y_max * grid]
+        for s in np.r_[s_x_max * grid, -s_x_max * grid]:
+            xs.append((s, fz, model.at_slips(params, fz, speed, kappa(s), 0.0)[0]))
+        for s in np.r_[s_y_max * grid, -s_y_max * grid]:
+            ys.append((s, fz, *model.at_slips(params, fz, speed, 0.0, -s * lean)[1:3]))
     x, y = np.array(xs), np.array(ys)
     return fit_tmeasy(Samples(x[:, 0], x[:, 1], x[:, 2]), Samples(y[:, 0], y[:, 1], y[:, 2], y[:, 3]),
                       nominal_load, tyre, (s_x_max, s_y_max))

@@ -60,8 +60,8 @@ def curve_set(tyre, handling: str, loads, speed: float, label: str, n: int = 121
     mz = np.empty((loads.size, n))
     for i, fz in enumerate(loads):
         for j in range(n):
-            fx[i, j] = model.forces(params, fz, speed, -kappa[j] * speed, 0.0, 0.0)[0]
-            _, fy[i, j], mz[i, j], *_ = model.forces(params, fz, speed, 0.0, np.tan(alpha[j]) * speed, 0.0)
+            fx[i, j] = model.at_slips(params, fz, speed, kappa[j], 0.0)[0]
+            _, fy[i, j], mz[i, j], *_ = model.at_slips(params, fz, speed, 0.0, np.tan(alpha[j]))
     return CurveSet(label, handling, loads, kappa, alpha, fx, fy, mz)
 
 

@@ -178,6 +178,12 @@ class HandlingModel:
     summary: str = ""
     rolling_radius: Any = None
 
+    def at_slips(self, params, fz: float, speed: float, kappa: float, tan_alpha: float):
+        """:attr:`forces` where the ISO slips are ``kappa`` and ``tan alpha`` at forward speed
+        ``speed`` [m/s] (the slip velocities ``-kappa V`` and ``V tan alpha``), zero camber:
+        a model's curves evaluated point by point (Python side)."""
+        return self.forces(params, fz, speed, -kappa * speed, tan_alpha * speed, 0.0)
+
 
 _CONTACT: dict[str, ContactModel] = {}
 _HANDLING: dict[str, HandlingModel] = {}
