@@ -138,6 +138,13 @@ CASES = [
     (["static", "--tyre", "{d}/huge_stiffness.tir"], 2, "VERTICAL_STIFFNESS: 1e+12 N/m is not physical"),
     (["modal", "--tyre", "{d}/nan_curve.tir"], 2, "is not a finite number"),
     (["study", "{d}/study.toml"], 2, "study.dt"),
+    # -- the transient slip's lengths -------------------------------------------------------
+    (["simulate", "--relaxation", "0.3", "-o", "{d}/o.parquet"], 2,
+     "--relaxation: expected one of auto, off, file or two lengths"),
+    (["simulate", "--tyre", "hmmwv-pac89", "--relaxation", "file", "-o", "{d}/o.parquet"], 2,
+     "--relaxation: 'file': the 'pac89' handling model has no relaxation lengths"),
+    (["export", "fmu", "--relaxation", "nan,0.2", "-o", "{d}/t.fmu"], 2,
+     "--relaxation: expected two lengths in metres, each 0 (no lag) to 100, got nan,0.2"),
     (["validate", "{d}/run.parquet", "{d}/meas.tdx", "--html", "{d}/v.html"], 2,
      "meas.tdx, line 16: RUNTIME: 'inf' is not a finite number"),
     (["plot", "{d}/inf.csv", "--channel", "FZ", "-o", "{d}/p.png"], 2, "inf.csv: FZ: sample 2 is infinite"),

@@ -393,6 +393,32 @@ def test_the_road_file_travels_inside_the_fmu(tmp_path):
     assert np.ptp(fz) > 0.05 * LC1        # the road's relief is felt
 
 
+def test_the_transient_slip_travels_inside_the_fmu(tmp_path):
+    """The HMMWV's PAC89 tyre exported with relaxation lengths (0.3 m, 0.5 m), driven at 5 %
+    slip from free rolling: the FMU gives the stepping API's lagged loads with those lengths,
+    step for step; the steady tyre's first step has more than twice its force."""
+    load, lengths = 4900.0, (0.3, 0.5)
+    path = export_fmu(tmp_path / "lag.fmu", tyre="hmmwv-pac89", model="point", road="flat",
+                      load=load, relaxation=lengths)
+    lagged = wheel_stepper("hmmwv-pac89", "point", "flat", load=load, speed=SPEED,
+                           relaxation=lengths)
+    steady = wheel_stepper("hmmwv-pac89", "point", "flat", load=load, speed=SPEED,
+                           relaxation="off")
+    z = lagged.model.tyre.unloaded_radius - lagged.equilibrium.deflection
+    omega = lagged.equilibrium.spin * 1.05
+    wheel = FmuWheel(path, {"INITIAL_LOAD": load}, 0, {"Z_WC": z})
+    try:
+        for i in range(200):
+            centre = WheelCentre(SPEED * i * DT, 0.0, z, SPEED, 0.0, 0.0, omega)
+            got = wheel.step(i * DT, centre, DT, ["FX"])[0]
+            assert got == lagged.step(i * DT, centre, DT).fx
+            if i == 0:
+                first = got
+    finally:
+        wheel.close()
+    assert abs(steady.step(0.0, WheelCentre(0.0, 0.0, z, SPEED, 0.0, 0.0, omega), DT).fx) > 2 * abs(first)
+
+
 def test_the_pressure_parameter(tmp_path):
     """A built-in tyre at PRESSURE = 550 kPa gives the 550 kPa tyre's loads (stiffer: more load at
     the same height); a tyre file at another pressure than its own is refused at initialisation."""

@@ -76,7 +76,9 @@ def test_the_wheel_carries_mfevals_load_under_its_forces(mf61, mfeval):
     FNOMIN)^2: without that term the load was up to 16 % high, and the forces with it."""
     from tyrelab.road.spec import road_from_spec
 
-    model = make_tyre_model(mf61, "point", handling="mf")
+    # MFeval is steady state; the file's USE_MODE 124 asks for relaxation, which the table's
+    # poses (no time passing) would leave at an undeflected carcass
+    model = make_tyre_model(mf61, "point", handling="mf", relaxation="off")
     wheel = model.wheel(road_from_spec("flat").grid(), FZ0)
     rows = mfeval[mfeval.gamma == 0]
     poses = [pose(cz=R0 - r.rho, velocity=(r.Vx, r.Vx * math.tan(r.alpha), 0.0), omega=r.omega)
@@ -224,7 +226,9 @@ def test_the_magic_formulas_slip_is_taken_at_its_effective_rolling_radius(mf61, 
     a braked wheel where MFeval's rolls freely (27 to 172 N)."""
     from tyrelab.road.spec import road_from_spec
 
-    model = make_tyre_model(mf61, "point", handling="mf")
+    # MFeval is steady state; the file's USE_MODE 124 asks for relaxation, which the table's
+    # poses (no time passing) would leave at an undeflected carcass
+    model = make_tyre_model(mf61, "point", handling="mf", relaxation="off")
     wheel = model.wheel(road_from_spec("flat").grid(), FZ0)
     free = mfeval[(mfeval.kappa == 0) & (mfeval.alpha == 0) & (mfeval.gamma == 0)]
     # at MFeval's own deflection, which its small Fx and Fy soften (Q_FCX, Q_FCY)

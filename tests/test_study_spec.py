@@ -171,6 +171,19 @@ def test_base_spec_parses(tmp_path):
     assert spec.output == (tmp_path / "results").resolve()
 
 
+def test_a_models_relaxation_reaches_its_runs_and_their_keys(tmp_path):
+    """``relaxation`` of a [[model]] is passed to its runs and enters their keys; the runs of
+    a model without it keep their keys and arguments (as without the key)."""
+    plain = parse(BASE, tmp_path)
+    lagged = parse(edit(14, 'stiffness = "linear"\nrelaxation = [0.3, 0.5]'), tmp_path)
+    keys = {spec: {(r.model.name, r.speed): k for r, k in spec.run_keys().items()}
+            for spec in (plain, lagged)}
+    for a, b in zip(plain.runs(), lagged.runs()):
+        same = a.model.name != "A"
+        assert (keys[plain][a.model.name, a.speed] == keys[lagged][b.model.name, b.speed]) is same
+        assert b.simulate_kwargs().get("relaxation") == (None if same else (0.3, 0.5))
+
+
 # ---------------------------------------------------------------------------
 # every class of bad spec: one line naming file, line, key, what was expected
 
@@ -194,6 +207,11 @@ BAD = [
     (14, 'handling = "pacejka"', 14, "model[1].handling", "unknown handling model", "none, pac89, mf"),
     (14, 'handling = "pac89"', 14, "model[1].handling", "tyre 'xzl' has no pac89 coefficients", "A0"),
     (14, 'stiffness = "cubic"', 14, "model[1].stiffness", "unknown stiffness", "table, linear"),
+    (14, 'relaxation = "fil"', 14, "model[1].relaxation", "expected one of auto, off, file"),
+    (14, 'relaxation = "file"', 14, "model[1].relaxation",
+     "tyre 'xzl': 'file': the 'none' handling model has no relaxation lengths"),
+    (14, "relaxation = [0.3]", 14, "model[1].relaxation", "expected two lengths in metres"),
+    (14, "relaxation = 0.3", 14, "model[1].relaxation", 'expected "auto", "off", "file" or two'),
     (25, 'rig = "sled"', 25, "test[1].rig", "unknown rig", "trailer, quarter-vehicle, rolling"),
     (8, 'file = "michelin"', 8, "tyre[1].file", "unknown tyre", "xzl-16.00R20, hmmwv-pac89"),
     (8, 'file = "nope.tir"', 8, "tyre[1].file", "no such tyre property file"),

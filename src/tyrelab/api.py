@@ -55,13 +55,14 @@ def default_handling(tyre: Tyre) -> str:
 
 def make_tyre_model(tyre: str | Tyre = DEFAULT_TYRE, model: str = "point", pressure: float | None = None,
                     stiffness: str | None = None, handling: str | None = None,
-                    options: dict | None = None) -> TyreModel:
+                    options: dict | None = None, relaxation="auto") -> TyreModel:
     """A :class:`TyreModel` from a tyre name or file, a contact model and its options.
 
     ``handling=None`` takes the handling model the property file describes
     (:func:`default_handling`); ``options`` are the contact model's
     (:attr:`tyrelab.tyre.registry.ContactModel.options`; others are refused,
-    the allowed ones named).
+    the allowed ones named); ``relaxation`` the handling forces' transient slip
+    (:attr:`TyreModel.relaxation`).
     """
     from .tyre.registry import check_options
     options = check_options(model, options)
@@ -70,7 +71,8 @@ def make_tyre_model(tyre: str | Tyre = DEFAULT_TYRE, model: str = "point", press
     t = tyre if isinstance(tyre, Tyre) else load_tyre(tyre, pressure)
     if stiffness is not None:
         t = t.with_stiffness(stiffness)
-    return TyreModel(t, contact=model, handling=handling or default_handling(t), options=options)
+    return TyreModel(t, contact=model, handling=handling or default_handling(t), options=options,
+                     relaxation=relaxation)
 
 
 def _default_duration(road, speed: float) -> float:
@@ -108,7 +110,7 @@ def simulate(tyre: str | Tyre = DEFAULT_TYRE, model: str = "point", road=None,
              rig: str = "trailer", duration: float | None = None,
              dt: float = 1e-3, output_rate: float | None = None, progress: bool | None = None,
              left_wheel: str | None = None, force: bool = False, options: dict | None = None,
-             terrain=None, rig_options: dict | None = None):
+             terrain=None, rig_options: dict | None = None, relaxation="auto"):
     """Run a tyre model on a rig over a road; returns the signal table.
 
     Parameters
@@ -133,6 +135,11 @@ def simulate(tyre: str | Tyre = DEFAULT_TYRE, model: str = "point", road=None,
         Vertical stiffness: load-deflection spline or linear.
     handling : {"none", "pac89", "mf", "tmeasy", "tmsimple", "fiala"}, optional
         Tangential force model; by default the one the property file describes.
+    relaxation : str or (float, float)
+        Transient slip of the handling forces (:mod:`tyrelab.tyre.handling.relaxation`):
+        ``"auto"`` (default) as the property file asks (a Magic Formula file's
+        ``USE_MODE`` +10), ``"off"`` (steady state), ``"file"`` (the handling
+        model's own relaxation lengths) or ``(sigma_kappa, sigma_alpha)`` [m].
     rig : str
         A registered rig (:func:`tyrelab.registry.rigs`; built in: ``"trailer"``,
         ``"quarter-vehicle"``, ``"rolling"``, ``"drop"``, ``"wheel-drop"``).
@@ -200,7 +207,7 @@ def simulate(tyre: str | Tyre = DEFAULT_TYRE, model: str = "point", road=None,
     output_rate = limits.check_rate(output_rate, dt)
     if duration is not None:
         duration = limits.check_duration(duration, dt, output_rate)
-    tm = make_tyre_model(tyre, model, pressure, stiffness, handling, options)
+    tm = make_tyre_model(tyre, model, pressure, stiffness, handling, options, relaxation)
     if left_wheel is not None and the_rig.wheels < 2:
         two = ", ".join(name for name, r in rigs().items() if r.wheels > 1)
         raise InputError(f"left_wheel applies to the rigs with two wheels ({two}), not to '{rig}'",
@@ -217,7 +224,8 @@ def simulate(tyre: str | Tyre = DEFAULT_TYRE, model: str = "point", road=None,
         the_rig.check(tm, wheel_load)
     left = None
     if the_rig.wheels > 1 and left_wheel is not None and left_wheel != tm.contact:
-        left = TyreModel(tm.tyre, contact=left_wheel, handling=tm.handling)
+        left = TyreModel(tm.tyre, contact=left_wheel, handling=tm.handling,
+                         relaxation=tm.relaxation)
     # the wheels the rig runs: a second one (the trailer's left) on flat ground
     models = [tm] + [left or tm] * (the_rig.wheels - 1)
     limits.check_stable_step(dt, [tm] if left is None else [tm, left], wheel_load)

@@ -157,6 +157,22 @@ def add_options(parser) -> None:
                              "unknown key is refused with the model's options listed")
 
 
+def add_relaxation(parser) -> None:
+    """``--relaxation``: the transient slip of the handling forces (TyreModel.relaxation)."""
+    parser.add_argument("--relaxation", default="auto", metavar="HOW",
+                        help="transient slip of the handling forces: auto (default: as the "
+                             "property file's USE_MODE says, +10 = relaxation), off (steady state), "
+                             "file (the handling model's own relaxation lengths: the Magic "
+                             "Formula's) or SIGMA_KAPPA,SIGMA_ALPHA in metres")
+
+
+def relaxation_value(args):
+    """``--relaxation`` as :class:`~tyrelab.tyre.model.TyreModel` takes it: a word, or two
+    lengths (checked there, the message naming the option)."""
+    text = args.relaxation
+    return tuple(text.split(",")) if "," in text else text
+
+
 def model_options(pairs) -> dict:
     """The ``--option`` pairs as a dict (a key given twice: the last one)."""
     return dict(pairs or [])

@@ -3,14 +3,14 @@
 from __future__ import annotations
 
 from ..limits import MAX_DT
-from ._common import (add_options, bounded_float, input_files, load_value, model_options, output_path,
-                      pressure_kpa, renamed)
+from ._common import (add_options, add_relaxation, bounded_float, input_files, load_value,
+                      model_options, output_path, pressure_kpa, relaxation_value, renamed)
 
 #: Python argument names of :func:`tyrelab.cosim.fmu.export_fmu` -> the options that set them
 OPTIONS = {"tyre": "--tyre", "model": "--model", "road": "--road", "pressure": "--pressure",
            "stiffness": "--stiffness", "handling": "--handling", "options": "--option",
            "load": "--load", "frame": "--frame", "internal_step": "--internal-step",
-           "terrain": "--terrain", "output": "-o"}
+           "terrain": "--terrain", "output": "-o", "relaxation": "--relaxation"}
 
 
 def register(sub):
@@ -46,6 +46,7 @@ def register(sub):
     fmu.add_argument("--handling", default=None,
                      help="tangential force model: none, pac89, mf, tmeasy, tmsimple, fiala (default: "
                           "what the property file describes)")
+    add_relaxation(fmu)
     fmu.add_argument("--load", type=load_value, default=0.0,
                      help="INITIAL_LOAD's default: the static load in N (or LC1-LC3) at which the "
                           "model starts in equilibrium (default: none, the model starts unloaded)")
@@ -68,7 +69,8 @@ def run_fmu(args) -> int:
         path = export_fmu(out, tyre=args.tyre, model=args.model, road=args.road,
                           pressure=args.pressure, stiffness=args.stiffness, handling=args.handling,
                           options=model_options(args.option), load=args.load, frame=args.frame,
-                          internal_step=args.internal_step, terrain=args.terrain)
+                          internal_step=args.internal_step, terrain=args.terrain,
+                          relaxation=relaxation_value(args))
     except InputError as exc:
         raise renamed(exc, OPTIONS, model_options(args.option)) from None
     ground = args.road if args.terrain is None else f"{args.terrain} over {args.road}"

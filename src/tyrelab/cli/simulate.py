@@ -5,15 +5,16 @@ from __future__ import annotations
 import sys
 
 from ..limits import MAX_DT, MAX_DURATION, MAX_OUTPUT_RATE, MAX_SPEED, MIN_DT, MIN_SPEED
-from ._common import (add_force, add_options, bounded_float, input_files, load_value, model_options,
-                      output_path, pressure_kpa, renamed)
+from ._common import (add_force, add_options, add_relaxation, bounded_float, input_files, load_value,
+                      model_options, output_path, pressure_kpa, relaxation_value, renamed)
 
 #: Python argument names of :func:`tyrelab.simulate` -> the options that set them
 OPTIONS = {"speed": "--speed", "duration": "--duration", "dt": "--dt", "output_rate": "--rate",
            "load": "--load", "pressure": "--pressure", "rig": "--rig", "left_wheel": "--left-wheel",
            "stiffness": "--stiffness", "tyre": "--tyre", "model": "--model", "road": "--road",
            "options": "--option", "handling": "--handling", "terrain": "--terrain",
-           "rig_options": "--slip/--torque", "slip": "--slip", "torque": "--torque"}
+           "rig_options": "--slip/--torque", "slip": "--slip", "torque": "--torque",
+           "relaxation": "--relaxation"}
 
 
 def _rig_options(args) -> dict | None:
@@ -45,6 +46,7 @@ def register(sub):
                    help="tangential force model: none, pac89, mf, tmeasy, tmsimple, fiala or a "
                         "plugin's (tyrelab models lists them; default: what the property file "
                         "describes)")
+    add_relaxation(p)
     p.add_argument("--terrain", default=None, metavar="SOIL",
                    help="the ground over the road: a built-in soil (lete-sand, dry-sand, sandy-loam, "
                         "clayey-soil, snow, chrono-demo), a soil file FILE.toml, or a plugin's terrain "
@@ -101,7 +103,7 @@ def run(args) -> int:
                          handling=args.handling, rig=args.rig, left_wheel=args.left_wheel,
                          duration=args.duration, dt=args.dt, output_rate=args.rate, force=args.force,
                          options=model_options(args.option), terrain=args.terrain,
-                         rig_options=_rig_options(args))
+                         rig_options=_rig_options(args), relaxation=relaxation_value(args))
     except InputError as exc:
         raise renamed(exc, OPTIONS, model_options(args.option)) from None
     write_signal(table, out)

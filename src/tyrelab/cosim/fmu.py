@@ -57,7 +57,8 @@ def _inputs(tyre, road, terrain=None) -> list[Path]:
 def export_fmu(path, tyre=DEFAULT_TYRE, model: str = "point", road: str = "flat", *,
                pressure: float | None = None, stiffness: str | None = None,
                handling: str | None = None, options: dict | None = None, load=0.0,
-               frame: str = "C-axis", internal_step: float = 0.0, terrain=None) -> Path:
+               frame: str = "C-axis", internal_step: float = 0.0, terrain=None,
+               relaxation="auto") -> Path:
     """Write an FMI 2.0 co-simulation FMU of a tyre model on a road; returns its path.
 
     Parameters
@@ -71,7 +72,7 @@ def export_fmu(path, tyre=DEFAULT_TYRE, model: str = "point", road: str = "flat"
     road : str
         A road name (``cleat:50x50``, ``flat``, a track) or a road file
         ``FILE.crg|.rdf|.obj[@V]`` (copied into the FMU).
-    pressure, stiffness, handling, options
+    pressure, stiffness, handling, options, relaxation
         As :func:`tyrelab.api.make_tyre_model`; ``options`` must be numbers,
         true/false or texts.
     load : str or float
@@ -97,7 +98,7 @@ def export_fmu(path, tyre=DEFAULT_TYRE, model: str = "point", road: str = "flat"
     from ..io_atomic import atomic_write, check_output_path
 
     out = check_output_path(path, (".fmu",), field="output", inputs=_inputs(tyre, road, terrain))
-    tm = make_tyre_model(tyre, model, pressure, stiffness, handling, options)
+    tm = make_tyre_model(tyre, model, pressure, stiffness, handling, options, relaxation)
     if frame not in OUTPUT_FRAMES:
         raise InputError(f"unknown frame '{frame}', expected one of {', '.join(OUTPUT_FRAMES)}",
                          field="frame")

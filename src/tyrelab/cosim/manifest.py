@@ -164,6 +164,8 @@ def write_data(folder, tm: TyreModel, tyre, road: str, load: float, frame: str,
         "tyre": _tyre_record(folder, tm, tyre),
         "model": tm.contact,
         "handling": tm.handling,
+        "relaxation": (tm.relaxation if isinstance(tm.relaxation, str)
+                       else [float(v) for v in tm.relaxation]),
         "options": dict(tm.options),
         "road": _road_record(folder, road),
         "load": float(load),
@@ -245,8 +247,9 @@ def build_stepper(resources, manifest: dict, pressure: float, load: float, max_s
         source, at = tyre["builtin"], pressure
     else:
         source, at = str(path), pressure
+    # an FMU made before the transient slip existed ran its forces steady
     tm = make_tyre_model(source, manifest["model"], at, tyre["stiffness"], manifest["handling"],
-                         manifest["options"])
+                         manifest["options"], manifest.get("relaxation", "off"))
     road = road_spec(resources, manifest)
     terrain = terrain_spec(resources, manifest)
     if terrain is not None:

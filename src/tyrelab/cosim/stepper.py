@@ -292,7 +292,7 @@ def wheel_stepper(tyre="xzl-16.00R20", model: str | TyreModel = "point", road="f
                   pressure: float | None = None, stiffness: str | None = None,
                   handling: str | None = None, options: dict | None = None, load=0.0,
                   speed: float = 0.0, max_step: float | None = None, frame: str = "C-axis",
-                  start_time: float = 0.0) -> WheelStepper:
+                  start_time: float = 0.0, relaxation="auto") -> WheelStepper:
     """A :class:`WheelStepper` from a tyre, a contact model and a road, by name.
 
     Parameters
@@ -304,7 +304,7 @@ def wheel_stepper(tyre="xzl-16.00R20", model: str | TyreModel = "point", road="f
         Contact model (``point``, ``volume``, ``enveloping``, ``ring``, ...);
         a :class:`~tyrelab.tyre.model.TyreModel` is taken as it is (then
         ``tyre``, ``pressure``, ``stiffness``, ``handling`` and ``options`` are
-        not used).
+        not used, nor ``relaxation``).
     road : str, Road, RoadGrid or ground
         A road name or file (:func:`tyrelab.road.spec.road_from_spec`), a road,
         its grid, or any ground of the terrain interface (an object with
@@ -315,7 +315,7 @@ def wheel_stepper(tyre="xzl-16.00R20", model: str | TyreModel = "point", road="f
         patch moves on with the wheel, which then steps forward along x). Positions
         are in its own frame: unlike the rigs, the stepper does not level a
         road whose start is not at height zero.
-    pressure, stiffness, handling, options
+    pressure, stiffness, handling, options, relaxation
         As :func:`tyrelab.api.make_tyre_model`.
     load : str or float
         Static load [N] (or a load case ``"LC1"`` ...) at which the model's
@@ -342,7 +342,7 @@ def wheel_stepper(tyre="xzl-16.00R20", model: str | TyreModel = "point", road="f
     if isinstance(model, TyreModel):
         tm = model
     else:
-        tm = make_tyre_model(tyre, model, pressure, stiffness, handling, options)
+        tm = make_tyre_model(tyre, model, pressure, stiffness, handling, options, relaxation)
     if isinstance(load, str):
         from ..rig.trailer import load_case_wheel_load
         load = load_case_wheel_load(load)

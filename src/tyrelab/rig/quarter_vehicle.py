@@ -133,7 +133,7 @@ class QuarterVehicle:
 
         data = run_chunks(advance, n_steps, out_every, K.N_CH, dt, progress)
         meta = {"rig": rig, "tyre": tyre.name, "model": self.model.contact,
-                "handling": self.model.handling,
+                "handling": self.model.handling, "relaxation": self.model.relaxation_used,
                 "stiffness": tyre.stiffness, "road": road.name, "speed_m_s": speed,
                 **(ground_meta or {}),
                 "static_wheel_load_N": self.wheel_load, "pressure_Pa": tyre.pressure, "dt_s": dt,

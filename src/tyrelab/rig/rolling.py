@@ -119,7 +119,8 @@ def roll(model: TyreModel, road="cleat:50x50", speed: float = 0.5, height: float
 
     data = run_chunks(advance, n_steps, out_every, N_CH, dt, progress)
     meta = {"rig": "rolling", "tyre": tyre.name, "model": model.contact,
-            "handling": model.handling, "stiffness": tyre.stiffness, "road": road.name,
+            "handling": model.handling, "relaxation": model.relaxation_used,
+            "stiffness": tyre.stiffness, "road": road.name,
             "speed_m_s": speed, "axle_height_m": float(height), "static_wheel_load_N": state_load,
             "pressure_Pa": tyre.pressure, "dt_s": dt, "output_rate_Hz": 1.0 / (out_every * dt)}
     return to_signal(data, CHANNELS, meta)

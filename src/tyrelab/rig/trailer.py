@@ -378,7 +378,7 @@ class Trailer:
         s = self.setup
         meta = {"rig": rig, "tyre": self.model.tyre.name, "model": self.model.contact,
                 "left_wheel": self.left.contact,
-                "handling": self.model.handling,
+                "handling": self.model.handling, "relaxation": self.model.relaxation_used,
                 "stiffness": self.model.tyre.stiffness, "road": road.name, "speed_m_s": speed,
                 **(ground_meta or {}),
                 "load_case": str(self.load_case), "static_wheel_load_N": s.wheel_load,

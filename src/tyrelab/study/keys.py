@@ -148,7 +148,10 @@ def run_key(run: RunSpec, tyre_digest: str) -> str:
         "model": {"contact": run.model.contact, "stiffness": run.model.stiffness,
                   "handling": run.model.handling,
                   # only when set, so the keys of runs without options are those of before
-                  **({"options": dict(run.model.options)} if run.model.options else {})},
+                  **({"options": dict(run.model.options)} if run.model.options else {}),
+                  # as options: the keys of runs as the file asks stay as they were
+                  **({"relaxation": run.model.relaxation} if run.model.relaxation != "auto"
+                     else {})},
         "road": _road_identity(run.road),
         "speed": float(run.speed),
         "load": _load_identity(run.load),

@@ -41,14 +41,16 @@ class TyreSpec:
 
 @dataclass(frozen=True)
 class ModelSpec:
-    """A model variant: contact model, vertical stiffness and handling model (None: default)
-    and the contact model's options, ``(name, value)`` pairs sorted by name."""
+    """A model variant: contact model, vertical stiffness and handling model (None: default),
+    the contact model's options, ``(name, value)`` pairs sorted by name, and the transient
+    slip of the handling forces (:attr:`tyrelab.tyre.model.TyreModel.relaxation`)."""
 
     name: str
     contact: str
     stiffness: str | None = None
     handling: str | None = None
     options: tuple = ()
+    relaxation: str | tuple = "auto"
 
 
 @dataclass(frozen=True)
@@ -169,6 +171,8 @@ class RunSpec:
                 "options": dict(self.model.options) or None,
                 # only when set: the keyword arguments of a rigid-road run stay as they were
                 **({"terrain": self.terrain} if self.terrain is not None else {}),
+                **({"relaxation": self.model.relaxation} if self.model.relaxation != "auto"
+                   else {}),
                 **({"rig_options": drive} if drive else {})}
 
 

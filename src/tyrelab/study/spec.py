@@ -29,6 +29,8 @@ Schema (km/h, kPa, mm at this edge, as the command line; SI in the parsed object
     stiffness = "linear"                # "linear" | "table" (optional: the model's default)
     handling = "none"                   # a registered handling model (optional: the tyre file's)
     options = { n_length = 5 }          # the contact model's options (optional; tyre.registry)
+    relaxation = "auto"                 # transient slip: "auto" (as the file's USE_MODE says),
+                                        # "off", "file" or [sigma_kappa, sigma_alpha] in m (optional)
 
     [[test]]                            # one or more
     name = "cleat 50x50 perpendicular"  # obstacle/track label (the thesis's words)
@@ -98,7 +100,7 @@ from pathlib import Path
 
 from .. import limits
 from ..errors import InputError
-from .checker import Checker
+from .checker import Checker, describe_value
 from .keys import run_key, tyre_digest  # noqa: F401 - part of this module's API
 from .records import (ModelSpec, ReferenceFile, RunSpec, StudySpec, TestSpec,  # noqa: F401
                       TyreSpec)
@@ -110,7 +112,7 @@ BUILTIN_SPEC = "thesis_campaign.toml"
 
 _STUDY_KEYS = ("name", "output", "dt", "output_rate", "left_wheel", "store")
 _TYRE_KEYS = ("name", "file", "pressure_kpa")
-_MODEL_KEYS = ("name", "contact", "stiffness", "handling", "options")
+_MODEL_KEYS = ("name", "contact", "stiffness", "handling", "options", "relaxation")
 _TOP_KEYS = ("study", "tyre", "model", "test", "metrics")
 _METRICS_KEYS = ("limits",)
 
@@ -223,8 +225,27 @@ def _models(ck: Checker, doc, tyres) -> tuple[ModelSpec, ...]:
             _every_tyre(ck, path + ("handling",), tyres, handling_model(handling).build,
                         lambda tyre, exc: f"tyre '{tyre}' has no {handling} coefficients: {exc}")
         options = _options(ck, t.get("options"), path + ("options",), contact)
-        models.append(ModelSpec(name, contact, stiffness, handling, options))
+        relaxation = _relaxation(ck, t.get("relaxation", "auto"), path + ("relaxation",), tyres,
+                                 handling)
+        models.append(ModelSpec(name, contact, stiffness, handling, options, relaxation))
     return tuple(models)
+
+
+def _relaxation(ck: Checker, raw, path, tyres, handling):
+    """A model's ``relaxation``: a word or two lengths [m] (a tuple), possible for every tyre
+    under the model's handling (the tyre file's when none is named)."""
+    from ..api import default_handling
+    from ..tyre.handling.relaxation import slip_lag
+    from ..tyre.registry import handling_model
+
+    value = tuple(raw) if isinstance(raw, list) else raw
+    if not isinstance(value, (str, tuple)):
+        ck.fail(path, f"expected \"auto\", \"off\", \"file\" or two lengths in metres "
+                      f"[sigma_kappa, sigma_alpha], got {describe_value(raw)}")
+    _every_tyre(ck, path, tyres,
+                lambda tyre: slip_lag(tyre, handling_model(handling or default_handling(tyre)), value),
+                lambda tyre, exc: f"tyre '{tyre}': {exc.reason}")
+    return value
 
 
 def _every_tyre(ck: Checker, key, tyres, check, says) -> None:

@@ -21,6 +21,7 @@ from ..core.named_index import named_index
 from ..road.grid import RoadGrid
 from ..road.obstacles import Flat
 from ..road.spec import road_from_spec
+from .handling.relaxation import SlipLag, slip_lag
 from .params import Tyre
 from .registry import ContactModel, HandlingModel, contact_model, handling_model
 from .wheel import ContactGeometry, Wheel, WheelPose, contact_geometry
@@ -53,16 +54,24 @@ class TyreModel:
     options : dict
         Options of the contact model's ``build`` (e.g. ``n_width`` for the
         enveloping model, ``n_segments`` for the ring).
+    relaxation : str or (float, float)
+        Transient slip of the handling forces (:mod:`.handling.relaxation`):
+        ``"auto"`` as the property file asks (a Magic Formula file's
+        ``USE_MODE`` +10), ``"off"``, ``"file"`` (the handling model's own
+        relaxation lengths) or two lengths ``(sigma_kappa, sigma_alpha)`` [m].
+        The ring's tread makes its own transients and takes no handling model.
     """
 
     tyre: Tyre
     contact: str = "point"
     handling: str = "none"
     options: dict = field(default_factory=dict)
+    relaxation: object = "auto"
 
     def __post_init__(self):
         self.contact_model  # unknown names fail here, listing the known ones
         self.handling_model
+        self.slip_lag()  # and an impossible relaxation
 
     @property
     def contact_model(self) -> ContactModel:
@@ -94,6 +103,19 @@ class TyreModel:
     def handling_params(self):
         """The handling model's parameter record."""
         return self.handling_model.build(self.tyre)
+
+    def slip_lag(self) -> SlipLag:
+        """The transient slip of a new wheel (its carcass undeflected)."""
+        return slip_lag(self.tyre, self.handling_model, self.relaxation)
+
+    @property
+    def relaxation_used(self) -> str:
+        """The transient slip a run uses, in words (its metadata): ``"off"``, ``"file"`` or
+        the two lengths ``"SIGMA_KAPPA,SIGMA_ALPHA"`` [m]."""
+        lag = self.slip_lag()
+        if lag.from_model:
+            return "file"
+        return f"{lag.length_x:g},{lag.length_y:g}" if lag.active else "off"
 
     def initial_state(self, load: float, params=None):
         """Internal state in static equilibrium at ``load`` [N] on a flat road."""
@@ -154,7 +176,7 @@ class TyreModel:
         if state is None:
             state = self.initial_state(load, params)
         return Wheel(self.tyre.vertical_law, params, self.handling_params(), grid.surface(),
-                     state)
+                     state, self.slip_lag())
 
 
 #: number of fields of a :class:`ContactGeometry`

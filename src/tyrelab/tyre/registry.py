@@ -168,7 +168,10 @@ class HandlingModel:
     optional) is the effective rolling radius Re [m] the model's longitudinal slip is
     defined with (``kappa = (omega Re - Vx) / |Vx|``; the Magic Formula's, from ``BREFF``,
     ``DREFF``, ``FREFF``); without it the slip is the contact point's, whose lever is the
-    loaded radius.
+    loaded radius. ``relaxation_lengths(params, fz, v_long, gamma)`` (compiled, optional)
+    gives the model's own relaxation lengths ``(sigma_kappa, sigma_alpha)`` [m] at a load
+    (the Magic Formula's), which its transient slip takes when asked for the file's
+    (:mod:`tyrelab.tyre.handling.relaxation`); without it only given lengths lag the slip.
     """
 
     name: str
@@ -177,6 +180,7 @@ class HandlingModel:
     forces: Any
     summary: str = ""
     rolling_radius: Any = None
+    relaxation_lengths: Any = None
 
     def at_slips(self, params, fz: float, speed: float, kappa: float, tan_alpha: float):
         """:attr:`forces` where the ISO slips are ``kappa`` and ``tan alpha`` at forward speed

@@ -37,6 +37,8 @@ from numba.extending import overload
 from ..core.named_index import named_index
 from ..core.vec3 import cross, dot, unit
 from ..road.terrain import terrain_contact, terrain_friction, terrain_is_rigid
+from .handling.relaxation import SlipLag, lagged, relaxation_lengths
+from .handling.slip import slip
 from .registry import contact_by_record, handling_by_record
 from .vertical import VerticalLaw, normal_force
 
@@ -137,7 +139,10 @@ class Wheel(NamedTuple):
     the ground (:mod:`tyrelab.road.terrain`; the rigid road's
     :class:`~tyrelab.road.grid.RoadSurface`), which the models query only
     through the terrain interface; ``state`` is the contact model's internal
-    state (its own record or array; mutated in place by :func:`wheel_step`).
+    state (its own record or array; mutated in place by :func:`wheel_step`);
+    ``lag`` the transient slip of the handling model's forces (relaxation
+    lengths and carcass deflections, :mod:`tyrelab.tyre.handling.relaxation`;
+    its deflections mutated in place too).
     Build one with :meth:`tyrelab.tyre.model.TyreModel.wheel`.
     """
 
@@ -146,6 +151,7 @@ class Wheel(NamedTuple):
     handling: tuple
     road: tuple
     state: object
+    lag: SlipLag
 
 
 # --- compile-time dispatch on the record types ---------------------------------
@@ -265,7 +271,10 @@ def analytic_wheel_step(wheel, pose, geo, dt):
     :func:`rolling_lever`), scaled by the
     ground's friction scale there (:func:`~tyrelab.road.terrain.terrain_friction`;
     the whole curve scales, its slip stiffness too: the handling models take no
-    friction input). A law that softens with the horizontal forces (MF-Tyre's
+    friction input). With a transient slip (``wheel.lag``), the forces are those of the
+    lagged slips and the carcass deflections advance by ``dt``
+    (:mod:`~tyrelab.tyre.handling.relaxation`); ``kappa`` and ``alpha`` stay the
+    kinematic slips. A law that softens with the horizontal forces (MF-Tyre's
     ``Q_FCX``, ``Q_FCY``) and the forces at its load are solved together (the
     load that carries its own forces). A ground that is not rigid then answers
     the contact's forces (:func:`~tyrelab.road.terrain.terrain_contact`, a point
@@ -275,6 +284,9 @@ def analytic_wheel_step(wheel, pose, geo, dt):
     nx, ny, nz = geo.nx, geo.ny, geo.nz
     px, py, pz = geo.px, geo.py, geo.pz
     if rho <= 0.0:
+        if dt > 0.0:  # off the ground the carcass springs back: no deflection to land with
+            wheel.lag.deflection[0] = 0.0
+            wheel.lag.deflection[1] = 0.0
         return WheelLoads(0.0, 0.0, 0.0, 0.0, 0.0, 0.0, px, py, pz, nx, ny, nz, rho, 0.0,
                           0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
     cx, cy, cz = pose.cx, pose.cy, pose.cz
@@ -298,11 +310,17 @@ def analytic_wheel_step(wheel, pose, geo, dt):
         wxx, wxy, wxz = unit(tx, ty, tz)
         wyx, wyy, wyz = cross(nx, ny, nz, wxx, wxy, wxz)
         v_long = dot(vx, vy, vz, wxx, wxy, wxz)
+        vref = abs(v_long) if abs(v_long) > VXLOW else VXLOW  # the slips' speed (slip.py)
         gamma = math.asin(max(-1.0, min(1.0, dot(ax, ay, az, nx, ny, nz))))
         # the ground's friction scale (1 on the rigid road, where the products are exact)
         mu = terrain_friction(wheel.road, px, py)
         ax_r, ay_r, az_r = cross(ax, ay, az, rx, ry, rz)
         softens = wheel.law.force_softening_x != 0.0 or wheel.law.force_softening_y != 0.0
+        lag = wheel.lag
+        lags = lag.from_model or lag.length_x > 0.0 or lag.length_y > 0.0
+        u1 = lag.deflection[0]
+        v1 = lag.deflection[1]
+        gain = 1.0
         sx = sy = sz = dfx = 0.0
         low, high = 0.0, fz  # the softened load lies between none and the unsoftened load
         for _ in range(MAX_SOFTENING_PASSES):
@@ -313,8 +331,18 @@ def analytic_wheel_step(wheel, pose, geo, dt):
             sx, sy, sz = rolling_lever(wheel.handling, fz, omega, ax_r, ay_r, az_r)
             v_slip_x = dot(vx + omega * sx, vy + omega * sy, vz + omega * sz, wxx, wxy, wxz)
             v_slip_y = dot(vx + omega * sx, vy + omega * sy, vz + omega * sz, wyx, wyy, wyz)
-            fxw, fyw, mzw, kappa, alpha, dfx = handling_forces(wheel.handling, fz, v_long, v_slip_x,
-                                                               v_slip_y, gamma)
+            if lags:
+                # the forces of the lagged slips: the carcass deflections after this step, at
+                # this load's relaxation lengths (relaxation.py); the slip speed as slip()'s
+                length_x, length_y = relaxation_lengths(wheel.handling, lag, fz, v_long, gamma)
+                u1, lagged_x, gain = lagged(lag.deflection[0], length_x, v_slip_x, vref, dt)
+                v1, lagged_y, _ = lagged(lag.deflection[1], length_y, v_slip_y, vref, dt)
+                fxw, fyw, mzw, kappa, alpha, dfx = handling_forces(wheel.handling, fz, v_long,
+                                                                   lagged_x, lagged_y, gamma)
+                kappa, alpha = slip(v_long, v_slip_x, v_slip_y)
+            else:
+                fxw, fyw, mzw, kappa, alpha, dfx = handling_forces(wheel.handling, fz, v_long,
+                                                                   v_slip_x, v_slip_y, gamma)
             fxw *= mu
             fyw *= mu
             mzw *= mu
@@ -339,8 +367,11 @@ def analytic_wheel_step(wheel, pose, geo, dt):
             # d kappa / d omega = -((a x r) . w_x) / max(|V_x|, VXLOW)
             lx, ly, lz = cross(rx, ry, rz, wxx, wxy, wxz)
             lever = dot(lx, ly, lz, ax, ay, az)
-            vref = abs(v_long) if abs(v_long) > VXLOW else VXLOW
-            dspin = lever * dfx * (-dot(sx, sy, sz, wxx, wxy, wxz) / vref)
+            # a lagged slip answers a change of spin over the step by its gain only
+            dspin = lever * dfx * gain * (-dot(sx, sy, sz, wxx, wxy, wxz) / vref)
+        if lags:
+            lag.deflection[0] = u1
+            lag.deflection[1] = v1
     if not terrain_is_rigid(wheel.road):  # a deformable ground answers (compiled out on rigid)
         fz, fxw, fyw = terrain_contact(wheel.road, px, py, rho, 0.0, v_slip_x, v_slip_y, fz, fxw,
                                        fyw, dt)

@@ -303,6 +303,7 @@ def ring_equilibrium(tyre, load, speed, params, tread_pattern=False, **options):
     """
     from ...road.obstacles import Flat
     from ..handling.none import NoHandling
+    from ..handling.relaxation import no_lag
     from ..static import roll_in_place
     from ...limits import wheel_spin_inertia
     from ..vertical import VerticalLaw
@@ -316,7 +317,7 @@ def ring_equilibrium(tyre, load, speed, params, tread_pattern=False, **options):
 
     def make():
         st = copy_state(state)
-        wheel = Wheel(VerticalLaw.linear(0.0, 0.0), params, NoHandling(), road, st)
+        wheel = Wheel(VerticalLaw.linear(0.0, 0.0), params, NoHandling(), road, st, no_lag())
         dt = 1e-3
         inertia = wheel_spin_inertia(tyre, load)[0]   # a file without one: estimated
         travel = 2.0 * math.sqrt(max(r0 ** 2 - height ** 2, 0.0))   # a contact length

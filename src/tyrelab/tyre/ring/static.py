@@ -16,6 +16,7 @@ import numpy as np
 
 from ...road.terrain import ground_range
 from ..handling.none import NoHandling
+from ..handling.relaxation import no_lag
 from ..static import DT, HOLD, PRESS_COLUMNS, PRESS_RATE, WINDOW, press_path
 from ..vertical import VerticalLaw
 from ..wheel import Wheel
@@ -38,8 +39,8 @@ def settle(params, state, road, heights, start=None, rate=PRESS_RATE, hold=HOLD)
     r0 = params.unloaded_radius
     z0 = ground_range(road)[1] + r0 + 0.002 if start is None else float(start)
     res = np.zeros((heights.size, len(PRESS_COLUMNS)))
-    press_path(Wheel(_UNUSED_LAW, params, NoHandling(), road, state), z0, heights, rate, hold,
-               WINDOW, DT, res)
+    press_path(Wheel(_UNUSED_LAW, params, NoHandling(), road, state, no_lag()), z0, heights, rate,
+               hold, WINDOW, DT, res)
     return res
 
 

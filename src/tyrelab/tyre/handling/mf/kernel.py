@@ -206,6 +206,17 @@ def mf_evaluate(c, use_mode, fz, kappa, alpha, gamma, vx, pressure, out):
 
 
 @numba.njit(cache=True, error_model="numpy")
+def mf_relaxation_lengths(c, use_mode, fz, gamma, vx, pressure):
+    """``(sigma_kappa, sigma_alpha)`` [m], the relaxation lengths at load ``fz`` [N], camber
+    ``gamma`` [rad], speed ``vx`` [m/s] and ``pressure`` [Pa] (MFeval's ``sigmax``,
+    ``sigmay``: :func:`.geometry.relaxation` with the slip stiffnesses at the load, which
+    do not depend on the slip)."""
+    r = _steady_state(c, use_mode, fz, 0.0, 0.0, gamma, vx, pressure)
+    sx, sy = relaxation(c, r.fz, r.gamma, r.dpi, r.kxk, r.kya)[2:]
+    return (sx if math.isfinite(sx) else 0.0), (sy if math.isfinite(sy) else 0.0)
+
+
+@numba.njit(cache=True, error_model="numpy")
 def mf_evaluate_many(c, use_mode, fz, kappa, alpha, gamma, vx, pressure, out):
     """``mf_evaluate`` over 1-D arrays of equal length; ``out`` has shape (n, N_OUTPUTS)."""
     for i in range(fz.shape[0]):

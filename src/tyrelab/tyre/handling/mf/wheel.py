@@ -11,7 +11,7 @@ from ...registry import HandlingModel, register_handling
 from ..slip import DKAPPA, slip
 from . import coefficient_index as C
 from .geometry import free_radius, radius_drop
-from .kernel import MFO, mf_forces
+from .kernel import MFO, mf_forces, mf_relaxation_lengths
 
 #: the MFeval use mode the rigs run (limit checks and low-speed model on)
 RIG_USE_MODE = 111
@@ -70,6 +70,16 @@ def mf_rolling_radius(params, fz, omega):
     return free_radius(c, omega) - radius_drop(c, max(fz, 0.0), (pressure - c[C.NOMPRES]) / c[C.NOMPRES])
 
 
+@nb.njit(cache=True)
+def mf_wheel_relaxation(params, fz, v_long, gamma):
+    """The Magic Formula's relaxation lengths ``(sigma_kappa, sigma_alpha)`` [m] at load
+    ``fz`` [N] (:func:`.kernel.mf_relaxation_lengths`; MF 5.2: PTX1-3, PTY1-2; MF 6.1/6.2:
+    the slip stiffness over LONGITUDINAL_STIFFNESS / LATERAL_STIFFNESS)."""
+    return mf_relaxation_lengths(params.coefficients, params.use_mode, fz, gamma, v_long,
+                                 params.pressure)
+
+
 register_handling(HandlingModel("mf", MagicFormulaParams, magic_formula_params, mf_wheel_forces,
                                 "Magic Formula 5.2 / 6.1 / 6.2 (MFeval 4.3.1 agreement)",
-                                rolling_radius=mf_rolling_radius))
+                                rolling_radius=mf_rolling_radius,
+                                relaxation_lengths=mf_wheel_relaxation))
