@@ -22,6 +22,8 @@ from tyrelab.tyre.tir import read_tir, write_tir
 from file_edit import edited
 
 CSLIP, CALPHA, UMIN, UMAX, WIDTH = 193929.0, 50000.0, 0.5568, 0.9835, 0.318
+#: its X and Y Relaxation Length [m] (2.0 each, as published)
+RELAX_X, RELAX_Y = 2.0, 2.0
 
 
 @pytest.fixture(scope="module")
@@ -91,7 +93,7 @@ def test_rolling_backwards_turns_the_aligning_moment_over(fp):
 
 
 def test_the_json_carries_its_fiala_parameters(hmmwv, fp):
-    assert fp == (CSLIP, CALPHA, UMIN, UMAX, WIDTH)
+    assert fp == (CSLIP, CALPHA, UMIN, UMAX, WIDTH, RELAX_X, RELAX_Y)
     assert default_handling(hmmwv) == "fiala"
     assert "Fiala parameter Rolling Resistance not used by tyrelab: 0.015" in "\n".join(hmmwv.tir.header)
 
@@ -170,6 +172,8 @@ CSLIP = 75000.0
 CALPHA = 1000.0
 UMIN = 0.8
 UMAX = 1.0
+RELAX_LENGTH_X = {relax_x}
+RELAX_LENGTH_Y = 350.0
 """
 
 
@@ -180,13 +184,17 @@ def test_an_adams_fiala_file_keeps_its_vertical_law_in_parameter(tmp_path):
     from tyrelab.tyre.library import load_tyre
 
     path = tmp_path / "adams_fiala.tir"
-    path.write_text(ADAMS_FIALA.format(stiffness=310.0))
+    path.write_text(ADAMS_FIALA.format(stiffness=310.0, relax_x=120.0))
     tyre = load_tyre(path)
     assert (tyre.vertical_stiffness, tyre.vertical_damping) == pytest.approx((310e3, 3.1e3), rel=1e-12)
     assert default_handling(tyre) == "fiala"
     fp = fiala_params(tyre)
     assert fp.cornering_stiffness == pytest.approx(1000.0 * 180.0 / math.pi, rel=1e-12)
     assert (fp.slip_stiffness, fp.width) == pytest.approx((75000.0, 0.245), rel=1e-12)
-    path.write_text(ADAMS_FIALA.format(stiffness=-5.0))
+    assert (fp.relaxation_x, fp.relaxation_y) == pytest.approx((0.12, 0.35), rel=1e-12)
+    path.write_text(ADAMS_FIALA.format(stiffness=-5.0, relax_x=120.0))
     with pytest.raises(InputError, match=r"line 15: VERTICAL_STIFFNESS: .* is not physical"):
         load_tyre(path)
+    path.write_text(ADAMS_FIALA.format(stiffness=310.0, relax_x=-1.0))
+    with pytest.raises(InputError, match=r"line 21: RELAX_LENGTH_X: expected a relaxation length >= 0"):
+        fiala_params(load_tyre(path))

@@ -67,8 +67,10 @@ def _response(wheel, kappa, tan_alpha, distance, dt):
     (MFEVAL / "MagicFormula61_Parameters.tir", "file", ("MagicFormula61_Parameters", 0.5)),
     (MFEVAL / "MagicFormula61_Parameters.tir", "file", ("MagicFormula61_Parameters", 1.5)),
     ("hmmwv-pac89", (0.25, 0.6), (0.25, 0.6)),
+    # Chrono's HMMWV Fiala JSON: "X Relaxation Length": 2.0, "Y Relaxation Length": 2.0
+    (TIR / "HMMWV_FialaTire.json", "file", (2.0, 2.0)),
 ], ids=["mf52-PTX-PTY-half", "mf52-PTX-PTY-1.5", "mf61-stiffness-ratio-half",
-        "mf61-stiffness-ratio-1.5", "pac89-given"])
+        "mf61-stiffness-ratio-1.5", "pac89-given", "fiala-file"])
 def test_the_force_builds_as_a_first_order_lag_over_the_relaxation_length(tyre, relaxation,
                                                                            lengths):
     """A slip step from free rolling, small enough for the forces to be linear in it: the
@@ -82,7 +84,8 @@ def test_the_force_builds_as_a_first_order_lag_over_the_relaxation_length(tyre, 
         sigma_x, sigma_y, load = _mfeval_lengths(*lengths)
         handling = "mf"
     else:
-        (sigma_x, sigma_y), load, handling = lengths, 4900.0, "pac89"
+        (sigma_x, sigma_y), load = lengths, 4900.0
+        handling = "fiala" if str(tyre).endswith("FialaTire.json") else "pac89"
     dt = 1e-4
     assert SPEED * dt / min(sigma_x, sigma_y) <= 0.012
     for kappa, tan_alpha, which, sigma in ((1e-4, 0.0, 0, sigma_x), (0.0, 1e-4, 1, sigma_y)):

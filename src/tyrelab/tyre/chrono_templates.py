@@ -72,13 +72,14 @@ def pac89_tir(doc: _Document) -> TirFile:
 
 #: the Fiala handling parameters of Chrono's JSON, written to the ADAMS Fiala layout's [PARAMETER]
 FIALA_HANDLING = ("CSLIP", "CALPHA", "UMIN", "UMAX")
+#: its relaxation lengths, the ADAMS Fiala layout's keys
+FIALA_RELAXATION = {"X Relaxation Length": "RELAX_LENGTH_X", "Y Relaxation Length": "RELAX_LENGTH_Y"}
 
 
 def fiala_tir(doc: _Document) -> TirFile:
     fp = ("Fiala Parameters",)
     header = [f"$ Fiala parameter {name} not used by tyrelab: {json.dumps(doc.value(*fp, name))}"
-              for name in ("Rolling Resistance", "X Relaxation Length", "Y Relaxation Length")
-              if doc.has(*fp, name)]
+              for name in ("Rolling Resistance",) if doc.has(*fp, name)]
     b = _Builder(doc, "FialaTire", header)
     _, width = b.dimensions(fp + ("Unloaded Radius",), width_keys=fp + ("Width",))
     b.mass_and_inertia()
@@ -87,6 +88,9 @@ def fiala_tir(doc: _Document) -> TirFile:
         b.put("MODEL", "PROPERTY_FILE_FORMAT", "FIALA")
         for key in FIALA_HANDLING:
             b.put("PARAMETER", key, doc.number(*fp, key, positive=True), fp + (key,))
+        for key, adams in FIALA_RELAXATION.items():  # the transient slip's, if asked for
+            if doc.has(*fp, key):
+                b.put("PARAMETER", adams, doc.number(*fp, key, minimum=0.0), fp + (key,))
     b.assumed_contact_patch(width)
     return b.tir
 

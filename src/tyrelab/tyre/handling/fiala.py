@@ -16,12 +16,15 @@ alpha the ISO slips of :func:`~.slip.slip`, W-axis)::
 with ``w`` the tyre's width. The longitudinal and lateral forces are each their pure-slip
 value (the combined slip only lowers U), as in ADAMS and Chrono. Rolling backwards the
 aligning moment turns over (its trail then lies ahead of the contact centre along x), as
-PAC89's does. Not carried: the rolling resistance moment (no handling model here gives one)
-and the relaxation lengths (steady state, as Chrono).
+PAC89's does. Not carried: the rolling resistance moment (no handling model here gives one).
+The relaxation lengths ``RELAX_LENGTH_X``, ``RELAX_LENGTH_Y`` [m] (optional, 0 when absent)
+are the model's own for the transient slip (``--relaxation file``,
+:mod:`~.relaxation`); by default the forces are steady, as Chrono's 2023 template has them.
 
 Parameters from ``[PARAMETER]`` ``CSLIP`` [N], ``CALPHA`` [N/rad], ``UMIN``, ``UMAX`` (the
 ADAMS Fiala property file; a Chrono ``FialaTire`` JSON is written so by
-:mod:`tyrelab.tyre.chrono_json`); the width is ``[DIMENSION] WIDTH``.
+:mod:`tyrelab.tyre.chrono_json`, its X and Y Relaxation Length as ``RELAX_LENGTH_X``,
+``RELAX_LENGTH_Y``); the width is ``[DIMENSION] WIDTH``.
 """
 
 from __future__ import annotations
@@ -37,17 +40,22 @@ from .slip import DKAPPA, slip
 
 #: the property-file section of the Fiala parameters (ADAMS's layout)
 SECTION = "PARAMETER"
+#: its relaxation lengths [m], longitudinal and lateral (optional)
+RELAXATION_KEYS = ("RELAX_LENGTH_X", "RELAX_LENGTH_Y")
 
 
 class FialaParams(NamedTuple):
     """``slip_stiffness`` CSLIP [N] (per unit slip), ``cornering_stiffness`` CALPHA [N/rad],
-    ``friction_sliding`` UMIN and ``friction_static`` UMAX [-], ``width`` [m]."""
+    ``friction_sliding`` UMIN and ``friction_static`` UMAX [-], ``width`` [m], the relaxation
+    lengths RELAX_LENGTH_X and RELAX_LENGTH_Y [m] (0: none given)."""
 
     slip_stiffness: float
     cornering_stiffness: float
     friction_sliding: float
     friction_static: float
     width: float
+    relaxation_x: float = 0.0
+    relaxation_y: float = 0.0
 
 
 def fiala_params(tyre) -> FialaParams:
@@ -57,7 +65,8 @@ def fiala_params(tyre) -> FialaParams:
     ------
     InputError
         Naming the file, line and key: a missing key, a stiffness that is not positive, a
-        friction coefficient that is not positive or ``UMIN > UMAX``, a tyre without a width.
+        friction coefficient that is not positive or ``UMIN > UMAX``, a tyre without a width,
+        a negative relaxation length.
     """
     tir = tyre.tir
     values = []
@@ -74,7 +83,14 @@ def fiala_params(tyre) -> FialaParams:
         raise InputError("expected UMIN <= UMAX: the sliding friction is at most the static",
                          source=tir.source, line=tir.line_of(SECTION, "UMIN"), field="UMIN")
     width = tyre.require_width("the fiala handling model's aligning moment").width
-    return FialaParams(*values, float(width))
+    lengths = []
+    for key in RELAXATION_KEYS:
+        length = tir.number(SECTION, key, 0.0)
+        if not length >= 0.0:
+            raise InputError(f"expected a relaxation length >= 0 m, got {length:g} m",
+                             source=tir.source, line=tir.line_of(SECTION, key), field=key)
+        lengths.append(length)
+    return FialaParams(*values, float(width), *lengths)
 
 
 @nb.njit(cache=True)
@@ -114,5 +130,12 @@ def fiala_wheel_forces(fp, fz, v_long, v_slip_x, v_slip_y, gamma):
     return fx, fy, mz, kappa, alpha, (fx2 - fx) / DKAPPA
 
 
+@nb.njit(cache=True)
+def fiala_relaxation(fp, fz, v_long, gamma):
+    """The file's relaxation lengths ``(RELAX_LENGTH_X, RELAX_LENGTH_Y)`` [m], at every load."""
+    return fp.relaxation_x, fp.relaxation_y
+
+
 register_handling(HandlingModel("fiala", FialaParams, fiala_params, fiala_wheel_forces,
-                                "Fiala brush model (ADAMS; Chrono), friction falling with slip"))
+                                "Fiala brush model (ADAMS; Chrono), friction falling with slip",
+                                relaxation_lengths=fiala_relaxation))
