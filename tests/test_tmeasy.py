@@ -179,11 +179,15 @@ def test_the_slip_stiffness_is_the_spin_moments_derivative(van):
         assert a.dspin_domega == pytest.approx((b.my - a.my) / h, rel=1e-3)
 
 
-def test_a_freely_rolling_wheel_starts_and_stays_free(van):
+def test_a_freely_rolling_wheel_starts_and_stays_free(tir_dir, tmp_path):
     """The rolling rig starts the wheel at V / Re, Re = R0 - z/3 (TMeasy's rolling radius, z
     the deflection of TMeasy's own law d1 z + d2 z^2, the previous test's): no longitudinal
     force at the start, nor after a second of rolling on flat ground. At the loaded radius
-    instead (R0 - z) the slip would be 2z / (3 Re), 4.6 %: 1.8 kN at the start."""
+    instead (R0 - z) the slip would be 2z / (3 Re), 4.6 %: 1.8 kN at the start. (The van
+    without its rolling resistance, whose drag needs a little slip:
+    tests/test_rolling_resistance.py.)"""
+    van = fixed_van(tir_dir, tmp_path, ('"Rolling Resistance Coefficient": 0.015',
+                                        '"Rolling Resistance Coefficient": 0.0'))
     model = TyreModel(van, "point", "tmeasy")
     load, speed = 2500.0, 8.0
     eq = model.equilibrium(load, speed)

@@ -16,11 +16,12 @@ VAN_Y = {"slope": (30366.8749, 48833.5824), "peak": (1901.7234, 3471.9636),
 VAN_TRAIL = {"at_zero": (0.178, 0.19), "sign_change": (0.16337, 0.20355)}
 
 
-def fixed_van(tir_dir, tmp_path):
+def fixed_van(tir_dir, tmp_path, *more):
     """The van's full file with its two faults mended: the damping under the key Chrono
-    reads, and no bottoming radius (0.396 m, above its unloaded radius of 0.376 m)."""
+    reads, and no bottoming radius (0.396 m, above its unloaded radius of 0.376 m); ``more``
+    further ``(old, new)`` edits."""
     return read_chrono_tyre(edited(tir_dir / "van_TMeasyTireFull.json", tmp_path / "van.json",
                                    ('"Vertical Tire Damping [Ns/m]"', '"Tire Vertical Damping [Ns/m]"'),
-                                   ('"Tire Bottoming Radius [m]": 0.396,', "")))
+                                   ('"Tire Bottoming Radius [m]": 0.396,', ""), *more))
 
 

@@ -363,5 +363,5 @@ def wheel_stepper(tyre="xzl-16.00R20", model: str | TyreModel = "point", road="f
             max_step = DEFAULT_STEP
     max_step = limits.check_number(max_step, "max_step", 0.0, limits.MAX_DT, "s", low_open=True,
                                    what="internal step")
-    wheel = tm.wheel(ground, load, state=None if eq is None else eq.state)
+    wheel = tm.wheel(ground, load, rolling=eq)
     return WheelStepper(tm, wheel, max_step, frame, start_time, eq, ground=ground)

@@ -91,7 +91,7 @@ class QuarterVehicle:
         eq = self.model.equilibrium(self.wheel_load, speed)
         return self._run(road, speed, tyre.unloaded_radius - eq.deflection, eq.spin,
                          self.wheel_load, duration, dt, output_rate, progress, "quarter-vehicle",
-                         eq.state)
+                         rolling=eq)
 
     def drop(self, road: Road | str = "flat", lift: float = 0.0, duration: float = 2.0,
              dt: float = 1e-3, output_rate: float = 1000.0, progress: bool | None = None):
@@ -102,10 +102,11 @@ class QuarterVehicle:
                          dt, output_rate, progress, "wheel-drop")
 
     def _run(self, road, speed, zu, omega0, wheel_load, duration, dt, output_rate, progress, rig,
-             model_state=None, wheel=None, ground_meta=None, ground=None):
+             model_state=None, wheel=None, ground_meta=None, ground=None, rolling=None):
         """Drive (or hold, at ``speed`` 0) from hub height ``zu``, suspension at its static
-        length, the tyre model in ``model_state`` (default: its static state); ``wheel`` the
-        wheel when it is built already (on soil), on its Python ``ground``."""
+        length, the tyre model in ``model_state`` (default: its static state) or in its rolling
+        equilibrium ``rolling``; ``wheel`` the wheel when it is built already (on soil), on its
+        Python ``ground``."""
         from ..guards import rig_spin_inertia
         tyre = self.model.tyre
         x0_road = road.run_start
@@ -120,7 +121,8 @@ class QuarterVehicle:
         state[K.Q.ZU] = zu
         state[K.Q.ZS] = zu + self.spring_length
         state[K.Q.W] = omega0
-        wheel = wheel or self.model.wheel(levelled_grid(road, x0_road), wheel_load, state=model_state)
+        wheel = wheel or self.model.wheel(levelled_grid(road, x0_road), wheel_load, state=model_state,
+                                          rolling=rolling)
         n_steps = int(round(duration / dt))
         out_every = max(1, int(round(1.0 / (output_rate * dt))))
 

@@ -105,7 +105,7 @@ def roll(model: TyreModel, road="cleat:50x50", speed: float = 0.5, height: float
         spin = speed / height
     else:
         state_load = wheel_load
-        wheel = model.wheel(grid, wheel_load, state=eq.state)
+        wheel = model.wheel(grid, wheel_load, rolling=eq)
         spin = eq.spin
     state = np.zeros(len(STATE))
     state[R.X], state[R.OMEGA] = x0, spin

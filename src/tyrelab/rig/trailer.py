@@ -260,7 +260,7 @@ class Trailer:
             right = Equilibrium(r0 - z_right, speed / r0, on_soil.state)
         pitch, roll = self._frame_angles(z_right, z_left)
         return self._run(road, speed, pitch, (right.spin, left.spin), s.wheel_load, duration,
-                         dt, output_rate, progress, "trailer", roll, (right.state, left.state),
+                         dt, output_rate, progress, "trailer", roll, (right, left),
                          on_soil, ground_meta, ground)
 
     def _frame_angles(self, z_right: float, z_left: float) -> tuple[float, float]:
@@ -345,9 +345,10 @@ class Trailer:
                          progress, "trailer-drop")
 
     def _run(self, road, speed, pitch0, spins, wheel_load, duration, dt, output_rate, progress,
-             rig, roll0=0.0, states=None, right_wheel=None, ground_meta=None, ground=None):
+             rig, roll0=0.0, rolling=None, right_wheel=None, ground_meta=None, ground=None):
         """Tow (or hold, at ``speed`` 0) the trailer from ``pitch0``, ``roll0`` [rad] at rest,
-        the wheels spinning at ``spins`` (right, left) [rad/s], in the models' ``states``;
+        the wheels spinning at ``spins`` (right, left) [rad/s], in the models' equilibria
+        ``rolling`` (right, left; :meth:`TyreModel.equilibrium`, their states and slips);
         ``right_wheel`` the test wheel when it is built already (on a terrain, its Python
         ``ground``, named in ``ground_meta`` for the metadata)."""
         x0_road = road.run_start
@@ -362,9 +363,9 @@ class Trailer:
         n_steps = int(round(duration / dt))
         out_every = max(1, int(round(1.0 / (output_rate * dt))))
 
-        right_state, left_state = states or (None, None)
-        right = right_wheel or self.model.wheel(grid, wheel_load, state=right_state)
-        left = self.left.wheel(Flat().grid(), wheel_load, state=left_state)
+        right_eq, left_eq = rolling or (None, None)
+        right = right_wheel or self.model.wheel(grid, wheel_load, rolling=right_eq)
+        left = self.left.wheel(Flat().grid(), wheel_load, rolling=left_eq)
 
         follow = Following(ground, x_start, speed, dt, self.model.tyre.unloaded_radius)
 

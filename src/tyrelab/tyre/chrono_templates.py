@@ -11,13 +11,12 @@ that name or embed an ADAMS property file (Pac02Tire, PacejkaTire, MFTire).
 
 from __future__ import annotations
 
-import json
 import math
 from importlib import resources
 
 from ..errors import InputError
 from .chrono_document import _Builder, _comment, _Document, _kind
-from .handling.tmeasy import DEFAULT_MAX_LOAD_RATIO, KEY_SECTIONS, LOAD_SECTION
+from .handling.tmeasy import DEFAULT_MAX_LOAD_RATIO, KEY_SECTIONS, LOAD_SECTION, ROLLING_SECTION
 from .tir import TirFile
 from .tir_units import KEY_DIMENSIONS
 
@@ -72,15 +71,15 @@ def pac89_tir(doc: _Document) -> TirFile:
 
 #: the Fiala handling parameters of Chrono's JSON, written to the ADAMS Fiala layout's [PARAMETER]
 FIALA_HANDLING = ("CSLIP", "CALPHA", "UMIN", "UMAX")
-#: its relaxation lengths, the ADAMS Fiala layout's keys
-FIALA_RELAXATION = {"X Relaxation Length": "RELAX_LENGTH_X", "Y Relaxation Length": "RELAX_LENGTH_Y"}
+#: its relaxation lengths and rolling resistance (the load centre's shift [m]), the ADAMS Fiala
+#: layout's keys
+FIALA_LENGTHS = {"X Relaxation Length": "RELAX_LENGTH_X", "Y Relaxation Length": "RELAX_LENGTH_Y",
+                 "Rolling Resistance": "ROLLING_RESISTANCE"}
 
 
 def fiala_tir(doc: _Document) -> TirFile:
     fp = ("Fiala Parameters",)
-    header = [f"$ Fiala parameter {name} not used by tyrelab: {json.dumps(doc.value(*fp, name))}"
-              for name in ("Rolling Resistance",) if doc.has(*fp, name)]
-    b = _Builder(doc, "FialaTire", header)
+    b = _Builder(doc, "FialaTire")
     _, width = b.dimensions(fp + ("Unloaded Radius",), width_keys=fp + ("Width",))
     b.mass_and_inertia()
     b.vertical(fp + ("Vertical Stiffness",), fp + ("Vertical Damping",), fp + ("Vertical Curve Data",))
@@ -88,7 +87,7 @@ def fiala_tir(doc: _Document) -> TirFile:
         b.put("MODEL", "PROPERTY_FILE_FORMAT", "FIALA")
         for key in FIALA_HANDLING:
             b.put("PARAMETER", key, doc.number(*fp, key, positive=True), fp + (key,))
-        for key, adams in FIALA_RELAXATION.items():  # the transient slip's, if asked for
+        for key, adams in FIALA_LENGTHS.items():  # the transient slip's (if asked for), My's
             if doc.has(*fp, key):
                 b.put("PARAMETER", adams, doc.number(*fp, key, minimum=0.0), fp + (key,))
     b.assumed_contact_patch(width)
@@ -158,6 +157,9 @@ def tmeasy_tir(doc: _Document, template: str) -> TirFile:
         _tmeasy_handling_given(doc, b, template)
     else:
         _tmeasy_handling_guess(doc, b, load, keys, template)
+    if doc.has("Rolling Resistance Coefficient"):  # My = -c Fz R0 tanh(omega), as Chrono
+        keys = ("Rolling Resistance Coefficient",)
+        b.put(ROLLING_SECTION, "QSY1", doc.number(*keys, minimum=0.0), keys)
     if doc.has("Inflation Pressure Use [Pa]"):
         keys = ("Inflation Pressure Use [Pa]",)
         b.put("OPERATING_CONDITIONS", "INFLPRES", doc.number(*keys, positive=True), keys)

@@ -27,6 +27,10 @@ from .registry import ContactModel, HandlingModel, contact_model, handling_model
 from .wheel import ContactGeometry, Wheel, WheelPose, contact_geometry
 
 
+#: Newton steps at most to the spin of a freely rolling wheel (:meth:`TyreModel._torque_free`)
+MAX_TORQUE_FREE_STEPS = 20
+
+
 class Equilibrium(NamedTuple):
     """A wheel in equilibrium on a flat road (:meth:`TyreModel.equilibrium`)."""
 
@@ -36,6 +40,12 @@ class Equilibrium(NamedTuple):
     spin: float
     #: the model's internal state (empty for analytic models)
     state: object
+    #: the longitudinal slip [-] of that free rolling (a handling model's force offsets and
+    #: rolling resistance need a little)
+    slip: float = 0.0
+    #: the transient slip's carcass deflections ``(u, v)`` [m] in that free rolling
+    #: (:mod:`.handling.relaxation`: ``u = -sigma_kappa kappa``)
+    carcass: tuple = (0.0, 0.0)
 
 
 @dataclass
@@ -104,9 +114,12 @@ class TyreModel:
         """The handling model's parameter record."""
         return self.handling_model.build(self.tyre)
 
-    def slip_lag(self) -> SlipLag:
-        """The transient slip of a new wheel (its carcass undeflected)."""
-        return slip_lag(self.tyre, self.handling_model, self.relaxation)
+    def slip_lag(self, carcass=(0.0, 0.0)) -> SlipLag:
+        """The transient slip of a new wheel, its carcass deflected by ``carcass`` [m] (an
+        equilibrium's, :attr:`Equilibrium.carcass`)."""
+        lag = slip_lag(self.tyre, self.handling_model, self.relaxation)
+        lag.deflection[:] = carcass
+        return lag
 
     @property
     def relaxation_used(self) -> str:
@@ -141,7 +154,42 @@ class TyreModel:
             deflection, spin, state = hook(self.tyre, load, float(speed), params, **self.options)
             return Equilibrium(float(deflection), float(spin), state)
         deflection, spin = self._free_rolling(load, float(speed))
-        return Equilibrium(deflection, spin, self.initial_state(load, params))
+        slip, carcass = 0.0, (0.0, 0.0)
+        if load > 0 and speed > 0 and self.handling != "none":
+            deflection, spin, slip, carcass = self._torque_free(load, float(speed), deflection,
+                                                                spin)
+        return Equilibrium(deflection, spin, self.initial_state(load, params), slip, carcass)
+
+    def _torque_free(self, load: float, speed: float, deflection: float, spin: float):
+        """``(deflection, spin, slip, carcass)`` where the wheel's moment about its axle
+        vanishes (and the transient slip's steady carcass deflections there), from
+        the spin at ``speed / R`` (:meth:`_free_rolling`): a handling model whose force is not
+        zero at zero slip (the Magic Formula's offsets SHx, SVx) or that has a rolling
+        resistance (:attr:`~.registry.HandlingModel.rolling_resistance`) rolls freely at a
+        little slip. Newton on the spin with the step's own slope (``dspin_domega``) on a flat
+        road, steady slip, to 1e-9 of ``load R0``; the deflection follows the spin (the law's
+        speed stiffening). A wheel already free (no offset, no rolling resistance) keeps its
+        spin exactly. The carcass's longitudinal deflection is ``-sigma_kappa kappa`` at the
+        load the wheel carries there (its lengths may depend on it)."""
+        from .handling.relaxation import no_lag
+        from .wheel import WheelLoads, loads_table, pose
+        r0 = self.tyre.unloaded_radius
+        wheel = self.wheel(Flat().grid(), load)._replace(lag=no_lag())
+        tolerance = 1e-9 * load * r0
+        slip = 0.0
+        for _ in range(MAX_TORQUE_FREE_STEPS):
+            at = pose(cz=r0 - deflection, velocity=(speed, 0.0, 0.0), omega=spin)
+            loads = WheelLoads(*loads_table(wheel, np.array([at]))[0])
+            slip = loads.kappa
+            if abs(loads.my) <= tolerance or not loads.dspin_domega < 0.0:
+                break
+            spin -= loads.my / loads.dspin_domega
+            deflection = self.tyre.vertical_law.deflection_at(load, spin)
+        lag = self.slip_lag()
+        length = lag.length_x
+        if lag.from_model:
+            length = self.handling_model.relaxation_lengths(wheel.handling, loads.fzw, speed, 0.0)[0]
+        return deflection, spin, slip, (-length * slip if lag.active else 0.0, 0.0)
 
     def _free_rolling(self, load: float, speed: float) -> tuple[float, float]:
         """``(deflection, spin)`` of an analytic model's wheel carrying ``load`` [N] rolling
@@ -166,17 +214,22 @@ class TyreModel:
                 break
         return deflection, spin
 
-    def wheel(self, grid, load: float = 0.0, static: bool = False, state=None) -> Wheel:
+    def wheel(self, grid, load: float = 0.0, static: bool = False, state=None,
+              rolling: Equilibrium | None = None) -> Wheel:
         """The :class:`Wheel` record of this tyre on road ``grid`` at static ``load`` [N].
 
-        ``state`` the model's internal state to start from (e.g. the rolling
-        equilibrium's, :meth:`equilibrium`); default the static one.
+        ``state`` the model's internal state to start from; default the static one.
+        ``rolling`` an equilibrium (:meth:`equilibrium`) to start in instead: its state, and
+        the transient slip's carcass deflections.
         """
         params = self.contact_params(grid, static)
+        if rolling is not None:
+            state = rolling.state
         if state is None:
             state = self.initial_state(load, params)
+        lag = self.slip_lag((0.0, 0.0) if rolling is None else rolling.carcass)
         return Wheel(self.tyre.vertical_law, params, self.handling_params(), grid.surface(),
-                     state, self.slip_lag())
+                     state, lag)
 
 
 #: number of fields of a :class:`ContactGeometry`

@@ -172,6 +172,9 @@ class HandlingModel:
     gives the model's own relaxation lengths ``(sigma_kappa, sigma_alpha)`` [m] at a load
     (the Magic Formula's), which its transient slip takes when asked for the file's
     (:mod:`tyrelab.tyre.handling.relaxation`); without it only given lengths lag the slip.
+    ``rolling_resistance(params, fz, fx, v_long, omega, kappa, gamma)`` (compiled, optional)
+    is its rolling resistance moment My [N m] about the W-axis y (the spin axis; negative
+    when rolling forward), which the wheel step adds to the tyre's moments.
     """
 
     name: str
@@ -181,6 +184,7 @@ class HandlingModel:
     summary: str = ""
     rolling_radius: Any = None
     relaxation_lengths: Any = None
+    rolling_resistance: Any = None
 
     def at_slips(self, params, fz: float, speed: float, kappa: float, tan_alpha: float):
         """:attr:`forces` where the ISO slips are ``kappa`` and ``tan alpha`` at forward speed

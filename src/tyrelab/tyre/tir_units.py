@@ -59,7 +59,7 @@ KEY_DIMENSIONS: dict[str, tuple[int, int, int, int, int]] = {
     "YAW_STIFFNESS": _dim(F=1, L=1, A=-1),
     # Fiala (ADAMS's [PARAMETER]): slip stiffness per unit slip, cornering stiffness per angle
     "CSLIP": _dim(F=1), "CALPHA": _dim(F=1, A=-1),
-    "RELAX_LENGTH_X": _dim(L=1), "RELAX_LENGTH_Y": _dim(L=1),
+    "RELAX_LENGTH_X": _dim(L=1), "RELAX_LENGTH_Y": _dim(L=1), "ROLLING_RESISTANCE": _dim(L=1),
     # TMeasy (Chrono's parameter file): loads, and each curve's forces and initial slope
     "FZ_NOM": _dim(F=1), "FZ_MAX": _dim(F=1),
     **{f"{key}_{level}": _dim(F=1) for key in ("DFX0", "FXMAX", "FXSLD", "DFY0", "FYMAX", "FYSLD")

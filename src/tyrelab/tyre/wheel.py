@@ -222,6 +222,26 @@ def _has_handling(params):
     return impl
 
 
+def rolling_moment(params, fz, fx, v_long, omega, kappa, gamma):
+    """The rolling resistance moment My [N m] of the handling model of ``params`` about the
+    W-axis y (:attr:`~tyrelab.tyre.registry.HandlingModel.rolling_resistance`); 0 for a
+    model without one (compile time)."""
+    raise NotImplementedError("compiled only")
+
+
+@overload(rolling_moment)
+def _rolling_moment(params, fz, fx, v_long, omega, kappa, gamma):
+    own = handling_by_record(params).rolling_resistance
+    if own is None:
+        def impl(params, fz, fx, v_long, omega, kappa, gamma):
+            return 0.0
+        return impl
+
+    def impl(params, fz, fx, v_long, omega, kappa, gamma):  # noqa: F811 - the other branch's
+        return own(params, fz, fx, v_long, omega, kappa, gamma)
+    return impl
+
+
 def wheel_step(wheel, pose, dt):
     """Advance ``wheel`` by ``dt`` [s] at ``pose``; returns its :class:`WheelLoads`.
 
@@ -274,7 +294,9 @@ def analytic_wheel_step(wheel, pose, geo, dt):
     friction input). With a transient slip (``wheel.lag``), the forces are those of the
     lagged slips and the carcass deflections advance by ``dt``
     (:mod:`~tyrelab.tyre.handling.relaxation`); ``kappa`` and ``alpha`` stay the
-    kinematic slips. A law that softens with the horizontal forces (MF-Tyre's
+    kinematic slips. A handling model with a rolling resistance adds its moment My about the
+    W-axis y (:func:`rolling_moment`; its slope in the spin is left out of ``dspin_domega``,
+    a fraction of a per cent of the slip's). A law that softens with the horizontal forces (MF-Tyre's
     ``Q_FCX``, ``Q_FCY``) and the forces at its load are solved together (the
     load that carries its own forces). A ground that is not rigid then answers
     the contact's forces (:func:`~tyrelab.road.terrain.terrain_contact`, a point
@@ -304,6 +326,7 @@ def analytic_wheel_step(wheel, pose, geo, dt):
     dspin = 0.0
     wxx = wxy = wxz = wyx = wyy = wyz = 0.0
     v_slip_x = v_slip_y = 0.0
+    rolling = 0.0  # the rolling resistance moment about the W-axis y
     if has_handling(wheel.handling):
         # W-axis: z along the normal, x in the wheel plane
         tx, ty, tz = cross(ax, ay, az, nx, ny, nz)
@@ -372,6 +395,7 @@ def analytic_wheel_step(wheel, pose, geo, dt):
         if lags:
             lag.deflection[0] = u1
             lag.deflection[1] = v1
+        rolling = rolling_moment(wheel.handling, fz, fxw, v_long, omega, kappa, gamma)
     if not terrain_is_rigid(wheel.road):  # a deformable ground answers (compiled out on rigid)
         fz, fxw, fyw = terrain_contact(wheel.road, px, py, rho, 0.0, v_slip_x, v_slip_y, fz, fxw,
                                        fyw, dt)
@@ -379,8 +403,10 @@ def analytic_wheel_step(wheel, pose, geo, dt):
     fy = fz * ny + fxw * wxy + fyw * wyy
     fzz = fz * nz + fxw * wxz + fyw * wyz
     mx, my, mz = cross(rx, ry, rz, fx, fy, fzz)
-    return WheelLoads(fx, fy, fzz, mx + mzw * nx, my + mzw * ny, mz + mzw * nz, px, py, pz,
-                      nx, ny, nz, rho, rho_dot, fxw, fyw, fz, kappa, alpha, dspin)
+    # the aligning moment about the normal, the rolling resistance about the W-axis y
+    return WheelLoads(fx, fy, fzz, mx + mzw * nx + rolling * wyx, my + mzw * ny + rolling * wyy,
+                      mz + mzw * nz + rolling * wyz, px, py, pz, nx, ny, nz, rho, rho_dot, fxw, fyw,
+                      fz, kappa, alpha, dspin)
 
 
 def pose(cx=0.0, cy=0.0, cz=0.0, axis=(0.0, 1.0, 0.0), velocity=(0.0, 0.0, 0.0),

@@ -16,7 +16,8 @@ alpha the ISO slips of :func:`~.slip.slip`, W-axis)::
 with ``w`` the tyre's width. The longitudinal and lateral forces are each their pure-slip
 value (the combined slip only lowers U), as in ADAMS and Chrono. Rolling backwards the
 aligning moment turns over (its trail then lies ahead of the contact centre along x), as
-PAC89's does. Not carried: the rolling resistance moment (no handling model here gives one).
+PAC89's does. ``ROLLING_RESISTANCE`` [m] (optional, 0 when absent), the shift of the
+vertical load's centre, gives the rolling resistance moment (:mod:`.rolling_resistance`).
 The relaxation lengths ``RELAX_LENGTH_X``, ``RELAX_LENGTH_Y`` [m] (optional, 0 when absent)
 are the model's own for the transient slip (``--relaxation file``,
 :mod:`~.relaxation`); by default the forces are steady, as Chrono's 2023 template has them.
@@ -36,6 +37,7 @@ import numba as nb
 
 from ...errors import InputError
 from ..registry import HandlingModel, register_handling
+from .rolling_resistance import rolling_resistance_moment
 from .slip import DKAPPA, slip
 
 #: the property-file section of the Fiala parameters (ADAMS's layout)
@@ -47,7 +49,8 @@ RELAXATION_KEYS = ("RELAX_LENGTH_X", "RELAX_LENGTH_Y")
 class FialaParams(NamedTuple):
     """``slip_stiffness`` CSLIP [N] (per unit slip), ``cornering_stiffness`` CALPHA [N/rad],
     ``friction_sliding`` UMIN and ``friction_static`` UMAX [-], ``width`` [m], the relaxation
-    lengths RELAX_LENGTH_X and RELAX_LENGTH_Y [m] (0: none given)."""
+    lengths RELAX_LENGTH_X and RELAX_LENGTH_Y [m] (0: none given), the rolling resistance's
+    load-centre shift ROLLING_RESISTANCE [m] (0: none)."""
 
     slip_stiffness: float
     cornering_stiffness: float
@@ -56,6 +59,7 @@ class FialaParams(NamedTuple):
     width: float
     relaxation_x: float = 0.0
     relaxation_y: float = 0.0
+    rolling_resistance: float = 0.0
 
 
 def fiala_params(tyre) -> FialaParams:
@@ -84,10 +88,11 @@ def fiala_params(tyre) -> FialaParams:
                          source=tir.source, line=tir.line_of(SECTION, "UMIN"), field="UMIN")
     width = tyre.require_width("the fiala handling model's aligning moment").width
     lengths = []
-    for key in RELAXATION_KEYS:
+    for key in (*RELAXATION_KEYS, "ROLLING_RESISTANCE"):
         length = tir.number(SECTION, key, 0.0)
         if not length >= 0.0:
-            raise InputError(f"expected a relaxation length >= 0 m, got {length:g} m",
+            what = "relaxation length" if key in RELAXATION_KEYS else "load-centre shift"
+            raise InputError(f"expected a {what} >= 0 m, got {length:g} m",
                              source=tir.source, line=tir.line_of(SECTION, key), field=key)
         lengths.append(length)
     return FialaParams(*values, float(width), *lengths)
@@ -136,6 +141,14 @@ def fiala_relaxation(fp, fz, v_long, gamma):
     return fp.relaxation_x, fp.relaxation_y
 
 
+@nb.njit(cache=True)
+def fiala_rolling_moment(fp, fz, fx, v_long, omega, kappa, gamma):
+    """The rolling resistance moment [N m] of the file's ROLLING_RESISTANCE
+    (:func:`.rolling_resistance.rolling_resistance_moment`)."""
+    return rolling_resistance_moment(fp.rolling_resistance, fz, omega)
+
+
 register_handling(HandlingModel("fiala", FialaParams, fiala_params, fiala_wheel_forces,
                                 "Fiala brush model (ADAMS; Chrono), friction falling with slip",
-                                relaxation_lengths=fiala_relaxation))
+                                relaxation_lengths=fiala_relaxation,
+                                rolling_resistance=fiala_rolling_moment))

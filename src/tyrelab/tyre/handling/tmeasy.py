@@ -49,6 +49,7 @@ import numpy as np
 
 from ...errors import InputError
 from ..registry import HandlingModel, register_handling
+from .rolling_resistance import rolling_resistance_moment
 from .slip import DKAPPA, VXLOW, slip
 
 #: Chrono's ``m_vnum``: the speed added to the transport speed so that slip stays finite [m/s]
@@ -65,6 +66,8 @@ CURVE_SECTIONS = {"x": "LONGITUDINAL_PARAMETERS", "y": "LATERAL_PARAMETERS"}
 CURVE_KEYS = ("DF{d}0", "F{D}MAX", "S{D}MAX", "F{D}SLD", "S{D}SLD")
 TRAIL_SECTION = "ALIGNING_PARAMETERS"
 TRAIL_KEYS = ("PT_NORM", "SY_CHSI", "SY_ZERO")
+#: the section of the rolling resistance coefficient QSY1 (MF-Tyre's, the same physics)
+ROLLING_SECTION = "ROLLING_COEFFICIENTS"
 #: each key's section, by its stem (the key without ``_1`` / ``_2``)
 KEY_SECTIONS = {**{key.format(d=d, D=d.upper()).upper(): CURVE_SECTIONS[d]
                    for d in "xy" for key in CURVE_KEYS},
@@ -107,6 +110,8 @@ class TMeasyParams(NamedTuple):
     longitudinal: tuple  # (SlipCurve at FZ_NOM, SlipCurve at 2 FZ_NOM)
     lateral: tuple
     trail: tuple  # (Trail at FZ_NOM, Trail at 2 FZ_NOM)
+    #: the rolling resistance's load-centre shift [m]: ``[ROLLING_COEFFICIENTS] QSY1`` R0
+    rolling_resistance: float = 0.0
 
 
 # --- the property file ---------------------------------------------------------------------
@@ -210,7 +215,25 @@ def tmeasy_params(tyre) -> TMeasyParams:
     return TMeasyParams(nominal, maximum, float(tyre.unloaded_radius), d1, d2,
                         (_slip_curve(tir, "x", 1), _slip_curve(tir, "x", 2)),
                         (_slip_curve(tir, "y", 1), _slip_curve(tir, "y", 2)),
-                        (_trail(tir, 1), _trail(tir, 2)))
+                        (_trail(tir, 1), _trail(tir, 2)), rolling_lever(tyre))
+
+
+def rolling_lever(tyre) -> float:
+    """The rolling resistance's load-centre shift [m] of a TMeasy or TMsimple file: its
+    coefficient ``[ROLLING_COEFFICIENTS] QSY1`` (Chrono's "Rolling Resistance Coefficient")
+    times the unloaded radius (:mod:`.rolling_resistance`); 0 without one."""
+    tir = tyre.tir
+    coefficient = tir.number(ROLLING_SECTION, "QSY1", 0.0)
+    if not coefficient >= 0.0:
+        raise _refuse(tir, ROLLING_SECTION, "QSY1", "expected a rolling resistance coefficient >= 0")
+    return coefficient * float(tyre.unloaded_radius)
+
+
+@nb.njit(cache=True)
+def tmeasy_rolling_moment(params, fz, fx, v_long, omega, kappa, gamma):
+    """The rolling resistance moment [N m] of TMeasy and TMsimple (Chrono's
+    ``-c Fz R0 tanh(omega)``, :func:`.rolling_resistance.rolling_resistance_moment`)."""
+    return rolling_resistance_moment(params.rolling_resistance, fz, omega)
 
 
 def tmeasy_entries(nominal_load, max_load, longitudinal, lateral, trail):
@@ -426,4 +449,5 @@ def tmeasy_wheel_forces(tp, fz, v_long, v_slip_x, v_slip_y, gamma):
 
 register_handling(HandlingModel("tmeasy", TMeasyParams, tmeasy_params, tmeasy_wheel_forces,
                                 "TMeasy (Rill; Chrono's 2023 template), combined slip",
-                                rolling_radius=tmeasy_rolling_radius))
+                                rolling_radius=tmeasy_rolling_radius,
+                                rolling_resistance=tmeasy_rolling_moment))

@@ -26,7 +26,8 @@ from ...errors import InputError
 from ..registry import HandlingModel, register_handling
 from .slip import DKAPPA, VXLOW, slip
 from .tmeasy import (CURVE_SECTIONS, DEFAULT_MAX_LOAD_RATIO, LOAD_SECTION, load_quadratic,
-                     tmeasy_rolling_radius, tmeasy_slip, vertical_coefficients)
+                     rolling_lever, tmeasy_rolling_moment, tmeasy_rolling_radius, tmeasy_slip,
+                     vertical_coefficients)
 
 
 class SimpleCurve(NamedTuple):
@@ -49,6 +50,8 @@ class TMsimpleParams(NamedTuple):
     d2: float
     longitudinal: tuple
     lateral: tuple
+    #: the rolling resistance's load-centre shift [m] (:func:`.tmeasy.rolling_lever`)
+    rolling_resistance: float = 0.0
 
 
 def _curve(tir, direction: str, level: int) -> SimpleCurve:
@@ -84,7 +87,7 @@ def tmsimple_params(tyre) -> TMsimpleParams:
     d1, d2 = vertical_coefficients(tyre.vertical_law)
     return TMsimpleParams(nominal, maximum, float(tyre.unloaded_radius), d1, d2,
                           (_curve(tir, "x", 1), _curve(tir, "x", 2)),
-                          (_curve(tir, "y", 1), _curve(tir, "y", 2)))
+                          (_curve(tir, "y", 1), _curve(tir, "y", 2)), rolling_lever(tyre))
 
 
 @nb.njit(cache=True)
@@ -141,4 +144,5 @@ def tmsimple_wheel_forces(tp, fz, v_long, v_slip_x, v_slip_y, gamma):
 
 register_handling(HandlingModel("tmsimple", TMsimpleParams, tmsimple_params, tmsimple_wheel_forces,
                                 "TMsimple (Hirschberg; Chrono's 2023 template), no aligning moment",
-                                rolling_radius=tmeasy_rolling_radius))
+                                rolling_radius=tmeasy_rolling_radius,
+                                rolling_resistance=tmeasy_rolling_moment))

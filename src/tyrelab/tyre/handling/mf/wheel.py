@@ -12,6 +12,7 @@ from ..slip import DKAPPA, slip
 from . import coefficient_index as C
 from .geometry import free_radius, radius_drop
 from .kernel import MFO, mf_forces, mf_relaxation_lengths
+from .moments import rolling_resistance
 
 #: the MFeval use mode the rigs run (limit checks and low-speed model on)
 RIG_USE_MODE = 111
@@ -79,7 +80,19 @@ def mf_wheel_relaxation(params, fz, v_long, gamma):
                                  params.pressure)
 
 
+@nb.njit(cache=True)
+def mf_rolling_moment(params, fz, fx, v_long, omega, kappa, gamma):
+    """The Magic Formula's rolling resistance moment My [N m] (:func:`.moments.rolling_resistance`:
+    QSY1-QSY8, as MFeval), at the load, longitudinal force, speed and the rigs' slip (given
+    with the Magic Formula's sign, as :func:`mf_wheel_forces` gives it)."""
+    c = params.coefficients
+    pressure = params.pressure if params.pressure > 0.0 else c[C.INFLPRES]
+    sense = 1.0 if v_long >= 0.0 else -1.0
+    return rolling_resistance(c, fz, fx, sense * kappa, gamma, v_long, pressure)
+
+
 register_handling(HandlingModel("mf", MagicFormulaParams, magic_formula_params, mf_wheel_forces,
                                 "Magic Formula 5.2 / 6.1 / 6.2 (MFeval 4.3.1 agreement)",
                                 rolling_radius=mf_rolling_radius,
-                                relaxation_lengths=mf_wheel_relaxation))
+                                relaxation_lengths=mf_wheel_relaxation,
+                                rolling_resistance=mf_rolling_moment))
