@@ -66,9 +66,10 @@ class TyreModel:
         enveloping model, ``n_segments`` for the ring).
     relaxation : str or (float, float)
         Transient slip of the handling forces (:mod:`.handling.relaxation`):
-        ``"auto"`` as the property file asks (a Magic Formula file's
-        ``USE_MODE`` +10), ``"off"``, ``"file"`` (the handling model's own
-        relaxation lengths) or two lengths ``(sigma_kappa, sigma_alpha)`` [m].
+        ``"auto"`` as the property file asks (its ``USE_MODE`` +10, for a
+        handling model with lengths of its own: the Magic Formula, Fiala),
+        ``"off"``, ``"file"`` (the handling model's own relaxation lengths) or
+        two lengths ``(sigma_kappa, sigma_alpha)`` [m].
         The ring's tread makes its own transients and takes no handling model.
     """
 
@@ -157,10 +158,10 @@ class TyreModel:
         slip, carcass = 0.0, (0.0, 0.0)
         if load > 0 and speed > 0 and self.handling != "none":
             deflection, spin, slip, carcass = self._torque_free(load, float(speed), deflection,
-                                                                spin)
+                                                                spin, params)
         return Equilibrium(deflection, spin, self.initial_state(load, params), slip, carcass)
 
-    def _torque_free(self, load: float, speed: float, deflection: float, spin: float):
+    def _torque_free(self, load: float, speed: float, deflection: float, spin: float, params):
         """``(deflection, spin, slip, carcass)`` where the wheel's moment about its axle
         vanishes (and the transient slip's steady carcass deflections there), from
         the spin at ``speed / R`` (:meth:`_free_rolling`): a handling model whose force is not
@@ -170,11 +171,13 @@ class TyreModel:
         road, steady slip, to 1e-9 of ``load R0``; the deflection follows the spin (the law's
         speed stiffening). A wheel already free (no offset, no rolling resistance) keeps its
         spin exactly. The carcass's longitudinal deflection is ``-sigma_kappa kappa`` at the
-        load the wheel carries there (its lengths may depend on it)."""
+        load the wheel carries there (its lengths may depend on it). ``params`` the contact
+        record on a flat road."""
         from .handling.relaxation import no_lag
         from .wheel import WheelLoads, loads_table, pose
         r0 = self.tyre.unloaded_radius
-        wheel = self.wheel(Flat().grid(), load)._replace(lag=no_lag())
+        wheel = Wheel(self.tyre.vertical_law, params, self.handling_params(), Flat().grid().surface(),
+                      self.initial_state(load, params), no_lag())
         tolerance = 1e-9 * load * r0
         slip = 0.0
         for _ in range(MAX_TORQUE_FREE_STEPS):

@@ -38,12 +38,10 @@ from ..core.named_index import named_index
 from ..core.vec3 import cross, dot, unit
 from ..road.terrain import terrain_contact, terrain_friction, terrain_is_rigid
 from .handling.relaxation import SlipLag, lagged, relaxation_lengths
-from .handling.slip import slip
+from .handling.slip import VXLOW, slip  # the slips' low-speed floor, one value for both
 from .registry import contact_by_record, handling_by_record
 from .vertical import VerticalLaw, normal_force
 
-#: speed below which slip is computed with this speed instead [m/s]
-VXLOW = 1.0
 #: the fixed point of a load that softens with its forces (MF-Tyre's Q_FCX, Q_FCY): at most
 #: this many passes, done when the load moves by less than this fraction of itself
 MAX_SOFTENING_PASSES = 60

@@ -120,8 +120,9 @@ def slip_lag(tyre, handling, relaxation="auto") -> SlipLag:
     """The :class:`SlipLag` of ``tyre`` under the handling model ``handling`` (registry
     record) for a ``relaxation`` of:
 
-    * ``"auto"``: the file's own lengths where the file asks for relaxation (a Magic
-      Formula file's ``USE_MODE`` with +10, :func:`use_mode_relaxes`), else none;
+    * ``"auto"``: the model's own lengths where the file asks for relaxation (its
+      ``USE_MODE`` with +10, :func:`use_mode_relaxes`; the Magic Formula's files carry it,
+      ADAMS's Fiala files may), else none;
     * ``"off"``: none (steady-state slip);
     * ``"file"``: the handling model's own lengths (refused for a model without them);
     * ``(sigma_kappa, sigma_alpha)``: constant lengths [m], 0 for none that way.

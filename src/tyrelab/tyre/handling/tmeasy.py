@@ -215,10 +215,10 @@ def tmeasy_params(tyre) -> TMeasyParams:
     return TMeasyParams(nominal, maximum, float(tyre.unloaded_radius), d1, d2,
                         (_slip_curve(tir, "x", 1), _slip_curve(tir, "x", 2)),
                         (_slip_curve(tir, "y", 1), _slip_curve(tir, "y", 2)),
-                        (_trail(tir, 1), _trail(tir, 2)), rolling_lever(tyre))
+                        (_trail(tir, 1), _trail(tir, 2)), rolling_resistance_shift(tyre))
 
 
-def rolling_lever(tyre) -> float:
+def rolling_resistance_shift(tyre) -> float:
     """The rolling resistance's load-centre shift [m] of a TMeasy or TMsimple file: its
     coefficient ``[ROLLING_COEFFICIENTS] QSY1`` (Chrono's "Rolling Resistance Coefficient")
     times the unloaded radius (:mod:`.rolling_resistance`); 0 without one."""

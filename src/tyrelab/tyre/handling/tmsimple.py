@@ -26,8 +26,8 @@ from ...errors import InputError
 from ..registry import HandlingModel, register_handling
 from .slip import DKAPPA, VXLOW, slip
 from .tmeasy import (CURVE_SECTIONS, DEFAULT_MAX_LOAD_RATIO, LOAD_SECTION, load_quadratic,
-                     rolling_lever, tmeasy_rolling_moment, tmeasy_rolling_radius, tmeasy_slip,
-                     vertical_coefficients)
+                     rolling_resistance_shift, tmeasy_rolling_moment, tmeasy_rolling_radius,
+                     tmeasy_slip, vertical_coefficients)
 
 
 class SimpleCurve(NamedTuple):
@@ -50,7 +50,7 @@ class TMsimpleParams(NamedTuple):
     d2: float
     longitudinal: tuple
     lateral: tuple
-    #: the rolling resistance's load-centre shift [m] (:func:`.tmeasy.rolling_lever`)
+    #: the rolling resistance's load-centre shift [m] (:func:`.tmeasy.rolling_resistance_shift`)
     rolling_resistance: float = 0.0
 
 
@@ -87,7 +87,7 @@ def tmsimple_params(tyre) -> TMsimpleParams:
     d1, d2 = vertical_coefficients(tyre.vertical_law)
     return TMsimpleParams(nominal, maximum, float(tyre.unloaded_radius), d1, d2,
                           (_curve(tir, "x", 1), _curve(tir, "x", 2)),
-                          (_curve(tir, "y", 1), _curve(tir, "y", 2)), rolling_lever(tyre))
+                          (_curve(tir, "y", 1), _curve(tir, "y", 2)), rolling_resistance_shift(tyre))
 
 
 @nb.njit(cache=True)
