@@ -8,6 +8,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 from ..signal import CHANNELS  # noqa: E402
+from .study_figures import load_text  # noqa: E402
 
 X_AXES = {"time": ("RUNTIME", "time [s]"), "distance": ("DISTANCE", "distance [m]")}
 
@@ -45,7 +46,7 @@ def plot_runs(runs, labels=None, channel="FZW", x="time", ax=None, title=None):
     if title is None and meta:
         speed = meta.get("speed_m_s")
         title = f"{desc}: {meta.get('road', '')}" + (f", {speed * 3.6:.0f} km/h" if speed else "") + \
-                (f", {meta.get('load_case')}" if meta.get("load_case") else "")
+                (f", {load_text(meta.get('load_case'))}" if meta.get("load_case") else "")
     if title:
         ax.set_title(title)
     if len(runs) > 1 or labels:

@@ -23,7 +23,7 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
-from .study_figures import _layout, title_text
+from .study_figures import _layout, load_text, title_text
 from .study_sections import esc, frame_html
 
 #: the condition of a soil test: one figure and one table each
@@ -33,17 +33,10 @@ PANELS = (("FX", "drawbar pull [kN]", 1e-3), ("TORQUE", "driving torque [kN m]",
           ("SINKAGE", "sinkage [mm]", 1e3))
 
 
-def _load_text(load) -> str:
-    try:
-        return f"{float(load):g} N"
-    except (TypeError, ValueError):
-        return str(load)
-
-
 def condition_title(rows: pd.DataFrame) -> str:
     """``"LETE sand slip curve: LETE sand, 3.6 km/h, 23300 N"`` (with the tyre when several)."""
     r = rows.iloc[0]
-    return f"{r['test']}: {r['soil']}, {float(r['speed_kmh']):g} km/h, {_load_text(r['load'])}"
+    return f"{r['test']}: {r['soil']}, {float(r['speed_kmh']):g} km/h, {load_text(r['load'])}"
 
 
 def reference_text(rows: pd.DataFrame) -> str:

@@ -65,8 +65,12 @@ def _e(x) -> str:
 
 
 def load_text(load) -> str:
-    """A load case as written: ``"LC1"``, or a wheel load in N."""
-    return f"{load:g} N" if isinstance(load, (int, float, np.number)) else str(load)
+    """A load case as written: ``"LC1"``, or a wheel load in N (given as a number or as the
+    text of one, as a run's metadata keeps it: ``"4000.0"`` -> ``"4000 N"``)."""
+    try:
+        return f"{float(load):g} N"
+    except (TypeError, ValueError):
+        return str(load)
 
 
 def condition_text(test, speed, load) -> str:
