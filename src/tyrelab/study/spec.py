@@ -239,6 +239,8 @@ def _relaxation(ck: Checker, raw, path, tyres, handling):
     from ..tyre.registry import handling_model
 
     value = tuple(raw) if isinstance(raw, list) else raw
+    if value == "auto":  # always possible (and the default: no tyre's handling looked up)
+        return value
     if not isinstance(value, (str, tuple)):
         ck.fail(path, f"expected \"auto\", \"off\", \"file\" or two lengths in metres "
                       f"[sigma_kappa, sigma_alpha], got {describe_value(raw)}")
