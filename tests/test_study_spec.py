@@ -184,6 +184,24 @@ def test_a_models_relaxation_reaches_its_runs_and_their_keys(tmp_path):
         assert b.simulate_kwargs().get("relaxation") == (None if same else (0.3, 0.5))
 
 
+def test_a_run_key_says_which_transient_slip_is_simulated(tmp_path):
+    """MFeval's MF 5.2 example asks for relaxation (USE_MODE 14): under the default "auto" its
+    Magic Formula runs lag, and their keys say so ("file"); with "off" they are steady, and
+    their keys are those of a run key made without a transient slip (a store made before it
+    existed, when such runs were steady, still serves them; the lagged ones are run again)."""
+    from tyrelab.study.keys import run_key, tyre_digest
+
+    mf52 = Path(__file__).parent / "data" / "mfeval" / "MagicFormula52_Parameters.tir"
+    text = edit(8, f'file = "{mf52}"', edit(9, "", edit(14, 'stiffness = "linear"\nhandling = "mf"')))
+    auto = parse(text, tmp_path)
+    off = parse(text.replace('handling = "mf"', 'handling = "mf"\nrelaxation = "off"'), tmp_path)
+    run = {spec: next(r for r in spec.runs() if r.model.name == "A") for spec in (auto, off)}
+    digest = tyre_digest(run[auto].tyre)
+    assert auto.run_keys()[run[auto]] == run_key(run[auto], digest, "file")
+    assert off.run_keys()[run[off]] == run_key(run[off], digest)
+    assert auto.run_keys()[run[auto]] != off.run_keys()[run[off]]
+
+
 # ---------------------------------------------------------------------------
 # every class of bad spec: one line naming file, line, key, what was expected
 

@@ -21,7 +21,7 @@ from typing import TYPE_CHECKING
 from .._version import __version__
 
 if TYPE_CHECKING:
-    from .records import RunSpec, TyreSpec
+    from .records import ModelSpec, RunSpec, TyreSpec
 
 
 def _data_bytes(package: str, name: str) -> bytes:
@@ -125,12 +125,31 @@ def _load_identity(load):
     return float(load)
 
 
-def run_key(run: RunSpec, tyre_digest: str) -> str:
+def relaxation_in_effect(tyre: TyreSpec, model: ModelSpec) -> str:
+    """The transient slip a run of ``model`` on ``tyre`` simulates, in the words of its
+    metadata (:attr:`tyrelab.tyre.model.TyreModel.relaxation_used`): ``"off"``, ``"file"``
+    or the two lengths; ``"auto"`` resolved against the tyre's file."""
+    import warnings
+
+    from ..api import default_handling
+    from ..tyre.library import load_tyre
+    from ..tyre.model import TyreModel
+
+    with warnings.catch_warnings():  # the spec's check has said what the file lacks
+        warnings.simplefilter("ignore")
+        t = load_tyre(tyre.file, tyre.pressure)
+        handling = model.handling or default_handling(t)
+    return TyreModel(t, model.contact, handling, relaxation=model.relaxation).relaxation_used
+
+
+def run_key(run: RunSpec, tyre_digest: str, relaxation: str = "off") -> str:
     """A short stable key (16 hex digits) of everything that determines a run's result.
 
     SHA-256 of a canonical JSON of: ``tyre_digest`` (pass
     :func:`tyre_digest` of ``run.tyre``: the tyre's parameter content, not
-    its label) and pressure; the model's contact, stiffness, handling and options;
+    its label) and pressure; the model's contact, stiffness, handling and options, and the
+    transient slip in effect (``relaxation``, :func:`relaxation_in_effect`; only when not
+    ``"off``, so the keys of steady runs are those of before it existed);
     the road (its name, or a ``.crg`` file's content digest and offset);
     the speed [m/s]; the load (a load case with its ballast and wheel mass
     from Table 3-4, or the force [N]); the rig (and the trailer's left-wheel model when
@@ -149,9 +168,7 @@ def run_key(run: RunSpec, tyre_digest: str) -> str:
                   "handling": run.model.handling,
                   # only when set, so the keys of runs without options are those of before
                   **({"options": dict(run.model.options)} if run.model.options else {}),
-                  # as options: the keys of runs as the file asks stay as they were
-                  **({"relaxation": run.model.relaxation} if run.model.relaxation != "auto"
-                     else {})},
+                  **({"relaxation": relaxation} if relaxation != "off" else {})},
         "road": _road_identity(run.road),
         "speed": float(run.speed),
         "load": _load_identity(run.load),

@@ -12,7 +12,7 @@ from pathlib import Path
 
 from ..resources import model_cost
 from ..rig.registry import rig_named
-from .keys import run_key, tyre_digest
+from .keys import relaxation_in_effect, run_key, tyre_digest
 
 
 @dataclass(frozen=True)
@@ -271,9 +271,13 @@ class StudySpec:
         return None
 
     def run_keys(self) -> dict[RunSpec, str]:
-        """:func:`run_key` of every run (each tyre's digest computed once)."""
+        """:func:`run_key` of every run (each tyre's digest and each tyre and model's transient
+        slip found once)."""
         digests = {tyre: tyre_digest(tyre) for tyre in self.tyres}
-        return {run: run_key(run, digests[run.tyre]) for run in self.runs()}
+        lags = {(tyre, model): relaxation_in_effect(tyre, model)
+                for tyre in self.tyres for model in self.models}
+        return {run: run_key(run, digests[run.tyre], lags[run.tyre, run.model])
+                for run in self.runs()}
 
 
 #: length assumed for a road run to its end (the thesis tracks are 100 m)

@@ -106,7 +106,7 @@ def _relaxation_lengths(handling, lag, fz, v_long, gamma):
 
 
 def use_mode_relaxes(tir) -> bool:
-    """True when a Magic Formula file's ``USE_MODE`` asks for relaxation: its tens digit
+    """True when a property file's ``USE_MODE`` asks for relaxation: its tens digit
     1 (linear relaxation), 2 (non-linear) or 3 (rigid-ring dynamics) -- the MF-Tyre/ADAMS
     convention (``+10``: including relaxation behaviour, as the files' own header says);
     the sign (mirroring) and the hundreds (contact method) are not read."""
