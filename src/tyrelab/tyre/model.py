@@ -21,10 +21,10 @@ from ..core.named_index import named_index
 from ..road.grid import RoadGrid
 from ..road.obstacles import Flat
 from ..road.spec import road_from_spec
-from .handling.relaxation import SlipLag, slip_lag
+from .handling.relaxation import SlipLag, no_lag, slip_lag
 from .params import Tyre
 from .registry import ContactModel, HandlingModel, contact_model, handling_model
-from .wheel import ContactGeometry, Wheel, WheelPose, contact_geometry
+from .wheel import ContactGeometry, Wheel, WheelLoads, WheelPose, contact_geometry, loads_table, pose
 
 
 #: Newton steps at most to the spin of a freely rolling wheel (:meth:`TyreModel._torque_free`)
@@ -173,8 +173,6 @@ class TyreModel:
         spin exactly. The carcass's longitudinal deflection is ``-sigma_kappa kappa`` at the
         load the wheel carries there (its lengths may depend on it). ``params`` the contact
         record on a flat road."""
-        from .handling.relaxation import no_lag
-        from .wheel import WheelLoads, loads_table, pose
         r0 = self.tyre.unloaded_radius
         wheel = Wheel(self.tyre.vertical_law, params, self.handling_params(), Flat().grid().surface(),
                       self.initial_state(load, params), no_lag())

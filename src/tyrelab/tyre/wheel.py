@@ -338,7 +338,7 @@ def analytic_wheel_step(wheel, pose, geo, dt):
         ax_r, ay_r, az_r = cross(ax, ay, az, rx, ry, rz)
         softens = wheel.law.force_softening_x != 0.0 or wheel.law.force_softening_y != 0.0
         lag = wheel.lag
-        lags = lag.from_model or lag.length_x > 0.0 or lag.length_y > 0.0
+        lags = lag.from_model or lag.length_x > 0.0 or lag.length_y > 0.0  # SlipLag.active
         u1 = lag.deflection[0]
         v1 = lag.deflection[1]
         gain = 1.0
