@@ -40,11 +40,9 @@ class Equilibrium(NamedTuple):
     spin: float
     #: the model's internal state (empty for analytic models)
     state: object
-    #: the longitudinal slip [-] of that free rolling (a handling model's force offsets and
-    #: rolling resistance need a little)
-    slip: float = 0.0
     #: the transient slip's carcass deflections ``(u, v)`` [m] in that free rolling
-    #: (:mod:`.handling.relaxation`: ``u = -sigma_kappa kappa``)
+    #: (:mod:`.handling.relaxation`: ``u = -sigma_kappa kappa``, the little slip a handling
+    #: model's force offsets and rolling resistance need; :meth:`TyreModel._torque_free`)
     carcass: tuple = (0.0, 0.0)
 
 
@@ -155,14 +153,14 @@ class TyreModel:
             deflection, spin, state = hook(self.tyre, load, float(speed), params, **self.options)
             return Equilibrium(float(deflection), float(spin), state)
         deflection, spin = self._free_rolling(load, float(speed))
-        slip, carcass = 0.0, (0.0, 0.0)
+        carcass = (0.0, 0.0)
         if load > 0 and speed > 0 and self.handling != "none":
-            deflection, spin, slip, carcass = self._torque_free(load, float(speed), deflection,
-                                                                spin, params)
-        return Equilibrium(deflection, spin, self.initial_state(load, params), slip, carcass)
+            deflection, spin, carcass = self._torque_free(load, float(speed), deflection, spin,
+                                                          params)
+        return Equilibrium(deflection, spin, self.initial_state(load, params), carcass)
 
     def _torque_free(self, load: float, speed: float, deflection: float, spin: float, params):
-        """``(deflection, spin, slip, carcass)`` where the wheel's moment about its axle
+        """``(deflection, spin, carcass)`` where the wheel's moment about its axle
         vanishes (and the transient slip's steady carcass deflections there), from
         the spin at ``speed / R`` (:meth:`_free_rolling`): a handling model whose force is not
         zero at zero slip (the Magic Formula's offsets SHx, SVx) or that has a rolling
@@ -190,7 +188,7 @@ class TyreModel:
         length = lag.length_x
         if lag.from_model:
             length = self.handling_model.relaxation_lengths(wheel.handling, loads.fzw, speed, 0.0)[0]
-        return deflection, spin, slip, (-length * slip if lag.active else 0.0, 0.0)
+        return deflection, spin, (-length * slip if lag.active else 0.0, 0.0)
 
     def _free_rolling(self, load: float, speed: float) -> tuple[float, float]:
         """``(deflection, spin)`` of an analytic model's wheel carrying ``load`` [N] rolling

@@ -69,6 +69,11 @@ def no_lag() -> SlipLag:
     return SlipLag(False, 0.0, 0.0, np.zeros(2))
 
 
+def own_lag() -> SlipLag:
+    """The handling model's own relaxation lengths, at each step's load."""
+    return SlipLag(True, 0.0, 0.0, np.zeros(2))
+
+
 @nb.njit(cache=True)
 def lagged(deflection, length, v_slip, v_ref, dt):
     """``(u1, V_s', gain)``: the deflection ``u1`` after a step ``dt`` [s] of
@@ -141,10 +146,8 @@ def slip_lag(tyre, handling, relaxation="auto") -> SlipLag:
                 raise InputError(f"'file': the '{handling.name}' handling model has no "
                                  "relaxation lengths of its own; give two lengths in metres "
                                  "'SIGMA_KAPPA,SIGMA_ALPHA'", field=field)
-            return SlipLag(True, 0.0, 0.0, np.zeros(2))
-        if own and use_mode_relaxes(tyre.tir):
-            return SlipLag(True, 0.0, 0.0, np.zeros(2))
-        return no_lag()
+            return own_lag()
+        return own_lag() if own and use_mode_relaxes(tyre.tir) else no_lag()
     try:
         lengths = [float(v) for v in relaxation]
     except (TypeError, ValueError):
