@@ -131,15 +131,13 @@ def relaxation_in_effect(tyre: TyreSpec, model: ModelSpec) -> str:
     or the two lengths; ``"auto"`` resolved against the tyre's file."""
     import warnings
 
-    from ..api import default_handling
-    from ..tyre.library import load_tyre
-    from ..tyre.model import TyreModel
+    from ..api import make_tyre_model
 
     with warnings.catch_warnings():  # the spec's check has said what the file lacks
         warnings.simplefilter("ignore")
-        t = load_tyre(tyre.file, tyre.pressure)
-        handling = model.handling or default_handling(t)
-    return TyreModel(t, model.contact, handling, relaxation=model.relaxation).relaxation_used
+        return make_tyre_model(tyre.file, model.contact, tyre.pressure, model.stiffness,
+                               model.handling, dict(model.options) or None,
+                               model.relaxation).relaxation_used
 
 
 def run_key(run: RunSpec, tyre_digest: str, relaxation: str = "off") -> str:
