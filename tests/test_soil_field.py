@@ -23,7 +23,7 @@ def paving():
 
 
 def test_a_moved_window_keeps_the_state_of_the_nodes_it_still_holds(paving):
-    """Every node the window holds before and after a move keeps its rut, shear displacement and
+    """Every node the window holds before and after a move keeps its rut, mobilized shear and
     stress exactly; every node it newly holds is fresh soil on the road's height at that node
     (the road's own bilinear height, less the level); the nodes stay on one lattice, and the
     window then holds the box asked for. A box it holds already moves nothing."""
@@ -31,10 +31,10 @@ def test_a_moved_window_keeps_the_state_of_the_nodes_it_still_holds(paving):
     bed = field.bed
     rng = np.random.default_rng(7)
     bed.ground.z[:] = bed.base - 0.02 * rng.random(bed.base.shape)
-    bed.j[:] = rng.random(bed.j.shape)           # both components of every node's j
+    bed.shear[:] = rng.random(bed.shear.shape)   # both components of every node's shear
     bed.sigma[:] = 1e5 * rng.random(bed.base.shape)
     before = {(round((bed.x0 + i * bed.dx) / 0.02), round((bed.y0 + k * bed.dy) / 0.02)):
-              (bed.ground.z[i, k], tuple(bed.j[i, k]), bed.sigma[i, k])
+              (bed.ground.z[i, k], tuple(bed.shear[i, k]), bed.sigma[i, k])
               for i in range(bed.base.shape[0]) for k in range(bed.base.shape[1])}
     assert field.cover(19.8, 20.1, 0.1, 0.5) is None                   # held already
     new = field.cover(20.1, 20.6, -0.2, 0.1, toward=(0.8, -0.6), behind=0.1)
@@ -50,12 +50,12 @@ def test_a_moved_window_keeps_the_state_of_the_nodes_it_still_holds(paving):
             node = (round(x / 0.02), round(y / 0.02))
             assert abs(x / 0.02 - node[0]) < 1e-6 and abs(y / 0.02 - node[1]) < 1e-6  # the lattice
             if node in before:
-                assert (new.ground.z[i, k], tuple(new.j[i, k]), new.sigma[i, k]) == before[node]
+                assert (new.ground.z[i, k], tuple(new.shear[i, k]), new.sigma[i, k]) == before[node]
                 kept += 1
             else:
                 assert new.base[i, k] == pytest.approx(float(paving.height(x, y)) - level, abs=1e-12)
                 assert new.ground.z[i, k] == new.base[i, k]
-                assert not new.j[i, k].any() and new.sigma[i, k] == 0.0
+                assert not new.shear[i, k].any() and new.sigma[i, k] == 0.0
                 fresh += 1
     assert kept > 100 and fresh > 100
 

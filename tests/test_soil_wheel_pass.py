@@ -34,16 +34,15 @@ def _rough():
 
 
 def _worn():
-    """A level bed whose nodes differ only in their rut, their undisturbed height or their shear
-    displacement,
-    each taking one of three values (so neighbours are now alike, now not): ruts of 0, 29 and
+    """A level bed whose nodes differ only in their rut, their undisturbed height or their mobilized
+    shear, each taking one of three values (so neighbours are now alike, now not): ruts of 0, 29 and
     29.5 mm, so a wheel 30 mm deep reloads some nodes elastically and presses others into
     yield."""
     rng = np.random.default_rng(11)
     h0 = 0.0005 * rng.integers(0, 2, (201, 101))      # the surface the same, the rut 0.5 mm apart
     bed = soil_bed(load_soil("sandy-loam")[0], RoadGrid(-1.0, -1.0, 0.02, 0.02, h0))
     bed.ground.z[:] = -np.array([0.0, 0.029, 0.0295])[rng.integers(0, 3, bed.h0.shape)]
-    bed.j[:, ::2, 0] = 0.02 * rng.integers(0, 3, bed.j[:, ::2, 0].shape)
+    bed.shear[:, ::2, 0] = 0.02 * rng.integers(0, 3, bed.shear[:, ::2, 0].shape)
     return bed
 
 
@@ -84,4 +83,4 @@ def test_rolling_straight_the_rows_give_what_the_nodes_give(make, flat):
             size = max(abs(a[f]), 1.0)
         assert a[f] == pytest.approx(b[f], abs=1e-7 * size), f
     np.testing.assert_allclose(straight.ground.z, yawed.ground.z, rtol=0, atol=1e-9)
-    np.testing.assert_allclose(straight.j, yawed.j, rtol=0, atol=1e-9)
+    np.testing.assert_allclose(straight.shear, yawed.shear, rtol=0, atol=1e-9)

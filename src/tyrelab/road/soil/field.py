@@ -7,7 +7,7 @@ The rigs drive straight along x, so their soil is a strip that moves forward onl
 ``size`` x ``size`` metres of a soil laid over the whole plane, on one lattice of nodes
 ``(x_anchor + i dx, y_anchor + k dy)`` (``i``, ``k`` any integers). When the wheel needs soil
 outside the window (:meth:`SoilField.cover`), the window moves: the nodes it still holds keep
-their state (rut, shear displacement, stress), the nodes it newly holds are laid fresh from the
+their state (rut, mobilized shear, stress), the nodes it newly holds are laid fresh from the
 road's heights, and the nodes it leaves are forgotten (a wheel coming back there finds fresh
 soil). Node ``(i, k)`` is always at the same place, so a node's undisturbed height does not
 change when the window moves. Project Chrono's SCM keeps every node a wheel has touched (a hash
@@ -24,7 +24,7 @@ import numpy as np
 
 from ...errors import InputError
 from .params import Soil
-from .scm import BED_SPACING, bed_record, check_bed_memory, shear_displacement
+from .scm import BED_SPACING, bed_record, check_bed_memory, no_shear
 
 #: side of the square of soil held at once [m]: 601 x 601 nodes at 2 cm (12 MB); the wheel
 #: drives about 6 m between moves
@@ -65,7 +65,7 @@ class SoilField:
         h0 = base.copy() if self.soil.bulldozing else base
         return bed_record(self.soil, self.x_anchor + first[0] * self.spacing,
                           self.y_anchor + first[1] * self.spacing, self.spacing, self.spacing,
-                          base, h0, base.copy(), shear_displacement(base.shape), np.zeros_like(base))
+                          base, h0, base.copy(), no_shear(base.shape), np.zeros_like(base))
 
     def held(self) -> tuple[float, float, float, float]:
         """The window held now: ``(x_lo, x_hi, y_lo, y_hi)`` of its outer nodes [m]."""
@@ -124,7 +124,7 @@ class SoilField:
             src = (slice(a[0] - self.first[0], b[0] - self.first[0]),
                    slice(a[1] - self.first[1], b[1] - self.first[1]))
             new.ground.z[dst] = old.ground.z[src]
-            new.j[dst] = old.j[src]
+            new.shear[dst] = old.shear[src]
             new.sigma[dst] = old.sigma[src]
             if self.soil.bulldozing:
                 new.h0[dst] = old.h0[src]

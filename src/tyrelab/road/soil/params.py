@@ -29,7 +29,8 @@ The equations these parameters enter (:mod:`tyrelab.road.soil.scm`):
   smaller dimension of the contact patch [m], ``z`` the sinkage [m];
 * shear strength, Mohr-Coulomb: ``tau_max = c + p tan(phi)``;
 * shear stress-displacement, Janosi & Hanamoto (1961):
-  ``tau = tau_max (1 - exp(-j / K))``, ``j`` the shear displacement [m];
+  ``tau = tau_max (1 - exp(-j / K))``, ``j`` the shear displacement [m] slid one way
+  (sliding back, the shear reverses by Dahl's law: :func:`tyrelab.road.soil.scm.mobilized_shear`);
 * elastic unloading and reloading (Krenn & Hirzinger 2009; Chrono SCM): below the
   largest sinkage reached, ``p`` falls and rises along the line of slope
   ``elastic_stiffness`` [Pa/m].

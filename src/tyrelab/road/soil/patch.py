@@ -6,7 +6,7 @@ A run's soil is laid from its start; while the wheel stays inside the first
 past the bed's far end, the rig asks the patch to cover the part the chunk drives
 (:meth:`SoilPatch.follow`): the rows more than the rig's margin behind the wheel are dropped
 (their rut is forgotten: no wheel of the run comes back to them), the rows kept move to the
-front with their state (rut, shear displacement, stress) unchanged, and the new rows ahead
+front with their state (rut, mobilized shear, stress) unchanged, and the new rows ahead
 are laid fresh from the road's heights. Node ``i`` of the bed always lies at
 ``x_first + (offset + i) dx``, the node the whole run's bed would have there (up to the
 rounding of its position). Project Chrono's SCM keeps memory bounded differently (a hash map
@@ -20,7 +20,7 @@ import numpy as np
 
 from ..grid import RoadGrid
 from .params import Soil
-from .scm import bed_record, shear_displacement, soil_bed
+from .scm import bed_record, no_shear, soil_bed
 
 #: the longest stretch of soil held at once [m] (a run's first chunk and its margins fit)
 PATCH_LENGTH = 30.0
@@ -86,11 +86,11 @@ class SoilPatch:
         base = np.concatenate([b.base[drop:], fresh])
         h0 = np.concatenate([b.h0[drop:], fresh]) if b.h0 is not b.base else base
         z = np.concatenate([b.ground.z[drop:], fresh])
-        j = np.concatenate([b.j[drop:], shear_displacement(fresh.shape)])
+        shear = np.concatenate([b.shear[drop:], no_shear(fresh.shape)])
         sigma = np.concatenate([b.sigma[drop:], zeros])
         self.offset += drop
         self.bed = bed_record(self.soil, self.x_first + self.offset * self.spacing, b.y0, b.dx,
-                              b.dy, base, h0, z, j, sigma)
+                              b.dy, base, h0, z, shear, sigma)
         return self.bed
 
     def __getattr__(self, name):

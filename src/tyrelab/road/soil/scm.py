@@ -3,7 +3,7 @@
 After Krenn & Hirzinger's Soil Contact Model (2009) as Project Chrono's SCMTerrain
 implements it, with one deliberate difference. Each grid node (spacing ``dx``,
 ``dy``) keeps its undisturbed height ``h0``, its plastic sinkage ``sp`` (the rut
-left behind) and its accumulated shear displacement ``j``. Where a wheel's surface
+left behind) and its mobilized shear ``m``. Where a wheel's surface
 lies below a node's current surface the node is in contact, at total sinkage
 ``s = h0 - w`` (``w`` the wheel surface's height above the node), and carries:
 
@@ -19,16 +19,19 @@ lies below a node's current surface the node is in contact, at total sinkage
   smaller dimension, here the wheel's width;
 * a shear stress (Mohr-Coulomb strength, Janosi & Hanamoto 1961)::
 
-      tau = (c + sigma tan(phi)) (1 - exp(-|j| / K)),   j = integral of v_t dt
+      tau = (c + sigma tan(phi)) m,   dm = (dj - m |dj|) / K,   dj = v_t dt
 
   ``v_t`` the wheel surface's sliding velocity over the node, tangent to the
-  surface, accumulated while the node stays in contact, signed (two components: along
-  the tread's circumferential tangent and the axis; Wong & Reece 1967's ``j(theta)``
-  for a rigid wheel in steady state).
+  surface, while the node stays in contact; ``m`` the fraction of its strength the
+  shear has reached (two components: along the tread's circumferential tangent and
+  the axis; :func:`mobilized_shear`). Sliding one way, ``|m| = 1 - exp(-j / K)`` with
+  ``j`` the distance slid: Janosi & Hanamoto's curve, and Wong & Reece's (1967)
+  ``j(theta)`` for a rigid wheel in steady state. Sliding back, the shear reverses
+  after a short way (Dahl 1968), as soil, whose shear displacement is plastic, does.
 
 Each node's stresses act on the wheel surface element above it, whose area is the
 node's cell ``dx dy`` divided by the cosine of the surface's slope: the normal
-stress along the wheel surface's normal, the shear along its tangent against ``j``
+stress along the wheel surface's normal, the shear along its tangent against ``m``
 -- as in Wong & Reece's analysis, so the horizontal part of the
 normal stress is the compaction resistance in the drawbar pull. (Chrono's SCM
 applies the normal stress along the undisturbed terrain normal and the shear
@@ -39,6 +42,7 @@ ahead of the rut), optional: :mod:`tyrelab.road.soil.bulldozing`.
 
 from __future__ import annotations
 
+import math
 from typing import NamedTuple
 
 import numba as nb
@@ -50,7 +54,7 @@ from .params import Soil
 #: the soil bed's node spacing [m]: halving it moves the pull of the XZL's rigid wheel on LETE
 #: sand at s = 0.2 by 0.15 % and its sinkage by 1.8 %, and costs four times the time
 BED_SPACING = 0.02
-#: memory of a soil node: undisturbed height, surface, shear displacement (two components),
+#: memory of a soil node: undisturbed height, surface, mobilized shear (two components),
 #: stress
 BYTES_PER_NODE = 5 * 8
 
@@ -68,12 +72,12 @@ def check_bed_memory(nodes: int, bed: str, remedy: str, field: str) -> None:
 class SoilSurface(NamedTuple):
     """A soil bed: its parameters and the state of every node (arrays ``(nx, ny)``).
 
-    Node ``(i, j)`` sits at ``(x0 + i dx, y0 + j dy)``. ``h0`` the undisturbed height
+    Node ``(i, k)`` sits at ``(x0 + i dx, y0 + k dy)``. ``h0`` the undisturbed height
     [m] (from which its sinkage counts); ``ground`` the surface as it is now, a rigid-road
     record (:class:`~tyrelab.road.grid.RoadSurface`) whose heights ``ground.z`` are ``h0``
     less each node's plastic sinkage (the rut) and whose bounds are those of ``h0`` (the
-    soil only sinks) -- of ``base`` plus :data:`PILE_LIMIT` on a soil that bulldozes; ``j``
-    (``(nx, ny, 2)``) the shear displacement [m] accumulated in the current contact, signed:
+    soil only sinks) -- of ``base`` plus :data:`PILE_LIMIT` on a soil that bulldozes; ``shear``
+    (``(nx, ny, 2)``) the mobilized shear of the current contact (:func:`mobilized_shear`):
     along the wheel's circumferential tangent ``a x n`` and along its axis ``a``
     (:mod:`tyrelab.road.soil.wheel`); ``sigma`` the last
     normal stress [Pa] (> 0: in contact at the last step); ``zmax`` the highest of those
@@ -91,7 +95,7 @@ class SoilSurface(NamedTuple):
     dx: float
     dy: float
     h0: np.ndarray
-    j: np.ndarray
+    shear: np.ndarray
     sigma: np.ndarray
     zmax: float
     ground: RoadSurface
@@ -105,7 +109,7 @@ class SoilSurface(NamedTuple):
     def fresh_copy(self) -> "SoilSurface":
         """The bed with its own copy of every node's state (a trial that leaves no rut)."""
         h0 = self.h0.copy() if self.soil.bulldozing else self.h0
-        return self._replace(h0=h0, j=self.j.copy(), sigma=self.sigma.copy(),
+        return self._replace(h0=h0, shear=self.shear.copy(), sigma=self.sigma.copy(),
                              ground=self.ground._replace(z=self.ground.z.copy()))
 
     # the Python side of the terrain interface (tyrelab.road.terrain.Ground)
@@ -147,15 +151,15 @@ def pile_limit(soil: Soil) -> float:
 
 
 def bed_record(soil: Soil, x0: float, y0: float, dx: float, dy: float, base: np.ndarray,
-               h0: np.ndarray, z: np.ndarray, j: np.ndarray, sigma: np.ndarray) -> SoilSurface:
+               h0: np.ndarray, z: np.ndarray, shear: np.ndarray, sigma: np.ndarray) -> SoilSurface:
     """The record of a bed over nodes from ``(x0, y0)`` every ``dx``, ``dy`` [m] laid on heights
-    ``base``, in the state ``h0``, ``z`` (its surface), ``j``, ``sigma``; its bounds those
+    ``base``, in the state ``h0``, ``z`` (its surface), ``shear``, ``sigma``; its bounds those
     of ``base`` (plus :func:`pile_limit`)."""
     from ..grid import RoadGrid
     top = base + pile_limit(soil) if soil.bulldozing else base
     ground = RoadGrid(x0, y0, dx, dy, top).surface()
     ground = ground._replace(z=z, zmin=float(base.min()) - SINK_BOUND)
-    return SoilSurface(soil, float(x0), float(y0), float(dx), float(dy), h0, j, sigma,
+    return SoilSurface(soil, float(x0), float(y0), float(dx), float(dy), h0, shear, sigma,
                        float(top.max()), ground, base)
 
 
@@ -164,11 +168,11 @@ def soil_bed(soil: Soil, road_grid) -> SoilSurface:
     base = np.ascontiguousarray(road_grid.z, dtype=np.float64).copy()
     h0 = base.copy() if soil.bulldozing else base
     return bed_record(soil, road_grid.x0, road_grid.y0, road_grid.dx, road_grid.dy, base, h0,
-                      base.copy(), shear_displacement(base.shape), np.zeros_like(base))
+                      base.copy(), no_shear(base.shape), np.zeros_like(base))
 
 
-def shear_displacement(shape: tuple[int, int]) -> np.ndarray:
-    """The ``j`` of ``shape`` fresh nodes: none (both components zero)."""
+def no_shear(shape: tuple[int, int]) -> np.ndarray:
+    """The mobilized shear of ``shape`` fresh nodes: none (both components zero)."""
     return np.zeros(tuple(shape) + (2,))
 
 
@@ -206,3 +210,34 @@ def node_stress(soil, modulus, s, sp):
     if elastic < bekker:
         return elastic, sp, soil.elastic_stiffness
     return bekker, s - bekker / soil.elastic_stiffness, soil.n * bekker / s
+
+
+@nb.njit(cache=True)
+def mobilized_shear(mc, ma, dc, da, k):
+    """The mobilized shear ``m`` of a node after the wheel slid ``(dc, da)`` [m] over it
+    (along the tread's circumferential tangent and the axis), from ``(mc, ma)``: the fraction
+    of the node's strength ``c + sigma tan(phi)`` its shear stress has reached, a vector,
+    ``|m| < 1``. ``k`` Janosi's shear deformation modulus ``K`` [m].
+
+    Dahl's (1968) solid-friction law with exponent 1, in the plane::
+
+        dm = (dj - m |dj|) / K
+
+    solved exactly over the step (the sliding's direction ``e = dj / |dj|`` held)::
+
+        m' = e + (m - e) exp(-|dj| / K)
+
+    Sliding one way from rest it is Janosi & Hanamoto's (1961) curve,
+    ``|m| = 1 - exp(-j / K)``, to rounding. Where the sliding turns back, the shear falls
+    at ``(1 + |m|)`` times the fresh soil's stiffness ``tau_max / K`` and reverses after
+    ``K ln(1 + |m|)`` of sliding (at most 0.69 K): soil keeps the shear displacement it was
+    given (it is plastic, Wong, Theory of Ground Vehicles, on terrain under repetitive
+    shear), so the work of shearing it is spent, not stored to be given back.
+    """
+    d = math.sqrt(dc * dc + da * da)
+    if d == 0.0:
+        return mc, ma
+    e = math.exp(-d / k)
+    ec, ea = dc / d, da / d
+    return ec + (mc - ec) * e, ea + (ma - ea) * e
+

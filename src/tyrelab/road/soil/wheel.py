@@ -5,23 +5,29 @@ nodes' stresses): each node in contact carries its normal stress along the wheel
 surface's normal and its shear along the surface's tangent, on the surface element above
 its cell.
 
-The shear displacement ``j`` is signed (Wong & Reece 1967): each step adds the sliding
-velocity's parts along the surface's circumferential tangent ``a x n`` and along the axis
-``a``, times the step; the shear ``(c + sigma tan phi)(1 - exp(-|j| / K))`` acts against
-``j``. Where the sliding reverses inside the contact (a braked wheel whose rim slides
-backwards at entry and forwards below, a towed wheel sunk deep) the shear reverses only
-where ``j`` has come back through zero. Chrono's SCM accumulates the distance slid, whatever
-its direction, and turns the shear at once with the sliding; on dry sand a rigid wheel
-braked at s = -0.05 then pulled -8.7 kN against the signed integration's -1.0 kN, and a
-towed flexible wheel, whose flat slides by a hair either way, chattered by +-3.6 kN about
-its drag. While the sliding keeps its direction (every driven wheel) the two are the same.
+The shear follows the sliding (:func:`~tyrelab.road.soil.scm.mobilized_shear`): each step
+the sliding velocity's parts along the surface's circumferential tangent ``a x n`` and along
+the axis ``a``, times the step, move the node's mobilized shear ``m`` by Dahl's law, and the
+shear ``(c + sigma tan phi) m`` acts against it. Sliding one way it is Janosi & Hanamoto's
+``1 - exp(-j / K)``; where the sliding reverses (a braked wheel whose rim slides backwards at
+entry and forwards below, a towed wheel sunk deep, a wheel whose spin rings) the shear
+reverses after ``K ln(1 + |m|)`` of sliding back. Two other readings were tried. Chrono's
+SCM accumulates the distance slid, whatever its direction, and turns the shear at once
+with the sliding: on dry sand a rigid wheel braked at s = -0.05 pulled -8.7 kN (-1.6 kN
+here, and in Wong & Reece's integration with Dahl's reversal), and a towed flexible wheel,
+whose flat slides by a hair either way, chattered by +-3.6 kN about its drag. A signed ``j``
+read elastically on Janosi's curve (the shear back to zero only where ``j`` is) gives the
+soil back all the work of shearing it: a wheel under a constant torque then rang on the
+soil's shear without end, its slip swinging by up to +-0.4 on LETE sand and +-1.3 in snow
+about a mean off the slip curve's (now +-0.06 at most, the mean on the curve;
+``tests/test_soil_rigid_wheel.py``).
 
 The tread moves round the axis as one band at ``omega min(flat, R)``: the rigid wheel's
 rim at ``omega R``; a flexible tyre's tread on its arcs as on its flat, at
 ``omega (R - delta)``, the speed at which its contact point turns on a rigid road (the
 analytic models' loaded radius). A rim turning rigidly at ``omega R`` on the arcs would
-slide forwards over the soil wherever the flat does not, and a signed ``j`` would keep
-that as a pull at zero slip.
+slide forwards over the soil wherever the flat does not, and the shear would keep that as a
+pull at zero slip.
 
 The wheel's surface above a node depends on the node's position along the wheel's
 heading and across it. When the wheel's axis lies along the grid's rows (no camber, no
@@ -42,7 +48,7 @@ import numba as nb
 
 from ...core.vec3 import cross, unit, wheel_axes
 from .bulldozing import bulldoze
-from .scm import bekker_modulus, node_stress
+from .scm import bekker_modulus, mobilized_shear, node_stress
 
 #: the wheel surface's slope beyond which a node's cell is not scaled further: cos >= this
 MIN_COS = 0.2
@@ -221,8 +227,8 @@ def wheel_loads(bed, cx, cy, cz, ax, ay, az, vx, vy, vz, omega, radius, width, f
         # the last node's state and stresses: along the rows a node in the same state as the
         # last one (uniform ground across the wheel, a straight rut) has the same stresses
         seen = False
-        h_seen = z_seen = j_seen = ja_seen = 0.0
-        sigma = sp_new = slope = jn = jna = gx = gy = gz = 0.0
+        h_seen = z_seen = mc_seen = ma_seen = 0.0
+        sigma = sp_new = slope = mc = ma = gx = gy = gz = 0.0
         for k in range(k0, k1 + 1):
             d0y = bed.y0 + k * bed.dy - cy
             if along_rows:
@@ -234,30 +240,29 @@ def wheel_loads(bed, cx, cy, cz, ax, ay, az, vx, vy, vz, omega, radius, width, f
             surface = bed.ground.z[i, k]
             if not p.touches or abs(lateral) > 0.5 * width or cz + p.zr >= surface:
                 if update:
-                    bed.j[i, k, 0] = 0.0                     # a new contact starts afresh
-                    bed.j[i, k, 1] = 0.0
+                    bed.shear[i, k, 0] = 0.0                 # a new contact starts afresh
+                    bed.shear[i, k, 1] = 0.0
                     bed.sigma[i, k] = 0.0
                 seen = False
                 continue
-            h, j, ja = bed.h0[i, k], bed.j[i, k, 0], bed.j[i, k, 1]
-            if not (seen and h == h_seen and surface == z_seen and j == j_seen and ja == ja_seen):
+            h, m0c, m0a = bed.h0[i, k], bed.shear[i, k, 0], bed.shear[i, k, 1]
+            if not (seen and h == h_seen and surface == z_seen and m0c == mc_seen and m0a == ma_seen):
                 if not along_rows:
                     un, tx, ty, tz, vc, va, a_s = _sliding(p, cell, ax, ay, az)
                 s = h - (cz + p.zr)
                 sigma, sp_new, slope = node_stress(soil, modulus, s, h - surface)
                 sigma += soil.damping * max(0.0, un) if sigma > 0.0 else 0.0  # compressing: un > 0
-                jn, jna = j + vc * dt, ja + va * dt
-                jm = math.sqrt(jn * jn + jna * jna)
-                tau = (soil.cohesion + sigma * tanphi) * (1.0 - math.exp(-jm / soil.janosi_k)) \
+                mc, ma = mobilized_shear(m0c, m0a, vc * dt, va * dt, soil.janosi_k)
+                strength = (soil.cohesion + sigma * tanphi) \
                     if sigma > 0.0 and not (normal_only and p.on_flat) else 0.0
                 gx, gy, gz = -sigma * a_s * p.nx, -sigma * a_s * p.ny, -sigma * a_s * p.nz
-                if jm > 0.0:
-                    # against j = jn (a x n) + jna a, the tangents (tx, ty, tz) = a x n and a
-                    gx -= tau * a_s * (jn * tx + jna * ax) / jm
-                    gy -= tau * a_s * (jn * ty + jna * ay) / jm
-                    gz -= tau * a_s * (jn * tz + jna * az) / jm
+                # the shear strength times the mobilized fraction m = mc (a x n) + ma a, against
+                # the sliding that mobilized it: the tangents (tx, ty, tz) = a x n and a
+                gx -= strength * a_s * (mc * tx + ma * ax)
+                gy -= strength * a_s * (mc * ty + ma * ay)
+                gz -= strength * a_s * (mc * tz + ma * az)
                 seen = along_rows
-                h_seen, z_seen, j_seen, ja_seen = h, surface, j, ja
+                h_seen, z_seen, mc_seen, ma_seen = h, surface, m0c, m0a
             fx += gx
             fy += gy
             fz += gz
@@ -276,8 +281,8 @@ def wheel_loads(bed, cx, cy, cz, ax, ay, az, vx, vy, vz, omega, radius, width, f
                 ci0, ci1, ck0, ck1 = min(ci0, i), max(ci1, i), min(ck0, k), max(ck1, k)
             if update:
                 bed.ground.z[i, k] = h - sp_new
-                bed.j[i, k, 0] = jn
-                bed.j[i, k, 1] = jna
+                bed.shear[i, k, 0] = mc
+                bed.shear[i, k, 1] = ma
                 bed.sigma[i, k] = sigma
     if bulldozing and ci1 >= ci0:
         bulldoze(bed, ci0, ci1, ck0, ck1, pressed)
