@@ -82,3 +82,33 @@ def test_the_ring_on_soil_agrees_with_the_flexible_wheel():
     assert steady["ring"]["FZ"] == pytest.approx(LOAD, rel=0.01)
     assert steady["ring"]["FX"] == pytest.approx(steady["point"]["FX"], rel=0.10)
     assert max(steady["ring"]["SINKAGE"], steady["point"]["SINKAGE"]) < steady["rigid"]["SINKAGE"]
+
+
+def test_the_tester_measures_every_models_slip_as_it_prescribes_it():
+    """``LONGSLIP`` is the tester's slip from the wheel's spin and the model's ``R_e``, whatever
+    the model: at a prescribed slip it is that slip at every sample, to rounding, for the rigid
+    wheel, the point model and the ring (which, with no slip of its own, wrote 0)."""
+    for model in ("rigid", "point", "ring"):
+        run = single_wheel(TyreModel(load_tyre(), model), "lete-sand", LOAD, SPEED, slip=0.01,
+                           duration=0.3, progress=False)
+        assert run["LONGSLIP"].to_numpy() == pytest.approx(0.01, abs=1e-12), model
+
+
+def test_the_ring_under_the_torque_of_a_slip_finds_that_slip():
+    """Given the torque the prescribed s = 0.01 took, the free ring settles at that slip, to
+    0.001, with its pull to 1 % (as the rigid wheel does: test_soil_rigid_wheel.py). Near the
+    soil's grip (9.1 kN m; s = 0.05 and 0.2 take 9.07 and 9.11) it spins up smoothly, the
+    soil's moment on it within 2 % of the torque. At the 1 ms step its rim and belt wound each
+    other up there: the moment swung by +-280 kN m and the spin ran from -7 to 42 rad/s."""
+    tm = TyreModel(load_tyre(), "ring")
+    kw = dict(duration=3.0, progress=False)
+    held = single_wheel(tm, "lete-sand", LOAD, SPEED, slip=0.01, **kw)
+    held = held[held["RUNTIME"] >= 1.5]
+    free = single_wheel(tm, "lete-sand", LOAD, SPEED, torque=float(held["TORQUE"].mean()), **kw)
+    free = free[free["RUNTIME"] >= 1.5]
+    assert free["LONGSLIP"].mean() == pytest.approx(0.01, abs=0.001)
+    assert free["FX"].mean() == pytest.approx(held["FX"].mean(), rel=0.01)
+    grip = single_wheel(tm, "lete-sand", LOAD, SPEED, torque=9100.0, **kw)
+    grip = grip[grip["RUNTIME"] >= 1.5]
+    assert (-grip["MY"]).to_numpy() == pytest.approx(9100.0, rel=0.02)
+    assert ((grip["LONGSLIP"] > 0.0) & (grip["LONGSLIP"] < 1.0)).all()

@@ -18,7 +18,8 @@ radius, an analytic model's its loaded radius, the ring's from its rolling equil
 s = 0 rolls each model freely on hard ground, and slips compare across models.
 
 Channels: the wheel channels (``FX`` the drawbar pull, positive forward; ``FZ``;
-``MY`` the soil's moment on the wheel about its axis; ``LONGSLIP``), plus ``SINKAGE``
+``MY`` the soil's moment on the wheel about its axis; ``LONGSLIP`` the tester's slip ``s``
+from the wheel's spin and ``R_e``, :func:`tester_slip`, whatever the model), plus ``SINKAGE``
 (depth of the tyre's contact point below the undisturbed surface) and ``TORQUE``
 (the driving torque the axle applies: ``-MY`` where the spin is held, the given torque
 where it is free).
@@ -26,6 +27,7 @@ where it is free).
 
 from __future__ import annotations
 
+import math
 from typing import NamedTuple
 
 import numba as nb
@@ -55,6 +57,14 @@ X_START = 0.0
 STEP = 1e-3
 #: the slowest speed [m/s] at which a model's rolling radius is found (rolling_radius)
 ROLLING_RADIUS_SPEED = 1.0
+#: the longest step [s] at which the tester turns a model with its own dynamics (the ring)
+#: free under a torque; a longer ``dt`` is split into steps this long. The rim's spin is
+#: stepped against the ring's moment on it, and the ring's belt (64 kg m^2 for the XZL)
+#: follows the rim's turning a step late: at 1 ms, near the soil's grip, rim and belt
+#: wound each other up (the XZL's ring on LETE sand under 9.1 kN m: the soil's moment
+#: +-280 kN m, the spin -7 to 42 rad/s by 3 s); at 0.5 ms, measured on the library's soils
+#: from towed to past the grip, the ring and ring-tp settle or spin up smoothly (0.7 ms: not)
+FREE_STATEFUL_STEP = 5e-4
 
 def undisturbed(ground, x, y):
     """The undisturbed surface's height at (x, y) [m] (compiled only): the soil's before any
@@ -94,6 +104,9 @@ def single_wheel_steps(wheel, mass, speed, drive, state, n_steps, dt, out_every,
             o[SC.SINKAGE] = max(0.0, undisturbed(wheel.road, f.px, f.py) - f.pz) \
                 if f.fzw > 0.0 else 0.0
             o[SC.TORQUE] = drive.torque if drive.free else -o[WC.MY]
+            # the tester's slip, as it prescribes it: the soil wheel's kappa measures the
+            # tread on its own radius, and the ring has none of its own
+            o[WC.LONGSLIP] = tester_slip(speed, omega, drive.rolling_radius)
             row += 1
         vz += dt * (f.fz - mass * G) / mass
         state[S.VZ] = vz
@@ -110,11 +123,13 @@ def single_wheel_steps(wheel, mass, speed, drive, state, n_steps, dt, out_every,
 
 class Drive(NamedTuple):
     """How the tester turns its wheel: held at its spin (``free`` False), or free under the
-    driving ``torque`` [N m] with the wheel's ``spin_inertia`` [kg m^2]."""
+    driving ``torque`` [N m] with the wheel's ``spin_inertia`` [kg m^2]; its slip measured
+    against the model's effective ``rolling_radius`` ``R_e`` [m]."""
 
     free: bool
     torque: float
     spin_inertia: float
+    rolling_radius: float
 
 
 def wheel_spin(speed: float, rolling_radius: float, slip: float) -> float:
@@ -128,6 +143,15 @@ def wheel_spin(speed: float, rolling_radius: float, slip: float) -> float:
     if slip >= 0.0:
         return speed / (rolling_radius * (1.0 - slip))
     return speed * (1.0 + slip) / rolling_radius
+
+
+@nb.njit(cache=True)
+def tester_slip(speed, omega, rolling_radius):
+    """The tester's slip at carriage speed ``V`` [m/s] and spin ``omega`` [rad/s] (the
+    inverse of :func:`wheel_spin`): ``(R_e omega - V) / max(R_e omega, V)``, driving
+    ``1 - V / (R_e omega)``, braking ``R_e omega / V - 1`` (Wong 2008, 2.4)."""
+    tread = rolling_radius * omega
+    return (tread - speed) / max(tread, speed)
 
 
 def rolling_radius(model, load: float, speed: float) -> float:
@@ -167,7 +191,8 @@ def single_wheel(model, soil, load: float, speed: float, slip: float = 0.0, leng
     torque : float, optional
         Instead of a slip: the driving torque [N m] (negative brakes; 0 tows the wheel) under
         which the wheel spins freely from the free-rolling spin ``V / R_e``; its slip is
-        then what the soil lets it reach (``LONGSLIP``).
+        then what the soil lets it reach (``LONGSLIP``). A model with its own dynamics (the
+        ring) is then stepped at :data:`FREE_STATEFUL_STEP` at most.
     length, width, spacing : float
         The soil bed [m] and its node spacing [m]; the bed starts 1 m behind the wheel.
     duration, dt, output_rate : float
@@ -187,6 +212,8 @@ def single_wheel(model, soil, load: float, speed: float, slip: float = 0.0, leng
     if duration is not None:
         length = max(length, X_START + speed * duration + 2.0)
     road = road or Flat()
+    if torque is not None and model.has_state and dt > FREE_STATEFUL_STEP:
+        dt = dt / math.ceil(dt / FREE_STATEFUL_STEP - 1e-9)
     x_end = X_START + length - 1.0
     wheel, ground, z0, ground_meta = terrain_wheel(model, soil, road, X_START, x_end, load,
                                                    dt=dt, spacing=spacing, width=width,
@@ -198,7 +225,7 @@ def single_wheel(model, soil, load: float, speed: float, slip: float = 0.0, leng
     omega = wheel_spin(speed, r_e, 0.0 if torque is not None else slip)
     from ..guards import rig_spin_inertia
     inertia = rig_spin_inertia(model, load) if torque is not None else model.tyre.spin_inertia
-    drive = Drive(torque is not None, float(torque or 0.0), inertia)
+    drive = Drive(torque is not None, float(torque or 0.0), inertia, r_e)
     n_steps = int(round(duration / dt))
     out_every = max(1, int(round(1.0 / (output_rate * dt))))
     tables = []
