@@ -84,14 +84,17 @@ def test_the_library_reads_and_names_its_sources():
 
 def test_soil_curve_command_writes_the_steady_table(tmp_path):
     """tyrelab soil curve: one run per slip, the table's pull rising with slip and its load the
-    dead weight; a slip outside [-1, 0.99] or an unknown soil is one line, exit 2, nothing written."""
+    dead weight, each printed line naming its slip as given (0.005 was printed "0.01"); a slip
+    outside [-1, 0.99] or an unknown soil is one line, exit 2, nothing written."""
     import pandas as pd
     cmd = ["soil", "curve", "--terrain", "lete-sand", "--duration", "1", "--load", "20000"]
-    done = run_tyrelab(*cmd, "--slips", "0.05,0.3", "-o", tmp_path / "c.csv", timeout=600)
+    done = run_tyrelab(*cmd, "--slips", "0.005,0.05,0.3", "-o", tmp_path / "c.csv", timeout=600)
     assert done.returncode == 0, done.stderr
     curve = pd.read_csv(tmp_path / "c.csv")
-    assert list(curve["slip"]) == [0.05, 0.3]
-    assert curve["FX"].iloc[0] < curve["FX"].iloc[1]
+    assert list(curve["slip"]) == [0.005, 0.05, 0.3]
+    assert curve["FX"].is_monotonic_increasing
+    printed = [ln.split(":")[0].split("s = ")[1] for ln in done.stdout.splitlines() if "pull" in ln]
+    assert printed == ["0.005", "0.05", "0.3"]
     assert curve["FZ"].to_numpy() == pytest.approx(20000.0, rel=2e-3)
     for bad in (["--slips", "0,1.5"], ["--slips=-1.5,0"], ["--slips", "0.2", "--terrain", "quicksand"]):
         out = tmp_path / "bad.csv"

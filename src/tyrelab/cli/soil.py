@@ -110,7 +110,7 @@ def run_curve(args) -> int:
         from ..report.soil_plots import plot_slip_curve
         save_figure(plot_slip_curve(curve, title), out)
     for row in curve.itertuples():
-        print(f"{row.model:<11}s = {row.slip:.2f}: pull {row.FX / 1e3:7.2f} kN  "
+        print(f"{row.model:<11}{f's = {row.slip:g}:':<12}pull {row.FX / 1e3:7.2f} kN  "
               f"torque {row.TORQUE / 1e3:7.2f} kN m  sinkage {row.SINKAGE * 1e3:6.1f} mm")
     print(f"{out}: slip curve")
     if rut:

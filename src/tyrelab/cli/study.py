@@ -66,7 +66,7 @@ def run(args) -> int:
         for test, part in soil.groupby("test", sort=False):
             print(f"  {test}:")
             for row in part.itertuples():
-                print(f"    {row.model:<16}s = {row.slip:.2f}: pull {row.FX / 1e3:7.2f} kN  "
+                print(f"    {row.model:<16}{f's = {row.slip:g}:':<12}pull {row.FX / 1e3:7.2f} kN  "
                       f"torque {row.TORQUE / 1e3:7.2f} kN m  sinkage {row.SINKAGE * 1e3:6.1f} mm")
     for _, row in failed.iterrows():
         print(f"  failed: {row['model']} on {row['test']} at {row['speed_kmh']:g} km/h "
