@@ -144,6 +144,31 @@ def test_the_loads_of_the_state_leave_it_as_it_is():
     assert a.step(0.0, centre, 1e-3) == b.step(0.0, centre, 1e-3)
 
 
+def test_the_ring_measures_its_slip_against_its_free_rolling_radius():
+    """The ring has no slip law of its own: its ``LONGSLIP`` and ``SLIPANGL`` are the wheel's
+    kinematic slips (ISO 8855, TYDEX) against its free-rolling radius ``R_e = V / omega`` of
+    the equilibrium it starts in. Stepped on a flat road at that equilibrium's height with
+    the spin of kappa = 0.03 and a side speed of alpha = -2 deg, it reports them (kappa
+    ``(omega R_e - V) / V`` to rounding; alpha as the point model with a handling model
+    reports the same centre motion, to 1e-12). It reported 0 for both."""
+    kappa, alpha = 0.03, -math.radians(2.0)
+    got = {}
+    for tyre, model, handling in (("xzl-16.00R20", "ring", None), ("hmmwv-pac89", "point", "pac89")):
+        stepper = wheel_stepper(tyre, model, "flat", handling=handling, load=20e3, speed=SPEED)
+        eq = stepper.equilibrium
+        r_e = SPEED / eq.spin
+        z = make_tyre_model(tyre, model).tyre.unloaded_radius - eq.deflection
+        side = SPEED * math.tan(alpha)
+        for sign in (1.0, -1.0):       # the side speed's sign against the slip angle's
+            loads = stepper.loads(WheelCentre(0.0, 0.0, z, SPEED, sign * side, 0.0,
+                                              (1.0 + kappa) * SPEED / r_e))
+            got[model, sign] = loads.kappa, loads.alpha
+        assert got[model, 1.0][0] == pytest.approx(kappa, abs=1e-12)
+    for sign in (1.0, -1.0):
+        assert got["ring", sign][1] == pytest.approx(got["point", sign][1], abs=1e-12)
+        assert abs(got["ring", sign][1]) == pytest.approx(abs(alpha), abs=1e-12)
+
+
 def _over_soil(ground, model, metres, speed=4.0, dt=1e-3):
     """Step ``model``'s wheel along x over ``metres`` of ``ground`` at a fixed height, pressed
     40 mm below its unloaded radius; FZ and FX per step."""

@@ -44,6 +44,9 @@ class Equilibrium(NamedTuple):
     #: (:mod:`.handling.relaxation`: ``u = -sigma_kappa kappa``, the little slip a handling
     #: model's force offsets and rolling resistance need; :meth:`TyreModel._torque_free`)
     carcass: tuple = (0.0, 0.0)
+    #: the effective rolling radius ``speed / spin`` [m] (0 at rest): what a model with no
+    #: slip law of its own (the ring) measures its kinematic slip against
+    rolling_radius: float = 0.0
 
 
 @dataclass
@@ -151,13 +154,15 @@ class TyreModel:
         hook = self.contact_model.equilibrium
         if hook is not None and load > 0:
             deflection, spin, state = hook(self.tyre, load, float(speed), params, **self.options)
-            return Equilibrium(float(deflection), float(spin), state)
+            return Equilibrium(float(deflection), float(spin), state,
+                               rolling_radius=float(speed) / float(spin) if spin > 0 else 0.0)
         deflection, spin = self._free_rolling(load, float(speed))
         carcass = (0.0, 0.0)
         if load > 0 and speed > 0 and self.handling != "none":
             deflection, spin, carcass = self._torque_free(load, float(speed), deflection, spin,
                                                           params)
-        return Equilibrium(deflection, spin, self.initial_state(load, params), carcass)
+        return Equilibrium(deflection, spin, self.initial_state(load, params), carcass,
+                           float(speed) / spin if spin > 0 else 0.0)
 
     def _torque_free(self, load: float, speed: float, deflection: float, spin: float, params):
         """``(deflection, spin, carcass)`` where the wheel's moment about its axle
@@ -219,11 +224,14 @@ class TyreModel:
 
         ``state`` the model's internal state to start from; default the static one.
         ``rolling`` an equilibrium (:meth:`equilibrium`) to start in instead: its state, and
-        the transient slip's carcass deflections.
+        the transient slip's carcass deflections; a model whose record keeps a
+        ``rolling_radius`` (the ring) measures its kinematic slip against that equilibrium's.
         """
         params = self.contact_params(grid, static)
         if rolling is not None:
             state = rolling.state
+            if rolling.rolling_radius > 0 and "rolling_radius" in getattr(params, "_fields", ()):
+                params = params._replace(rolling_radius=rolling.rolling_radius)
         if state is None:
             state = self.initial_state(load, params)
         lag = self.slip_lag((0.0, 0.0) if rolling is None else rolling.carcass)

@@ -37,6 +37,7 @@ import math
 import numba as nb
 
 from ...road.terrain import terrain_height
+from ..handling.slip import slip
 from ..wheel import WheelLoads, WheelPose
 from .belt import bending_forces, foundation_forces, membrane_forces, out_of_plane_forces
 from .implicit import chord_implicit, lateral_implicit
@@ -347,7 +348,15 @@ def ring_step(wheel, pose, dt):
     fyw = cfx * wy1 + cfy * wy2 + cfz * wy3
     fzw = cfx * nx + cfy * ny + cfz * nz
     fzw = fzw if fzw > 0.0 else 0.0
+    kappa = alpha = 0.0
+    if w > 0.0:
+        # the kinematic slip (ISO 8855 / TYDEX) of the wheel against its free-rolling radius:
+        # the tread at R_e below the centre moves at v - omega R_e (a x n), as the handling
+        # models' contact point does (handling.slip)
+        v_long = pose.vx * wx1 + pose.vy * wx2 + pose.vz * wx3
+        kappa, alpha = slip(v_long, v_long - pose.omega * params.rolling_radius,
+                            pose.vx * wy1 + pose.vy * wy2 + pose.vz * wy3)
     return WheelLoads(_finite(fx), _finite(fy), _finite(fz), _finite(mx), _finite(my),
                       _finite(mz), _finite(px), _finite(py), _finite(pz), _finite(nx),
                       _finite(ny), _finite(nz), _finite(rho), _finite(rho_dot), _finite(fxw),
-                      _finite(fyw), _finite(fzw), 0.0, 0.0, 0.0)
+                      _finite(fyw), _finite(fzw), _finite(kappa), _finite(alpha), 0.0)

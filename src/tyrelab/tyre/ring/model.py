@@ -176,7 +176,7 @@ def ring_params(tyre, grid=None, tread_pattern=False, n_segments=N_SEGMENTS, n_b
         tread_half_width=float(half),
         cos_theta=table(np.cos(th)), sin_theta=table(np.sin(th)),
         block_y=table(y), block_s=table(s), block_h=table(h), block_area=table(area),
-        lateral_matrix=np.zeros((2 * n, 2 * n)), lateral_checksum=0.0)
+        lateral_matrix=np.zeros((2 * n, 2 * n)), lateral_checksum=0.0, rolling_radius=float(r0))
     k = lateral_stiffness_matrix(params)
     return params._replace(lateral_matrix=k, lateral_checksum=lateral_checksum(k))
 

@@ -128,6 +128,10 @@ class RingParams(NamedTuple):
     #: (y, beta interleaved, 2N x 2N; :mod:`.implicit`) and a checksum of it
     lateral_matrix: np.ndarray
     lateral_checksum: float
+    #: the effective rolling radius [m] the wheel's kinematic slip (``LONGSLIP``) is measured
+    #: against: its free-rolling ``V / omega``, set from a rig's rolling equilibrium
+    #: (:meth:`tyrelab.tyre.model.TyreModel.wheel`); the unloaded radius until then
+    rolling_radius: float
 
 
 class RingState(NamedTuple):
