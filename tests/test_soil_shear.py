@@ -81,3 +81,36 @@ def test_a_cycle_of_sliding_costs_work_that_the_elastic_reading_gives_back():
     mid = 0.5 * (path[:-1] + path[1:])
     assert float(np.sum(mid * np.array(side))) > 0.1 * K
     assert np.all(np.hypot(path[:, 0], path[:, 1]) < 1.0)
+
+
+def _bed():
+    from tyrelab.road.grid import RoadGrid
+    from tyrelab.road.soil import load_soil
+    from tyrelab.road.soil.scm import soil_bed
+    return soil_bed(load_soil("lete-sand")[0], RoadGrid(-1.0, -1.0, 0.02, 0.02, np.zeros((11, 11))))
+
+
+def test_a_tread_block_on_soil_shears_in_series_with_it():
+    """A tread block on the soil (:func:`~tyrelab.road.soil.terrain.soil_shear`), pressed with
+    4 kN over 0.002 m^2 (2 MPa): a block far stiffer than the soil, slid 3 cm one way, has
+    Janosi & Hanamoto's force ``A (c + sigma tan phi)(1 - exp(-j / K))`` against the sliding,
+    to 1e-9; a block of 5e7 Pa/m takes its first 1 um at the series stiffness
+    ``A / (K / tau_max + 1 / k)``, to 1e-4; and a block whose own friction bounds it below
+    the soil's strength is held at that bound once slid far (50 cm)."""
+    from tyrelab.road.soil.terrain import soil_shear
+    bed = _bed()
+    soil = bed.soil
+    fn, area = 4000.0, 0.002
+    tau_max = soil.cohesion + fn / area * math.tan(soil.friction_angle)
+    m, j = (0.0, 0.0), 0.0
+    for d in np.full(300, 1e-4):
+        own, f1, f2, *m = soil_shear(bed, 0.0, 0.0, fn, area, m[0], m[1], d, 0.0, 1e30, 1e30)
+        j += d
+        assert own and f2 == 0.0
+        assert f1 == pytest.approx(-area * tau_max * (1.0 - math.exp(-j / soil.janosi_k)), rel=1e-9)
+    k = 5e7
+    _, f1, _, _, _ = soil_shear(bed, 0.0, 0.0, fn, area, 0.0, 0.0, 1e-6, 0.0, k, 1e30)
+    assert -f1 / 1e-6 == pytest.approx(area / (soil.janosi_k / tau_max + 1.0 / k), rel=1e-4)
+    limit = 0.3 * area * tau_max
+    _, f1, f2, _, _ = soil_shear(bed, 0.0, 0.0, fn, area, 0.0, 0.0, 0.3, -0.4, k, limit)
+    assert math.hypot(f1, f2) == pytest.approx(limit, rel=1e-6) and f2 / f1 == pytest.approx(-4 / 3)

@@ -60,10 +60,11 @@ ROLLING_RADIUS_SPEED = 1.0
 #: the longest step [s] at which the tester turns a model with its own dynamics (the ring)
 #: free under a torque; a longer ``dt`` is split into steps this long. The rim's spin is
 #: stepped against the ring's moment on it, and the ring's belt (64 kg m^2 for the XZL)
-#: follows the rim's turning a step late: at 1 ms, near the soil's grip, rim and belt
-#: wound each other up (the XZL's ring on LETE sand under 9.1 kN m: the soil's moment
-#: +-280 kN m, the spin -7 to 42 rad/s by 3 s); at 0.5 ms, measured on the library's soils
-#: from towed to past the grip, the ring and ring-tp settle or spin up smoothly (0.7 ms: not)
+#: follows the rim's turning a step late: at 1 ms rim and belt wound each other up (the
+#: XZL's ring on LETE sand under 9.1 kN m: the soil's moment +-450 kN m, the spin -16 to
+#: 71 rad/s by 3 s; under 5 kN m the slip +-0.4); at 0.5 ms, measured on the library's soils
+#: from towed to past the grip, the ring and ring-tp diverge nowhere (0.7 ms: not so), and
+#: what still rings is the same at 0.125 ms
 FREE_STATEFUL_STEP = 5e-4
 
 def undisturbed(ground, x, y):

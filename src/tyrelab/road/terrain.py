@@ -73,18 +73,18 @@ from __future__ import annotations
 import numba as nb
 from numba.extending import overload
 
-from .terrain_registry import (BUILTIN_TERRAIN, Ground, TerrainKind, block_maxima, profile_breaks,
-                               resolve_terrain,
+from .terrain_registry import (BUILTIN_TERRAIN, Ground, TerrainKind, block_maxima, element_shear,
+                               profile_breaks, resolve_terrain,
                                register_terrain, rigid_contact, terrain_by_record, terrain_kind,
                                terrain_kinds, terrain_names, unit_friction)
 
 #: the one door: the registry and Python side (:mod:`.terrain_registry`) and the compiled interface
-__all__ = ["BUILTIN_TERRAIN", "Ground", "TerrainKind", "block_maxima", "profile_breaks",
+__all__ = ["BUILTIN_TERRAIN", "Ground", "TerrainKind", "block_maxima", "element_shear", "profile_breaks",
            "resolve_terrain",
            "register_terrain", "rigid_contact", "terrain_by_record", "terrain_kind", "terrain_kinds",
            "terrain_names", "unit_friction", "terrain_height", "terrain_height_gradient",
            "terrain_penetration", "terrain_zmax", "terrain_range", "terrain_friction",
-           "terrain_is_rigid", "terrain_contact", "terrain_lines", "terrain_row",
+           "terrain_is_rigid", "terrain_contact", "terrain_shear", "terrain_lines", "terrain_row",
            "terrain_line_height", "terrain_row_height", "terrain_blocks", "terrain_block_max",
            "ground_range"]
 
@@ -214,6 +214,30 @@ def _terrain_contact(terrain, x, y, penetration, area, v1, v2, fn, f1, f2, dt):
 
     def impl(terrain, x, y, penetration, area, v1, v2, fn, f1, f2, dt):
         return contact(terrain, x, y, penetration, area, v1, v2, fn, f1, f2, dt)
+    return impl
+
+
+def terrain_shear(terrain, x, y, fn, area, m1, m2, d1, d2, element_stiffness, limit):
+    """The ground's answer to a tyre element's shear: ``(own, f1, f2, m1, m2)``.
+
+    The element at (x, y), carried by the ground with normal force ``fn`` [N] over its
+    contact ``area`` [m^2], has slid ``(d1, d2)`` [m] over it in this step (along the
+    heading and across) from the shear state ``(m1, m2)`` it kept from the last (0 on
+    entering contact); ``element_stiffness`` its own shear stiffness per area [Pa/m],
+    ``limit`` [N] its own friction's bound. A ground with a shear law of its own (the
+    soil) returns ``own`` True, the tangential forces ``f1, f2`` [N] on the element and
+    its new state; the others return ``own`` False, and the element's own law stands
+    (the rigid ground's). Called only where ``terrain_is_rigid`` is False.
+    """
+    raise NotImplementedError("compiled only")
+
+
+@overload(terrain_shear, inline="always")
+def _terrain_shear(terrain, x, y, fn, area, m1, m2, d1, d2, element_stiffness, limit):
+    shear = terrain_by_record(terrain).shear
+
+    def impl(terrain, x, y, fn, area, m1, m2, d1, d2, element_stiffness, limit):
+        return shear(terrain, x, y, fn, area, m1, m2, d1, d2, element_stiffness, limit)
     return impl
 
 
@@ -380,7 +404,8 @@ def _typing_only(get_jit_decorator):
 
 
 _tune_inlining(terrain_height, terrain_height_gradient, terrain_penetration, terrain_zmax,
-           terrain_range, terrain_friction, terrain_is_rigid, terrain_contact, terrain_lines,
+           terrain_range, terrain_friction, terrain_is_rigid, terrain_contact, terrain_shear,
+           terrain_lines,
            terrain_row, terrain_line_height, terrain_blocks, terrain_block_max)
 
 

@@ -38,6 +38,12 @@ def rigid_contact(terrain, x, y, penetration, area, v1, v2, fn, f1, f2, dt):
     return fn, f1, f2
 
 
+@nb.njit(cache=True, inline="always")
+def element_shear(terrain, x, y, fn, area, m1, m2, d1, d2, element_stiffness, limit):
+    """A ground without a shear law of its own: the element's own law stands (``False``)."""
+    return False, 0.0, 0.0, m1, m2
+
+
 @dataclass(frozen=True)
 class TerrainKind:
     """A kind of ground as the compiled contact models see it.
@@ -59,6 +65,10 @@ class TerrainKind:
     contact : numba dispatcher
         ``terrain_contact`` (default: :func:`rigid_contact`; a kind that is
         not rigid must give its own).
+    shear : numba dispatcher
+        ``terrain_shear`` (default: :func:`element_shear`, the tyre element's own
+        tangential law stands): a deformable ground whose shear has a law of its own
+        (the soil) gives the element's tangential force with it.
     rigid : bool
         ``terrain_is_rigid``: the ground never moves.
     description : str
@@ -100,6 +110,7 @@ class TerrainKind:
     block_max: Any
     friction: Any = unit_friction
     contact: Any = rigid_contact
+    shear: Any = element_shear
     rigid: bool = True
     description: str = ""
     resolve: Any = None

@@ -17,10 +17,11 @@ soil carry the same force::
 ``s0`` the node's plastic sinkage and ``sigma`` its normal stress (Bekker's law with
 elastic unloading and reloading, :func:`~tyrelab.road.soil.scm.node_stress`, with ``b`` the
 block's side sqrt(A)); solved by Newton's method in a bracket. Every node under the
-block's square footprint is then pressed to the block's sole. The tangential force is
-capped by the soil's Mohr-Coulomb strength ``A (c + sigma tan phi)`` (Wong 2008, 2.3); the
-block's own shear stiffness (its brush law) takes the place of Janosi & Hanamoto's
-shear-displacement law, which the rigid and flexible wheels apply per node.
+block's square footprint is then pressed to the block's sole. In shear the block and the
+soil under it are in series too (:func:`soil_shear`, the kind's ``terrain_shear``): the
+soil's Janosi & Hanamoto law, reversing by Dahl's, which the rigid and flexible wheels apply
+per node, with the block's own shear stiffness, up to the smaller of the soil's Mohr-Coulomb
+strength ``A (c + sigma tan phi)`` (Wong 2008, 2.3) and the block's friction.
 """
 
 from __future__ import annotations
@@ -36,7 +37,7 @@ from ..grid import (grid_block_max, grid_blocks, grid_line_height, grid_lines, g
 from ..terrain_registry import TerrainKind, register_terrain
 from .field import lay_soil_field
 from .params import Soil
-from .scm import BED_SPACING, SoilSurface, bekker_modulus, check_bed_memory, node_stress
+from .scm import BED_SPACING, SoilSurface, bekker_modulus, check_bed_memory, mobilized_shear, node_stress
 
 #: the bed's width [m] across the wheel's track (its centre line y = 0)
 BED_WIDTH = 2.0
@@ -159,6 +160,35 @@ def soil_contact(bed, x, y, penetration, area, v1, v2, fn, f1, f2, dt):
     return carried, f1 * scale, f2 * scale
 
 
+@nb.njit(cache=True)
+def soil_shear(bed, x, y, fn, area, m1, m2, d1, d2, element_stiffness, limit):
+    """A tread element's shear on the soil (:func:`~tyrelab.road.terrain.terrain_shear`):
+    the element and the soil under it in series, one Dahl element.
+
+    The soil shears by Janosi & Hanamoto's law, reversing by Dahl's
+    (:func:`~tyrelab.road.soil.scm.mobilized_shear`), as under the wheels; the element
+    (a tread block) in series with it by its own shear stiffness ``k`` [Pa/m]. Their
+    strength is the smaller of the soil's, ``A (c + sigma tan phi)`` with ``sigma = fn / A``,
+    and the element's friction ``limit``; the mobilized shear ``m`` of the two moves by
+    Dahl's law with the modulus that gives their series stiffness at the start of
+    shearing, ``strength (K / (A tau_max) + 1 / (A k))`` (the soil's ``K / tau_max`` and
+    the block's ``1 / k`` per area, added). The force on the element is
+    ``-strength m``, against the sliding that mobilized it. Sliding one way with a block
+    far stiffer than the soil it is Janosi & Hanamoto's curve over the distance slid.
+    """
+    soil = bed.soil
+    a = area if area > 0.0 else bed.dx * bed.dy
+    tau_max = soil.cohesion + fn / a * math.tan(soil.friction_angle)
+    strength = min(a * tau_max, limit)
+    if not strength > 0.0:
+        return True, 0.0, 0.0, 0.0, 0.0
+    compliance = soil.janosi_k / (a * tau_max)
+    if element_stiffness > 0.0:
+        compliance += 1.0 / (a * element_stiffness)
+    m1, m2 = mobilized_shear(m1, m2, d1, d2, strength * compliance)
+    return True, -strength * m1, -strength * m2, m1, m2
+
+
 def resolve_soil(value):
     """``(Soil, label)`` when ``value`` names a soil (a :class:`Soil`, a built-in soil's name, a
     ``.toml`` file), else None (:attr:`TerrainKind.resolve`); a malformed soil file is an
@@ -195,7 +225,8 @@ register_terrain(TerrainKind(
     "soil", SoilSurface, height=soil_height, height_gradient=soil_height_gradient,
     penetration=soil_penetration, zmax=soil_zmax, range=soil_range, lines=soil_lines,
     row=soil_row, line_height=soil_line_height, blocks=soil_blocks, block_max=soil_block_max,
-    contact=soil_contact, rigid=False, resolve=resolve_soil, lay=lay_soil, lay_around=lay_soil_field,
+    contact=soil_contact, shear=soil_shear, rigid=False, resolve=resolve_soil, lay=lay_soil,
+    lay_around=lay_soil_field,
     hint="a soil, NAME (tyrelab soil list) or FILE.toml",
     description="deformable soil (SCM class): Bekker-Wong pressure-sinkage, Mohr-Coulomb and "
                 "Janosi shear, a rut that stays (--terrain NAME|FILE.toml)"))

@@ -49,7 +49,8 @@ from typing import NamedTuple
 import numba as nb
 
 from ...road.terrain import (terrain_contact, terrain_friction, terrain_height_gradient,
-                             terrain_is_rigid, terrain_penetration, terrain_range, terrain_zmax)
+                             terrain_is_rigid, terrain_penetration, terrain_range, terrain_shear,
+                             terrain_zmax)
 
 #: contact-patch sums of a step (``RingState.patch``, world frame): force of the
 #: road on the blocks, normal-force-weighted contact point and normal, total
@@ -249,8 +250,10 @@ def segment_contact(params, road, state, i, seg, motion, pose, fwx, fwy, fwz, h)
         t2z = nnx * t1y - nny * t1x
         v1 = vbx * t1x + vby * t1y + vbz * t1z
         v2 = vbx * t2x + vby * t2y + vbz * t2z
-        s1 = sblk1[k] + v1 * h
-        s2 = sblk2[k] + v2 * h
+        kept1 = sblk1[k]
+        kept2 = sblk2[k]
+        s1 = kept1 + v1 * h
+        s2 = kept2 + v2 * h
         f1 = -area * (k_s * s1 + c_s * v1)
         f2 = -area * (k_s * s2 + c_s * v2)
         fmag = math.sqrt(f1 * f1 + f2 * f2)
@@ -263,10 +266,16 @@ def segment_contact(params, road, state, i, seg, motion, pose, fwx, fwy, fwz, h)
             f2 *= scale
             s1 = -f1 / (area * k_s)
             s2 = -f2 / (area * k_s)
-        sblk1[k] = s1
-        sblk2[k] = s2
         if not terrain_is_rigid(road):  # a deformable ground answers (compiled out on rigid)
             fn, f1, f2 = terrain_contact(road, tipx, tipy, pen, area, v1, v2, fn, f1, f2, h)
+            # a ground with its own shear law (the soil) shears in series with the block:
+            # the block's state is then theirs (terrain_shear), not its deflection
+            own, g1, g2, m1, m2 = terrain_shear(road, tipx, tipy, fn, area, kept1, kept2, v1 * h,
+                                                v2 * h, k_s, mu * terrain_friction(road, tipx, tipy) * fn)
+            if own:
+                f1, f2, s1, s2 = g1, g2, m1, m2
+        sblk1[k] = s1
+        sblk2[k] = s2
         fbx = fn * nnx + f1 * t1x + f2 * t2x
         fby = fn * nny + f1 * t1y + f2 * t2y
         fbz = fn * nnz + f1 * t1z + f2 * t2z
