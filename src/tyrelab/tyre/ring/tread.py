@@ -19,6 +19,10 @@ kept in the state) grows with the base's sliding velocity, ``s += v_t dt``,
 and the shear force is ``Ft = -k_s A s - c_s A v_t``; when ``|Ft| > mu Fn``
 the block slides: ``s`` is cut back so that ``|Ft| = mu Fn`` (a brush model
 with Coulomb friction, as in FTire's tread blocks). Out of contact ``s = 0``.
+On a ground with a shear law of its own (the soil:
+:func:`~tyrelab.road.terrain.terrain_shear`) the block and the ground shear in series
+by that law instead, and the state kept is theirs (the soil's: the mobilized shear of
+the two).
 
 A block stands for a strip of tread one segment pitch long. Where the road
 near the strip has relief that can reach the tip (its bound,
