@@ -217,3 +217,11 @@ def renamed(exc: InputError, names: dict[str, str], options=()) -> InputError:
     if exc.field in names:
         return InputError(exc.reason, source=exc.source, line=exc.line, field=names[exc.field])
     return exc
+
+
+def soil_row_text(row, model_width: int) -> str:
+    """One line of a slip curve's table (``tyrelab soil curve``, ``tyrelab study``): the
+    model, the slip as given, the steady drawbar pull, driving torque and sinkage."""
+    return (f"{row.model:<{model_width}}{f's = {row.slip:g}:':<12}pull {row.FX / 1e3:7.2f} kN  "
+            f"torque {row.TORQUE / 1e3:7.2f} kN m  sinkage {row.SINKAGE * 1e3:6.1f} mm")
+

@@ -5,7 +5,7 @@ from __future__ import annotations
 import sys
 
 from ..limits import MAX_SPEED, MIN_LOAD, MIN_SPEED
-from ._common import bounded_float, input_files, output_path, pressure_kpa
+from ._common import bounded_float, input_files, output_path, pressure_kpa, soil_row_text
 
 
 def register(sub):
@@ -110,8 +110,7 @@ def run_curve(args) -> int:
         from ..report.soil_plots import plot_slip_curve
         save_figure(plot_slip_curve(curve, title), out)
     for row in curve.itertuples():
-        print(f"{row.model:<11}{f's = {row.slip:g}:':<12}pull {row.FX / 1e3:7.2f} kN  "
-              f"torque {row.TORQUE / 1e3:7.2f} kN m  sinkage {row.SINKAGE * 1e3:6.1f} mm")
+        print(soil_row_text(row, 11))
     print(f"{out}: slip curve")
     if rut:
         from ..report.soil_plots import plot_rut

@@ -6,6 +6,8 @@ import argparse
 import sys
 from pathlib import Path
 
+from ._common import soil_row_text
+
 
 def _workers(text: str) -> int:
     """argparse type: a number of worker processes, 1 to 1024."""
@@ -66,8 +68,7 @@ def run(args) -> int:
         for test, part in soil.groupby("test", sort=False):
             print(f"  {test}:")
             for row in part.itertuples():
-                print(f"    {row.model:<16}{f's = {row.slip:g}:':<12}pull {row.FX / 1e3:7.2f} kN  "
-                      f"torque {row.TORQUE / 1e3:7.2f} kN m  sinkage {row.SINKAGE * 1e3:6.1f} mm")
+                print("    " + soil_row_text(row, 16))
     for _, row in failed.iterrows():
         print(f"  failed: {row['model']} on {row['test']} at {row['speed_kmh']:g} km/h "
               f"{row['load']}: {row['error']}", file=sys.stderr)

@@ -261,7 +261,8 @@ def segment_contact(params, road, state, i, seg, motion, pose, fwx, fwy, fwz, h)
         f1 = -area * (k_s * s1 + c_s * v1)
         f2 = -area * (k_s * s2 + c_s * v2)
         fmag = math.sqrt(f1 * f1 + f2 * f2)
-        lim = mu * terrain_friction(road, tipx, tipy) * fn
+        mu_here = mu * terrain_friction(road, tipx, tipy)
+        lim = mu_here * fn
         if fmag > lim:
             # sliding: the force is capped at mu Fn; the elastic deflection
             # is what the capped force would hold
@@ -275,7 +276,7 @@ def segment_contact(params, road, state, i, seg, motion, pose, fwx, fwy, fwz, h)
             # a ground with its own shear law (the soil) shears in series with the block:
             # the block's state is then theirs (terrain_shear), not its deflection
             own, g1, g2, m1, m2 = terrain_shear(road, tipx, tipy, fn, area, kept1, kept2, v1 * h,
-                                                v2 * h, k_s, mu * terrain_friction(road, tipx, tipy) * fn)
+                                                v2 * h, k_s, mu_here * fn)
             if own:
                 f1, f2, s1, s2 = g1, g2, m1, m2
         sblk1[k] = s1
