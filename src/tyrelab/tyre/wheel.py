@@ -360,7 +360,6 @@ def analytic_wheel_step(wheel, pose, geo, dt):
                 v1, lagged_y, _ = lagged(lag.deflection[1], length_y, v_slip_y, vref, dt)
                 fxw, fyw, mzw, kappa, alpha, dfx = handling_forces(wheel.handling, fz, v_long,
                                                                    lagged_x, lagged_y, gamma)
-                kappa, alpha = slip(v_long, v_slip_x, v_slip_y)
             else:
                 fxw, fyw, mzw, kappa, alpha, dfx = handling_forces(wheel.handling, fz, v_long,
                                                                    v_slip_x, v_slip_y, gamma)
@@ -393,6 +392,7 @@ def analytic_wheel_step(wheel, pose, geo, dt):
         if lags:
             lag.deflection[0] = u1
             lag.deflection[1] = v1
+            kappa, alpha = slip(v_long, v_slip_x, v_slip_y)  # the kinematic slips, as without
         rolling = rolling_moment(wheel.handling, fz, fxw, v_long, omega, kappa, gamma)
     if not terrain_is_rigid(wheel.road):  # a deformable ground answers (compiled out on rigid)
         fz, fxw, fyw = terrain_contact(wheel.road, px, py, rho, 0.0, v_slip_x, v_slip_y, fz, fxw,
