@@ -41,6 +41,7 @@ from tyrelab.cli.main import main  # noqa: E402
 from tyrelab.cosim import WheelCentre, wheel_stepper  # noqa: E402
 from tyrelab.cosim.fmu import export_fmu  # noqa: E402
 from tyrelab.cosim.variables import INPUTS, OUTPUTS, PARAMETERS, UNITS  # noqa: E402
+from tyrelab.guards import rig_spin_inertia  # noqa: E402
 from tyrelab.errors import InputError  # noqa: E402
 from tyrelab.rig.quarter_vehicle import QuarterVehicle  # noqa: E402
 from tyrelab.rig.rolling import roll  # noqa: E402
@@ -171,7 +172,7 @@ def quarter_car_with_fmu(path: Path, qv: QuarterVehicle, road, duration: float, 
     ms, mu = qv.sprung_mass, qv.unsprung_mass
     k, c = qv.suspension_stiffness, qv.suspension_damping
     free = qv.spring_length + ms * g / k
-    inertia = max(qv.model.tyre.wheel_spin_inertia, 1e-3)
+    inertia = rig_spin_inertia(qv.model, qv.wheel_load)   # the ring's rim: the wheel's less its tyre's
     eq = qv.model.equilibrium(qv.wheel_load, SPEED)      # where the host puts the wheel at rest
     zu, vu = qv.model.tyre.unloaded_radius - eq.deflection, 0.0
     zs, vs, w = zu + qv.spring_length, 0.0, eq.spin

@@ -28,6 +28,7 @@ import numpy as np
 import pytest
 
 import tyrelab
+from tyrelab import guards, limits
 from tyrelab.errors import InputError
 from tyrelab.tyre.library import load_tyre
 from tyrelab.tyre.model import TyreModel
@@ -171,7 +172,7 @@ def _standard_error(a, b):
 @pytest.mark.parametrize("case", [
     pytest.param(c, marks=() if c in FAST_CASES else pytest.mark.slow)
     for c in sorted({r["case"] for r in ENSEMBLE})])
-def test_ring_agrees_with_the_explicit_integrator(case):
+def test_ring_agrees_with_the_explicit_integrator(case, monkeypatch):
     """Ensembles of five runs each (the speed changed by 0, +-1e-4, +-3e-4): the
     means of peak and RMS agree within 1 % of the explicit mean or, where the
     runs scatter more, within three standard errors of the difference.
@@ -183,7 +184,13 @@ def test_ring_agrees_with_the_explicit_integrator(case):
     MX on the perpendicular cleat is left out: it is zero by symmetry, and
     what both integrators give (RMS about 20 N m, 0.005 % of FZ x R0) is the
     staggered blocks' asymmetry (the implicit step changes its RMS by 1 N m).
+
+    The references turned the rim with the whole wheel's spin inertia (the XZL's 50 kg m^2),
+    as the rigs did before they took the tyre's own out of it (``test_ring_spin``): so do
+    these runs, to compare the integrators and nothing else.
     """
+    monkeypatch.setattr(guards, "rig_spin_inertia",
+                        lambda model, load: limits.wheel_spin_inertia(model.tyre, load)[0])
     parts = case.split("-")          # trailer-<model>-<road>-<load case>
     contact, road, load = "-".join(parts[1:-2]), parts[-2], parts[-1]
     spec, duration = ROADS[road]

@@ -94,7 +94,7 @@ def test_ring_kick_is_compiled_without_reference_counting():
     wheel = model.wheel(Flat().grid(), 30e3)
     args = (wheel.contact, wheel.state, wheel.road,
             pose(0.0, 0.0, 0.75, velocity=(3.0, 0.0, 0.0), omega=4.0),
-            0.0, 0.0, 0.0, 0.0, 1e-4, 0.01)
+            0.0, 0.0, 0.0, 1e-4, 0.01)
     ring_kick(*args)
     library = ring_kick.overloads[tuple(nb.typeof(a) for a in args)].library
     llvm = str(library._get_module_for_linking())

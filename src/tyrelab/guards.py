@@ -190,14 +190,16 @@ def check_reaches_relief(road, x0: float, speed: float, duration: float, reach: 
 
 
 #: tyre files whose estimated spin inertia has been warned about in this process
-_ESTIMATED_INERTIA: set[str] = set()
+_ESTIMATED_INERTIA: set = set()
 
 
 def rig_spin_inertia(model, wheel_load: float) -> float:
-    """The spin inertia [kg m^2] a rig turns ``model``'s wheel with at ``wheel_load`` [N]
-    (:func:`tyrelab.limits.wheel_spin_inertia`). An estimate is warned about, once per file
-    and process, when the wheel's spin matters: a handling model or a model with its own
-    tangential forces (the ring) turns it."""
+    """The spin inertia [kg m^2] a rig turns ``model``'s wheel with at ``wheel_load`` [N]: the
+    wheel's (:func:`tyrelab.limits.wheel_spin_inertia`), or its rim's where the model's own
+    state carries the tyre's (the ring's belt, :func:`tyrelab.limits.rim_spin_inertia`). An
+    estimate is warned about, once per file and process, when the wheel's spin matters: a
+    handling model or a model with its own tangential forces (the ring) turns it; so is a rim
+    the file's numbers left lighter than the floor."""
     tyre = model.tyre
     inertia, estimated = limits.wheel_spin_inertia(tyre, wheel_load)
     source = getattr(tyre.tir, "source", tyre.name)
@@ -211,7 +213,22 @@ def rig_spin_inertia(model, wheel_load: float) -> float:
                       f"({how}) and its unloaded radius {tyre.unloaded_radius:.4g} m; give your wheel's "
                       "(tyre and rim), which its spin under the tyre's longitudinal force depends on",
                       UserWarning, stacklevel=3)
-    return inertia
+    hook = model.contact_model.carried_spin_inertia
+    if hook is None:
+        return inertia
+    carried = hook(tyre, **model.options)
+    rim, how = limits.rim_spin_inertia(tyre, wheel_load, carried)
+    key = ("rim", source)
+    if how == "floor" and key not in _ESTIMATED_INERTIA:
+        _ESTIMATED_INERTIA.add(key)
+        own = (f"its tyre's own {tyre.tyre_spin_inertia:.3g} kg m^2 ([INERTIA] IYY)"
+               if tyre.tyre_spin_inertia > 0 else
+               f"the {model.contact} model's {carried:.3g} kg m^2 (its belt at its radius; give the "
+               "tyre's own as [INERTIA] IYY)")
+        warnings.warn(f"{source}: the wheel's spin inertia {inertia:.3g} kg m^2 leaves less than "
+                      f"{limits.RIM_SHARE:.0%} of it for the rim after {own}: the rig turns the rim "
+                      f"with {rim:.3g} kg m^2", UserWarning, stacklevel=3)
+    return rim
 
 
 def check_load_range(tyre, wheel_load: float) -> None:

@@ -17,8 +17,9 @@ step the same kernel (:func:`tyrelab.tyre.wheel.wheel_step`): a host that
 moves the wheel as a rig does gets the rig's loads, to round-off.
 
 The host owns the wheel's motion: its position, its velocity and its spin
-(integrate the spin with ``MY``; ``dmy_domega`` lets it do so implicitly,
-as the rigs do). Conventions: SI, the road frame and the TYDEX C-axis
+(integrate the spin with ``MY`` and :attr:`WheelStepper.spin_inertia`, the rim's for the
+ring, whose belt turns its own; ``dmy_domega`` lets it do so implicitly, as the rigs do:
+the ring's light rim needs it). Conventions: SI, the road frame and the TYDEX C-axis
 sign convention of :mod:`tyrelab.signal` (loads of the road on the tyre).
 """
 
@@ -83,7 +84,7 @@ class WheelStepper:
     """
 
     def __init__(self, model: TyreModel, wheel, max_step: float, frame: str = "C-axis",
-                 start_time: float = 0.0, equilibrium=None, ground=None):
+                 start_time: float = 0.0, equilibrium=None, ground=None, load: float = 0.0):
         if frame not in FRAMES:
             raise InputError(f"unknown frame '{frame}', expected one of {', '.join(FRAMES)}",
                              field="frame")
@@ -100,6 +101,7 @@ class WheelStepper:
         self._frame = FRAMES[frame]
         self._time = float(start_time)
         self.equilibrium = equilibrium
+        self.load = float(load)
         self._ground = ground
         self._cover = getattr(ground, "cover", None)
         self._follow = getattr(ground, "follow", None)
@@ -120,6 +122,16 @@ class WheelStepper:
     def time(self) -> float:
         """The time [s] the model's state has been advanced to."""
         return self._time
+
+    @property
+    def spin_inertia(self) -> float:
+        """The spin inertia [kg m^2] to turn the wheel with, as the rigs do
+        (:func:`tyrelab.guards.rig_spin_inertia`): the wheel's (``WHEEL_IYY``), or for a model
+        whose own state carries the tyre's (the ring's belt) the rim's, the wheel's less the
+        tyre's own ``IYY`` (:func:`tyrelab.limits.rim_spin_inertia`; the XZL's ring: 3.4 of
+        50 kg m^2). Turning the ring's rim with the whole wheel's counts the tyre's twice."""
+        from ..guards import rig_spin_inertia
+        return rig_spin_inertia(self.model, self.load)
 
     def sub_steps(self, dt: float) -> int:
         """How many internal steps a step of ``dt`` [s] takes."""
@@ -364,4 +376,4 @@ def wheel_stepper(tyre="xzl-16.00R20", model: str | TyreModel = "point", road="f
     max_step = limits.check_number(max_step, "max_step", 0.0, limits.MAX_DT, "s", low_open=True,
                                    what="internal step")
     wheel = tm.wheel(ground, load, rolling=eq)
-    return WheelStepper(tm, wheel, max_step, frame, start_time, eq, ground=ground)
+    return WheelStepper(tm, wheel, max_step, frame, start_time, eq, ground=ground, load=load)

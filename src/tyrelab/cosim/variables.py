@@ -76,8 +76,8 @@ OUTPUTS = (
     Variable("LONGSLIP", "1", _channel("LONGSLIP"), "kappa"),
     Variable("SLIPANGL", "rad", _channel("SLIPANGL"), "alpha"),
     Variable("DMY_DROTSPEED", "N.m.s", "derivative of the C-axis MY (the moment about the spin axis) "
-             "with respect to ROTSPEED, for integrating the spin implicitly (0 when the model "
-             "reports none, as the ring)", "dmy_domega"),
+             "with respect to ROTSPEED, for integrating the spin implicitly (the ring's: its "
+             "foundation's pull on the rim, which the ring's light rim needs)", "dmy_domega"),
 )
 
 #: set before initialisation (fixed); ``field`` names the argument of ``wheel_stepper``

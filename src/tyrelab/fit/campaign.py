@@ -10,7 +10,7 @@ The manifest names the tyre and lists the tests, each with its kind, its file
     unloaded_radius = "671.5 mm"
     width = "438 mm"
     pressure = "300 kPa"
-    wheel_mass = 240                    # also: rim_radius, mass, wheel_iyy, fnomin;
+    wheel_mass = 240                    # also: rim_radius, mass, wheel_iyy, iyy, fnomin;
     # base = "base.tir"                 # a property file whose other sections are kept
 
     [[test]]
@@ -66,7 +66,8 @@ KINDS = {
 }
 #: [tyre] keys -> SI unit
 TYRE_KEYS = {"name": None, "base": None, "unloaded_radius": "m", "width": "m", "rim_radius": "m",
-             "pressure": "Pa", "mass": "kg", "wheel_mass": "kg", "wheel_iyy": "kg m^2", "fnomin": "N"}
+             "pressure": "Pa", "mass": "kg", "wheel_mass": "kg", "wheel_iyy": "kg m^2", "iyy": "kg m^2",
+             "fnomin": "N"}
 #: SI unit of each scalar test key
 TEST_UNITS = {"step": "m", "pressure": "Pa", "inertia": "kg m^2", "lever": "m", "lowpass": "Hz", "load": "N",
               "deflection": "m", "calibration": "m", "angle": "rad", "speed": "m/s"}

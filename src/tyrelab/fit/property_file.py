@@ -22,7 +22,8 @@ FIT_SECTION = "TYRELAB_FIT"
 TYRE_KEYS = {"unloaded_radius": ("DIMENSION", "UNLOADED_RADIUS"), "width": ("DIMENSION", "WIDTH"),
              "rim_radius": ("DIMENSION", "RIM_RADIUS"), "pressure": ("OPERATING_CONDITIONS", "INFLPRES"),
              "mass": ("INERTIA", "MASS"), "wheel_mass": ("INERTIA", "WHEEL_MASS"),
-             "wheel_iyy": ("INERTIA", "WHEEL_IYY"), "fnomin": ("VERTICAL", "FNOMIN")}
+             "wheel_iyy": ("INERTIA", "WHEEL_IYY"), "iyy": ("INERTIA", "IYY"),
+             "fnomin": ("VERTICAL", "FNOMIN")}
 
 
 def start_tir(campaign, base=None) -> TirFile:

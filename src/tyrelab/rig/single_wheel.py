@@ -58,13 +58,13 @@ STEP = 1e-3
 #: the slowest speed [m/s] at which a model's rolling radius is found (rolling_radius)
 ROLLING_RADIUS_SPEED = 1.0
 #: the longest step [s] at which the tester turns a model with its own dynamics (the ring)
-#: free under a torque; a longer ``dt`` is split into steps this long. The rim's spin is
-#: stepped against the ring's moment on it, and the ring's belt (64 kg m^2 for the XZL)
-#: follows the rim's turning a step late: at 1 ms rim and belt wound each other up (the
-#: XZL's ring on LETE sand under 9.1 kN m: the soil's moment +-450 kN m, the spin -16 to
-#: 71 rad/s by 3 s; under 5 kN m the slip +-0.4); at 0.5 ms, measured on the library's soils
-#: from towed to past the grip, the ring and ring-tp diverge nowhere (0.7 ms: not so), and
-#: what still rings is the same at 0.125 ms
+#: free under a torque; a longer ``dt`` is split into steps this long. Until the ring took its
+#: rim's spin change at once (:func:`tyrelab.tyre.ring.kernel.rim_spin_change`, 2026-11-28),
+#: rim and belt wound each other up at 1 ms (the XZL's ring on LETE sand under 9.1 kN m: the
+#: soil's moment +-450 kN m, the spin -16 to 71 rad/s by 3 s). Now, its rim turned with its
+#: own 3.4 kg m^2, 1 ms holds the soil's moment there within 0.1 %, but the rim rings more on
+#: the soil's shear: the slip's scatter over the last 1.5 s of 3 s under 5 kN m +-0.038
+#: against +-0.014 at 0.5 ms (under 1.15 kN m 0.025 and 0.023; the mean 0.059 and 0.060)
 FREE_STATEFUL_STEP = 5e-4
 
 def undisturbed(ground, x, y):

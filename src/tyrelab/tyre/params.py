@@ -51,6 +51,10 @@ class Tyre:
         Mass of tyre + rim carried by the hub [kg].
     wheel_spin_inertia : float
         Spin inertia of tyre + rim [kg m^2].
+    tyre_spin_inertia : float
+        Spin inertia of the tyre alone [kg m^2] (``[INERTIA] IYY`` in a file that also gives
+        ``WHEEL_IYY``; 0: not given): a model whose belt carries the tyre's turns the rim
+        with the rest (:func:`tyrelab.limits.rim_spin_inertia`).
     pressure : float
         Inflation pressure [Pa] the parameters describe.
     bottoming : ndarray or None
@@ -86,6 +90,7 @@ class Tyre:
     shape: np.ndarray | None = None
     wheel_mass: float = 0.0
     wheel_spin_inertia: float = 0.0
+    tyre_spin_inertia: float = 0.0
     pressure: float = float("nan")
     damping_ramp: float = DEFAULT_DAMPING_RAMP
     tir: TirFile = field(default_factory=TirFile, repr=False)
@@ -146,6 +151,8 @@ class Tyre:
                                   default=tir.number("INERTIA", "MASS", default=0.0)),
             wheel_spin_inertia=tir.number("INERTIA", "WHEEL_IYY",
                                           default=tir.number("INERTIA", "IYY", default=0.0)),
+            tyre_spin_inertia=(tir.number("INERTIA", "IYY", default=0.0)
+                               if tir.has("INERTIA", "WHEEL_IYY") else 0.0),
             pressure=pressure,
             damping_ramp=tir.number("VERTICAL", "DAMPING_RAMP", default=DEFAULT_DAMPING_RAMP),
             tir=tir,

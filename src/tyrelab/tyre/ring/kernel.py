@@ -9,13 +9,14 @@ loads on the rim as :class:`~tyrelab.tyre.wheel.WheelLoads`.
 Equations of motion of segment i in the rim-fixed axes that spin with the
 rim (rotating frame, angular velocity ``Omega = omega a``)::
 
-    m p'' = F_belt + F_tread - m a_rim - m Omega x (Omega x p)
-            - 2 m Omega x p' - m Omega' x p
+    m p'' = F_belt + F_tread - m a_rim - m Omega x (Omega x p) - 2 m Omega x p'
     m y'' = F_y - m a_rim . a,        J beta'' = M_beta
 
-``a_rim`` and ``Omega'`` are estimated from the change of the rim's velocity
-and spin between calls. The belt's weight is not applied: the rigs carry the
-whole wheel's weight.
+``a_rim`` is estimated from the change of the rim's velocity between calls; the
+rim's spin is held over a call, and a change of it since the last call turns the
+axes and the belt's coordinates in them at once (:func:`rim_spin_change`), so the
+rigs can step a rim lighter than its belt (:func:`rim_spin_slope`). The belt's
+weight is not applied: the rigs carry the whole wheel's weight.
 
 Integrator: symplectic (semi-implicit) Euler with a fixed internal step
 ``h = dt / ceil(dt / h_max)``; the Coriolis term is applied as an exact
@@ -41,7 +42,8 @@ from ..handling.slip import slip
 from ..wheel import WheelLoads, WheelPose
 from .belt import bending_forces, foundation_forces, membrane_forces, out_of_plane_forces
 from .implicit import chord_implicit, lateral_implicit
-from .records import KIN_OMEGA, KIN_PSI, KIN_TIME, KIN_VX, KIN_VY, KIN_VZ
+from .records import (KIN_HELD, KIN_OMEGA, KIN_PSI, KIN_SLOPE, KIN_TIME, KIN_VX, KIN_VY,
+                      KIN_VZ)
 from .road_forces import patch_hysteresis, tread_contact
 from .tread import (ACC_DEFL, ACC_FX, ACC_FY, ACC_FZ, ACC_NX, ACC_NY, ACC_NZ, ACC_PX, ACC_PY,
                     ACC_PZ, ACC_W)
@@ -49,11 +51,11 @@ from .tread import (ACC_DEFL, ACC_FX, ACC_FY, ACC_FZ, ACC_NX, ACC_NY, ACC_NZ, AC
 
 # inlined into ring_advance: a call copies the records' several hundred fields
 @nb.njit(cache=True, inline="always")
-def ring_substep(params, state, road, pose, arx, ary, arz, domega, h, patch_decay):
+def ring_substep(params, state, road, pose, arx, ary, arz, h, patch_decay):
     """One internal step of length h at ``pose`` (centre at this step's start).
 
-    ``ar`` the rim's acceleration [m/s^2], ``domega`` its spin acceleration
-    [rad/s^2], ``patch_decay = 1 - exp(-h / tau_p)`` the relaxation of the
+    ``ar`` the rim's acceleration [m/s^2] (its spin is held: :func:`rim_spin_change`),
+    ``patch_decay = 1 - exp(-h / tau_p)`` the relaxation of the
     contact patch's Maxwell element over the step. Returns the loads on the
     rim ``(Fx, Fy, Fz, Mx, My, Mz)`` (world, moment about the centre) at the
     start of the step.
@@ -62,7 +64,7 @@ def ring_substep(params, state, road, pose, arx, ary, arz, domega, h, patch_deca
     chords' implicit solve); then the out-of-plane implicit solve (which
     factorises, allocating, when the step length changes) and the drift.
     """
-    rim = ring_kick(params, state, road, pose, arx, ary, arz, domega, h, patch_decay)
+    rim = ring_kick(params, state, road, pose, arx, ary, arz, h, patch_decay)
     lateral_implicit(params, state, h)
     p1s, p2s, v1s, v2s = state.p1, state.p2, state.v1, state.v2
     ys, vys, bs, vbs = state.y, state.vy, state.beta, state.vbeta
@@ -86,7 +88,7 @@ def ring_substep(params, state, road, pose, arx, ary, arz, domega, h, patch_deca
 # left in place): a fifth of a trailer step on the Belgian paving
 # (docs/ring.md, "Performance").
 @nb.njit(cache=True, _nrt=False)
-def ring_kick(params, state, road, pose, arx, ary, arz, domega, h, patch_decay):
+def ring_kick(params, state, road, pose, arx, ary, arz, h, patch_decay):
     """The forces of one internal step (:func:`ring_substep`) and the kick they give.
 
     Evaluates the foundation, belt, inertial and tread-contact forces and the
@@ -158,7 +160,7 @@ def ring_kick(params, state, road, pose, arx, ary, arz, domega, h, patch_decay):
     membrane_forces(params, state)
     bending_forces(params, state)
     out_of_plane_forces(params, state)
-    # inertial (rotating-frame) forces: centrifugal, rim acceleration, spin acceleration
+    # inertial (rotating-frame) forces: centrifugal and the rim's acceleration
     a1 = arx * e1x + ary * e1y + arz * e1z
     a2 = arx * e2x + ary * e2y + arz * e2z
     aa = arx * ax + ary * ay + arz * az
@@ -166,8 +168,8 @@ def ring_kick(params, state, road, pose, arx, ary, arz, domega, h, patch_decay):
     for i in range(n):
         p1 = p1s[i]
         p2 = p2s[i]
-        f1[i] += m * (w2 * p1 - a1 - domega * p2)
-        f2[i] += m * (w2 * p2 - a2 + domega * p1)
+        f1[i] += m * (w2 * p1 - a1)
+        f2[i] += m * (w2 * p2 - a2)
         fy[i] -= m * aa
     # tread contact
     acc[ACC_DEFL] = -1.0
@@ -236,16 +238,21 @@ def ring_advance(params, state, road, pose, dt):
     vx, vy, vz = pose.vx, pose.vy, pose.vz
     omega = pose.omega
     kin = state.kinematics
-    if state.initialised[0] and dt > 0.0:
-        arx = (vx - kin[KIN_VX]) / dt
-        ary = (vy - kin[KIN_VY]) / dt
-        arz = (vz - kin[KIN_VZ]) / dt
-        dom = (omega - kin[KIN_OMEGA]) / dt
-    else:
-        arx = 0.0
-        ary = 0.0
-        arz = 0.0
-        dom = 0.0
+    # the rim's spin is held over the step; a change since the last one moves the belt's
+    # coordinates at once (rim_spin_change), not by an Euler force over the step
+    held = 0.0
+    arx = 0.0
+    ary = 0.0
+    arz = 0.0
+    if state.initialised[0]:
+        if dt > 0.0:
+            arx = (vx - kin[KIN_VX]) / dt
+            ary = (vy - kin[KIN_VY]) / dt
+            arz = (vz - kin[KIN_VZ]) / dt
+        held = kin[KIN_HELD]
+        if omega != kin[KIN_OMEGA]:
+            rim_spin_change(params, state, omega - kin[KIN_OMEGA], held, kin[KIN_SLOPE])
+            held = 0.0
     fx = 0.0
     fy = 0.0
     fz = 0.0
@@ -260,8 +267,8 @@ def ring_advance(params, state, road, pose, dt):
         t = k * h
         at = WheelPose(cx + vx * t, cy + vy * t, cz + vz * t, pose.ax, pose.ay, pose.az,
                        vx, vy, vz, omega)
-        rfx, rfy, rfz, rmx, rmy, rmz = ring_substep(params, state, road, at, arx, ary, arz,
-                                                    dom, h, patch_decay)
+        rfx, rfy, rfz, rmx, rmy, rmz = ring_substep(params, state, road, at, arx, ary, arz, h,
+                                                    patch_decay)
         fx += rfx
         fy += rfy
         fz += rfz
@@ -276,7 +283,58 @@ def ring_advance(params, state, road, pose, dt):
     kin[KIN_VZ] = vz
     kin[KIN_OMEGA] = omega
     kin[KIN_TIME] += dt
+    kin[KIN_HELD] = held + dt
     return n_sub, fx / n_sub, fy / n_sub, fz / n_sub, mx / n_sub, my / n_sub, mz / n_sub
+
+
+@nb.njit(cache=True)
+def rim_spin_change(params, state, d_omega, held, slope):
+    """Bring the belt to the rim whose spin changed by ``d_omega`` [rad/s] after turning for
+    ``held`` [s] at the last one, which the rig stepped with the ``slope`` [N m s/rad] the last
+    step gave it (:func:`rim_spin_slope`); the belt held where it is.
+
+    The rotating axes turned through the last steps at the spin of their start; the rim turned
+    at the mean of the spins at their ends (the trapezoidal rule), further by
+    ``t = d_omega held / 2``. So the axes turn on by ``t`` (``psi``) and the belt's coordinates
+    in them by ``+t`` (``p' = R(t) p``, as a point at rest is carried in axes spinning with
+    ``a``), its velocities with them. Its velocity relative to the rim changes by
+    ``-d_omega a x p'`` (``a x E1 = -E2``, ``a x E2 = E1``), its own unchanged, but for the
+    moment the rig gave the rim in advance: stepping the spin linearly implicitly, the rim
+    took ``held slope d_omega`` more angular momentum than the belt gave it over those steps
+    (the foundation's pull of a rim already turning faster), and the belt takes the opposite,
+    spread as a common tangential velocity ``beta a x p'``, ``beta = -held slope d_omega /
+    sum m |p'|^2``: rim and belt together keep their angular momentum.
+
+    Why: the change was an Euler force ``-m Omega' x p`` spread over the next step, the belt
+    moving on with part of the rim's new spin; the rim-belt coupling then grew by
+    ``k dt^2 / 2 / (I - dt slope)`` a step, which the XZL's foundation damping all but
+    cancelled with its 50 kg m^2, and a rim as light as its own (3.4 kg m^2 on the foundation's
+    1.16e6 N m/rad) diverged at 1 ms. Now one step's linear map has
+    ``det = 1 - c dt / (I - dt slope)``: the foundation's damping, no more, for any rim."""
+    turn = 0.5 * d_omega * held
+    state.kinematics[KIN_PSI] += turn
+    c = math.cos(turn)
+    s = math.sin(turn)
+    p1s, p2s, v1s, v2s = state.p1, state.p2, state.v1, state.v2
+    n = p1s.shape[0]
+    spread = 0.0
+    for i in range(n):
+        p1 = p1s[i]
+        p2 = p2s[i]
+        v1 = v1s[i]
+        v2 = v2s[i]
+        p1s[i] = c * p1 - s * p2
+        p2s[i] = s * p1 + c * p2
+        v1s[i] = c * v1 - s * v2
+        v2s[i] = s * v1 + c * v2
+        spread += p1s[i] * p1s[i] + p2s[i] * p2s[i]
+    if spread <= 0.0:
+        return
+    # (beta - d_omega) a x p' = (beta - d_omega) (p2', -p1')
+    w = -held * slope * d_omega / (params.segment_mass * spread) - d_omega
+    for i in range(n):
+        v1s[i] += w * p2s[i]
+        v2s[i] -= w * p1s[i]
 
 
 @nb.njit(cache=True, inline="always")
@@ -356,7 +414,24 @@ def ring_step(wheel, pose, dt):
         v_long = pose.vx * wx1 + pose.vy * wx2 + pose.vz * wx3
         kappa, alpha = slip(v_long, v_long - pose.omega * params.rolling_radius,
                             pose.vx * wy1 + pose.vy * wy2 + pose.vz * wy3)
+    slope = rim_spin_slope(params, dt)
+    state.kinematics[KIN_SLOPE] = slope
     return WheelLoads(_finite(fx), _finite(fy), _finite(fz), _finite(mx), _finite(my),
                       _finite(mz), _finite(px), _finite(py), _finite(pz), _finite(nx),
                       _finite(ny), _finite(nz), _finite(rho), _finite(rho_dot), _finite(fxw),
-                      _finite(fyw), _finite(fzw), _finite(kappa), _finite(alpha), 0.0)
+                      _finite(fyw), _finite(fzw), _finite(kappa), _finite(alpha), slope)
+
+
+@nb.njit(cache=True, inline="always")
+def rim_spin_slope(params, dt):
+    """The slope [N m s/rad] of the step's mean moment on the rim about its axle in the rim's
+    spin, the belt held: ``-(c_theta + k_theta dt / 2)``, the foundation's tangential dampers
+    and springs at the belt radius, ``c_theta = n r_b^2 c_t``, ``k_theta = n r_b^2 k_t`` (a rim
+    turned faster by ``d omega`` slides past the belt at ``r_b d omega`` and winds the springs
+    by ``r_b d omega t`` within the step). The rigs step the rim's spin with it linearly
+    implicitly, ``(I - dt slope) d omega = dt M``, as they step an analytic model's wheel under
+    its slip stiffness; with :func:`rim_spin_change` the rim-belt coupling is then stable for
+    any rim (the rim alone, the wheel's spin inertia less the tyre's,
+    :func:`tyrelab.limits.rim_spin_inertia`: the XZL's 3.4 kg m^2 on 1.16e6 N m/rad)."""
+    r2n = params.n_segments * params.belt_radius * params.belt_radius
+    return -r2n * (params.tangential_damping + 0.5 * params.tangential_stiffness * dt)

@@ -305,7 +305,7 @@ def ring_equilibrium(tyre, load, speed, params, tread_pattern=False, **options):
     from ..handling.none import NoHandling
     from ..handling.relaxation import no_lag
     from ..static import roll_in_place
-    from ...limits import wheel_spin_inertia
+    from ...limits import rim_spin_inertia
     from ..vertical import VerticalLaw
     from ..wheel import Wheel
     height, state = ring_static_equilibrium(tyre, load, tread_pattern, **options)
@@ -319,7 +319,9 @@ def ring_equilibrium(tyre, load, speed, params, tread_pattern=False, **options):
         st = copy_state(state)
         wheel = Wheel(VerticalLaw.linear(0.0, 0.0), params, NoHandling(), road, st, no_lag())
         dt = 1e-3
-        inertia = wheel_spin_inertia(tyre, load)[0]   # a file without one: estimated
+        # the rim as the rigs turn it (a file without a wheel's inertia: estimated)
+        belt = params.n_segments * params.segment_mass * params.belt_radius ** 2
+        inertia = rim_spin_inertia(tyre, load, belt)[0]
         travel = 2.0 * math.sqrt(max(r0 ** 2 - height ** 2, 0.0))   # a contact length
         n_settle = int(max(ROLL_SETTLE, 3.0 * travel / speed) / dt)
         n = int(max(ROLL_WINDOW, travel / speed) / dt)
@@ -344,6 +346,13 @@ def ring_equilibrium(tyre, load, speed, params, tread_pattern=False, **options):
     st = copy_state(st)
     st.kinematics[KIN_TIME] = 0.0
     return deflection, spin, st
+
+
+def belt_spin_inertia(tyre, parameters=None, **_) -> float:
+    """The belt's spin inertia [kg m^2]: ``RING_MASS r_b^2``, the belt at its radius
+    ``r_b = R0 - TREAD_DEPTH`` (the registry's ``carried_spin_inertia``); the XZL's 64.4."""
+    rp = parameters if parameters is not None else ring_parameters(tyre)
+    return float(rp.ring_mass * (tyre.unloaded_radius - rp.tread_depth) ** 2)
 
 
 def ring_footprint_of(wheel, load, deflection, tyre) -> dict:
@@ -386,7 +395,7 @@ register_contact(ContactModel("ring", RingParams, _ring_build, step=ring_step,
                               static_options={"relax": RELAX_RATE},
                               footprint=ring_footprint_of, options=_OPTION_TYPES, cost=0.08,
                               terrains=("rigid", "soil"), check_values=ring_option_values,
-                              check_tyre=ring_parameters,
+                              check_tyre=ring_parameters, carried_spin_inertia=belt_spin_inertia,
                               parameterization=_DATA, fit_steps=_FIT_STEPS,
                               summary="flexible ring (FTire class), evenly spaced tread blocks"))
 register_contact(ContactModel("ring-tp", RingParams, _ring_tp_build, step=ring_step,
@@ -394,6 +403,7 @@ register_contact(ContactModel("ring-tp", RingParams, _ring_tp_build, step=ring_s
                               static_options={"relax": RELAX_RATE}, footprint=ring_footprint_of,
                               options=_OPTION_TYPES, cost=0.085, terrains=("rigid", "soil"),
                               check_values=ring_option_values, check_tyre=ring_parameters,
+                              carried_spin_inertia=belt_spin_inertia,
                               parameterization=_DATA + " + tread pattern",
                               # no fit_steps: its pattern is a file the user gives, not fitted
                               summary="flexible ring with blocks on the tread pattern"))

@@ -35,7 +35,11 @@ KIN_VZ = 3
 KIN_OMEGA = 4
 #: time the state has been advanced [s]
 KIN_TIME = 5
-KIN_SIZE = 6
+#: how long the rim has turned at the spin ``KIN_OMEGA`` [s], and the slope of the moment on it
+#: in its spin that the last step gave the rig [N m s/rad] (:func:`~.kernel.rim_spin_change`)
+KIN_HELD = 6
+KIN_SLOPE = 7
+KIN_SIZE = 8
 
 # --- RingState.lateral_key: what the out-of-plane factor was made for -----------------
 #: the key's entries: the internal step [s] and the matrix checksum; their positions (``LK``)
