@@ -41,7 +41,7 @@ from tyrelab.cli.main import main  # noqa: E402
 from tyrelab.cosim import WheelCentre, wheel_stepper  # noqa: E402
 from tyrelab.cosim.fmu import export_fmu  # noqa: E402
 from tyrelab.cosim.variables import INPUTS, OUTPUTS, PARAMETERS, UNITS  # noqa: E402
-from tyrelab.guards import rig_spin_inertia  # noqa: E402
+from tyrelab.guards import rig_rim_mass, rig_spin_inertia  # noqa: E402
 from tyrelab.errors import InputError  # noqa: E402
 from tyrelab.rig.quarter_vehicle import QuarterVehicle  # noqa: E402
 from tyrelab.rig.rolling import roll  # noqa: E402
@@ -173,6 +173,7 @@ def quarter_car_with_fmu(path: Path, qv: QuarterVehicle, road, duration: float, 
     k, c = qv.suspension_stiffness, qv.suspension_damping
     free = qv.spring_length + ms * g / k
     inertia = rig_spin_inertia(qv.model, qv.wheel_load)   # the ring's rim: the wheel's less its tyre's
+    rim = rig_rim_mass(qv.model, mu, "the unsprung mass")  # and its mass less its belt's
     eq = qv.model.equilibrium(qv.wheel_load, SPEED)      # where the host puts the wheel at rest
     zu, vu = qv.model.tyre.unloaded_radius - eq.deflection, 0.0
     zs, vs, w = zu + qv.spring_length, 0.0, eq.spin
@@ -187,7 +188,7 @@ def quarter_car_with_fmu(path: Path, qv: QuarterVehicle, road, duration: float, 
             centre = WheelCentre(x0 + SPEED * t, 0.0, zu, SPEED, 0.0, vu, w)
             fz, fx, my, dmy = wheel.step(t, centre, dt, ["FZ", "FX", "MY", "DMY_DROTSPEED"])
             fsp = k * (free - (zs - zu)) + c * (vu - vs)
-            a_s, a_u = fsp / ms - g, (fz - fsp) / mu - g
+            a_s, a_u = fsp / ms - g, (fz - fsp - mu * g) / rim
             out[i] = fz, fx, zs
             vs, vu = vs + dt * a_s, vu + dt * a_u
             zs, zu = zs + dt * vs, zu + dt * vu

@@ -185,12 +185,11 @@ def test_ring_agrees_with_the_explicit_integrator(case, monkeypatch):
     what both integrators give (RMS about 20 N m, 0.005 % of FZ x R0) is the
     staggered blocks' asymmetry (the implicit step changes its RMS by 1 N m).
 
-    The references turned the rim with the whole wheel's spin inertia (the XZL's 50 kg m^2),
-    as the rigs did before they took the tyre's own out of it (``test_ring_spin``): so do
-    these runs, to compare the integrators and nothing else.
+    The references turned and moved the rim as the whole wheel (the XZL's 50 kg m^2 and 240 kg
+    in the frame's inertia), as the rigs did before they took the belt's out of it
+    (``test_ring_rim``): so do these runs, to compare the integrators and nothing else.
     """
-    monkeypatch.setattr(guards, "rig_spin_inertia",
-                        lambda model, load: limits.wheel_spin_inertia(model.tyre, load)[0])
+    monkeypatch.setattr(guards, "carried_inertia", lambda model: limits.NOTHING_CARRIED)
     parts = case.split("-")          # trailer-<model>-<road>-<load case>
     contact, road, load = "-".join(parts[1:-2]), parts[-2], parts[-1]
     spec, duration = ROADS[road]

@@ -115,7 +115,7 @@ def test_the_ring_under_the_torque_of_a_slip_finds_that_slip():
     0.001, with its pull to 1 % (as the rigid wheel does: test_soil_rigid_wheel.py). Under
     9.1 kN m, past what s = 0.4 takes (8.8 kN m), it turns at a slip near 0.7 with the soil's
     moment on it within 2 % of the torque (1 % measured). At the 1 ms step, before the ring took
-    its rim's spin change at once (test_ring_spin), its rim and belt wound each other up there:
+    its rim's spin change at once (test_ring_rim), its rim and belt wound each other up there:
     the moment swung by +-450 kN m, the spin from -16 to 71 rad/s."""
     tm = TyreModel(load_tyre(), "ring")
     kw = dict(duration=3.0, progress=False)

@@ -213,10 +213,9 @@ def rig_spin_inertia(model, wheel_load: float) -> float:
                       f"({how}) and its unloaded radius {tyre.unloaded_radius:.4g} m; give your wheel's "
                       "(tyre and rim), which its spin under the tyre's longitudinal force depends on",
                       UserWarning, stacklevel=3)
-    hook = model.contact_model.carried_spin_inertia
-    if hook is None:
+    carried = carried_inertia(model).spin_inertia
+    if not carried > 0.0:
         return inertia
-    carried = hook(tyre, **model.options)
     rim, how = limits.rim_spin_inertia(tyre, wheel_load, carried)
     key = ("rim", source)
     if how == "floor" and key not in _ESTIMATED_INERTIA:
@@ -228,6 +227,31 @@ def rig_spin_inertia(model, wheel_load: float) -> float:
         warnings.warn(f"{source}: the wheel's spin inertia {inertia:.3g} kg m^2 leaves less than "
                       f"{limits.RIM_SHARE:.0%} of it for the rim after {own}: the rig turns the rim "
                       f"with {rim:.3g} kg m^2", UserWarning, stacklevel=3)
+    return rim
+
+
+def carried_inertia(model) -> limits.Carried:
+    """What ``model``'s own state carries of the wheel's inertia (the registry's ``carried``:
+    the ring's belt), nothing for an analytic model."""
+    hook = model.contact_model.carried
+    return limits.NOTHING_CARRIED if hook is None else hook(model.tyre, **model.options)
+
+
+def rig_rim_mass(model, mass: float, what: str = "the wheel's mass") -> float:
+    """The mass [kg] a rig moves ``model``'s rim with, of ``mass`` [kg] (``what`` names it in
+    the warning): all of it, less what the model's own state moves (the ring's belt,
+    :func:`tyrelab.limits.rim_mass`). Told once per file and ``what`` when the numbers leave
+    the rim less than the floor."""
+    carried = carried_inertia(model).mass
+    if not carried > 0.0:
+        return float(mass)
+    rim, floored = limits.rim_mass(mass, carried)
+    source = getattr(model.tyre.tir, "source", model.tyre.name)
+    if floored and ("mass", source, what) not in _ESTIMATED_INERTIA:
+        _ESTIMATED_INERTIA.add(("mass", source, what))
+        warnings.warn(f"{source}: {what} {mass:.4g} kg leaves less than {limits.RIM_SHARE:.0%} of "
+                      f"it for the rim after the {model.contact} model's {carried:.4g} kg (its belt): "
+                      f"the rig moves the rim with {rim:.4g} kg", UserWarning, stacklevel=3)
     return rim
 
 

@@ -356,6 +356,30 @@ def wheel_spin_inertia(tyre, wheel_load: float) -> tuple[float, bool]:
 RIM_SHARE = 0.05
 
 
+class Carried(NamedTuple):
+    """What a tyre model's own state carries of the wheel's inertia (the ring's belt): its mass
+    [kg] and its spin inertia about the axle [kg m^2]. The rigs move the rim with the rest."""
+
+    mass: float
+    spin_inertia: float
+
+
+#: what an analytic model carries: nothing (the rigs move the whole wheel)
+NOTHING_CARRIED = Carried(0.0, 0.0)
+
+
+def rim_mass(mass: float, carried: float) -> tuple[float, bool]:
+    """``(mass [kg], floored)``: the mass a rig moves the rim with, the wheel's (or the quarter
+    vehicle's unsprung) ``mass`` less the ``carried`` mass the tyre model's own state moves (the
+    ring's belt: the XZL's 240 - 154 = 86 kg); at least :data:`RIM_SHARE` of it (``floored``:
+    the numbers left less). The weight stays the whole ``mass``: the ring's belt has none of its
+    own (its weight is the rim's to carry, as the file's wheel mass says)."""
+    rim = float(mass) - float(carried)
+    if rim < RIM_SHARE * float(mass):
+        return RIM_SHARE * float(mass), True
+    return rim, False
+
+
 def rim_spin_inertia(tyre, wheel_load: float, carried: float) -> tuple[float, str]:
     """``(inertia [kg m^2], how)``: the spin inertia a rig turns the rim with when the tyre
     model's own state carries ``carried`` [kg m^2] of the tyre's (the ring's belt, its mass at

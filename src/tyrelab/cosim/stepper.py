@@ -19,8 +19,10 @@ moves the wheel as a rig does gets the rig's loads, to round-off.
 The host owns the wheel's motion: its position, its velocity and its spin
 (integrate the spin with ``MY`` and :attr:`WheelStepper.spin_inertia`, the rim's for the
 ring, whose belt turns its own; ``dmy_domega`` lets it do so implicitly, as the rigs do:
-the ring's light rim needs it). Conventions: SI, the road frame and the TYDEX C-axis
-sign convention of :mod:`tyrelab.signal` (loads of the road on the tyre).
+the ring's light rim needs it). The ring's belt also moves its own mass
+(:attr:`WheelStepper.carried`): move the rim with the rest. Conventions: SI, the road
+frame and the TYDEX C-axis sign convention of :mod:`tyrelab.signal` (loads of the road on
+the tyre).
 """
 
 from __future__ import annotations
@@ -132,6 +134,16 @@ class WheelStepper:
         50 kg m^2). Turning the ring's rim with the whole wheel's counts the tyre's twice."""
         from ..guards import rig_spin_inertia
         return rig_spin_inertia(self.model, self.load)
+
+    @property
+    def carried(self):
+        """What the model's own state moves of the wheel (:class:`tyrelab.limits.Carried`: the
+        ring's belt, the XZL's 154 kg and 64.4 kg m^2; nothing for the analytic models): its
+        inertia is in the loads, so a host moves its rim with the wheel's mass less
+        ``carried.mass`` (the weight stays the whole wheel's: the belt has none of its own) and
+        turns it with :attr:`spin_inertia`."""
+        from ..guards import carried_inertia
+        return carried_inertia(self.model)
 
     def sub_steps(self, dt: float) -> int:
         """How many internal steps a step of ``dt`` [s] takes."""

@@ -21,6 +21,7 @@ class QuarterParams(NamedTuple):
     speed: float
     sprung_mass: float
     unsprung_mass: float
+    rim_mass: float
     stiffness: float
     damping: float
     spring_free_length: float
@@ -49,14 +50,20 @@ def quarter_steps(wheel, qp, state, n_steps, dt, out_every, out, row0):
     m_u); the hub is carried along x at constant speed, free vertically::
 
         m_s z_s'' = F_susp - m_s g
-        m_u z_u'' = F_tyre,z - F_susp - m_u g
+        m_r z_u'' = F_tyre,z - F_susp - m_u g
         F_susp    = k_s (d0 - (z_s - z_u)) + c_s (z_u' - z_s')
+
+    ``m_r`` the rim's mass, ``m_u`` less what the tyre model's own state moves (the ring's
+    belt, whose inertia is in ``F_tyre``; its weight is the rim's to carry): ``m_u`` for the
+    analytic models.
     """
     cax = np.empty(N_C_AXIS)
     V = qp.speed
     ms = qp.sprung_mass
     mu = qp.unsprung_mass
+    mr = qp.rim_mass
     g = qp.gravity
+    weight = g * (mu / mr)   # the unsprung weight per unit of the rim's mass (g without a belt)
     row = row0
     for step in range(n_steps):
         t = state[Q.T]
@@ -66,14 +73,14 @@ def quarter_steps(wheel, qp, state, n_steps, dt, out_every, out, row0):
         f = wheel_step(wheel, pose, dt)
         fsp = qp.stiffness * (qp.spring_free_length - (zs - zu)) + qp.damping * (vu - vs)
         a_s = fsp / ms - g
-        a_u = (f.fz - fsp) / mu - g
+        a_u = (f.fz - fsp) / mr - weight
         spin = f.my   # the tyre's moment about the axle (+y)
         if (step % out_every) == 0 and row < out.shape[0]:
             o = out[row]
             wheel_row(o, t, cx - qp.x_start, pose, f, cax)
             o[QC.FX_HUB] = cax[CA.FX]
             o[QC.FY_HUB] = cax[CA.FY]
-            o[QC.FZ_HUB] = cax[CA.FZ] - mu * a_u   # load-cell reading, tared with the wheel hanging free
+            o[QC.FZ_HUB] = cax[CA.FZ] - mr * a_u   # load-cell reading, tared with the wheel hanging free
             o[QC.Z_BODY] = zs
             o[QC.VZ_BODY] = vs
             o[QC.F_SUSP] = fsp

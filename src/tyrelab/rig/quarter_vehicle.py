@@ -107,12 +107,13 @@ class QuarterVehicle:
         length, the tyre model in ``model_state`` (default: its static state) or in its rolling
         equilibrium ``rolling``; ``wheel`` the wheel when it is built already (on soil), on its
         Python ``ground``."""
-        from ..guards import rig_spin_inertia
+        from ..guards import rig_rim_mass, rig_spin_inertia
         tyre = self.model.tyre
         x0_road = road.run_start
         ms, mu = self.sprung_mass, self.unsprung_mass
         qp = K.QuarterParams(
             speed=float(speed), sprung_mass=float(ms), unsprung_mass=float(mu),
+            rim_mass=rig_rim_mass(self.model, mu, "the unsprung mass"),
             stiffness=float(self.suspension_stiffness), damping=float(self.suspension_damping),
             spring_free_length=float(self.spring_length + ms * G / self.suspension_stiffness),
             spin_inertia=rig_spin_inertia(self.model, self.wheel_load), gravity=G,

@@ -81,16 +81,18 @@ def _undisturbed(ground, x, y):
 
 
 @nb.njit(cache=True)
-def single_wheel_steps(wheel, mass, speed, drive, state, n_steps, dt, out_every, out, row0):
+def single_wheel_steps(wheel, mass, moved, speed, drive, state, n_steps, dt, out_every, out, row0):
     """Drive ``n_steps`` from ``state`` (:data:`STATE`); rows of :data:`CHANNELS` into ``out``.
 
-    The carriage's height follows the soil's vertical force against the dead weight
-    (semi-implicit Euler); x is prescribed. ``drive`` (:class:`Drive`): the spin is held at
-    the state's, or with ``free`` turns under the driving ``torque`` [N m] and the soil's
-    moment about the axle, as the trailer's and the quarter vehicle's wheels do (implicit in
-    the moment's slope ``dspin_domega`` where the model gives one; the wheels on soil give
-    none, so there the step is explicit: stable at 1 ms, measured). Returns the next free
-    row.
+    The carriage's height follows the soil's vertical force against the dead weight of
+    ``mass`` [kg] (semi-implicit Euler), which moves with the carriage but for what the tyre
+    model's own state moves (the ring's belt): ``moved`` [kg]. x is prescribed. ``drive``
+    (:class:`Drive`): the spin is held at the state's, or with ``free`` turns under the
+    driving ``torque`` [N m] and the soil's moment about the axle, as the trailer's and the
+    quarter vehicle's wheels do (implicit in the moment's slope ``dspin_domega`` where the
+    model gives one: the ring's foundation; the rigid wheel and the analytic models on soil
+    give none, so there the step is explicit: stable at 1 ms, measured). Returns the next
+    free row.
     """
     cax = np.empty(6)
     row = row0
@@ -109,7 +111,7 @@ def single_wheel_steps(wheel, mass, speed, drive, state, n_steps, dt, out_every,
             # tread on its own radius, and the ring has none of its own
             o[WC.LONGSLIP] = tester_slip(speed, omega, drive.rolling_radius)
             row += 1
-        vz += dt * (f.fz - mass * G) / mass
+        vz += dt * (f.fz - mass * G) / moved
         state[S.VZ] = vz
         state[S.Z] = z + dt * vz
         state[S.T] = t + dt
@@ -224,8 +226,9 @@ def single_wheel(model, soil, load: float, speed: float, slip: float = 0.0, leng
         duration = (x_end - X_START) / speed
     r_e = rolling_radius(model, load, speed)
     omega = wheel_spin(speed, r_e, 0.0 if torque is not None else slip)
-    from ..guards import rig_spin_inertia
+    from ..guards import rig_rim_mass, rig_spin_inertia
     inertia = rig_spin_inertia(model, load) if torque is not None else model.tyre.spin_inertia
+    moved = rig_rim_mass(model, load / G, "the dead weight's mass")
     drive = Drive(torque is not None, float(torque or 0.0), inertia, r_e)
     n_steps = int(round(duration / dt))
     out_every = max(1, int(round(1.0 / (output_rate * dt))))
@@ -243,8 +246,8 @@ def single_wheel(model, soil, load: float, speed: float, slip: float = 0.0, leng
         def advance(n, out, row, state=state, follow=follow):
             nonlocal wheel
             wheel = follow.wheel(wheel, n)
-            return single_wheel_steps(wheel, load / G, float(speed), drive, state, n, dt, out_every,
-                                      out, row)
+            return single_wheel_steps(wheel, load / G, moved, float(speed), drive, state, n, dt,
+                                      out_every, out, row)
 
         data = run_chunks(advance, n_steps, out_every, len(CHANNELS), dt, progress)
         meta = {"rig": "single-wheel", "tyre": model.tyre.name, "model": model.contact,

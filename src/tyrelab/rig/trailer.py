@@ -204,15 +204,26 @@ class Trailer:
         self.load_case = load_case
 
     def params(self, speed: float) -> K.TrailerParams:
-        """The :class:`~._trailer_kernel.TrailerParams` record at towing ``speed`` [m/s]."""
-        from ..guards import rig_spin_inertia
+        """The :class:`~._trailer_kernel.TrailerParams` record at towing ``speed`` [m/s].
+
+        The frame's inertia counts both wheels whole; a tyre model whose own state moves part of
+        its wheel (the ring's belt) has that part's taken out, a point mass at its wheel centre
+        (the weight stays the frame's: the belt has none of its own)."""
+        from ..guards import carried_inertia, rig_rim_mass, rig_spin_inertia
         s, gm, ty = self.setup, self.geometry, self.model.tyre
+        inertia = np.array(s.inertia, np.float64)
+        for model, side in ((self.model, -1.0), (self.left, 1.0)):
+            belt = carried_inertia(model).mass
+            if belt > 0.0:
+                r = np.array([-gm.hitch_to_axle, side * 0.5 * gm.track, 0.0])
+                inertia -= belt * (np.dot(r, r) * np.eye(3) - np.outer(r, r))
         return K.TrailerParams(
             speed=float(speed), hitch_to_axle=float(gm.hitch_to_axle), track=float(gm.track),
             hitch_height=float(s.hitch_height), mass=float(s.mass),
             cg=np.ascontiguousarray(s.cg, np.float64),
-            inertia=np.ascontiguousarray(s.inertia, np.float64),
-            spin_inertia=rig_spin_inertia(self.model, s.wheel_load), wheel_mass=float(ty.wheel_mass),
+            inertia=np.ascontiguousarray(inertia),
+            spin_inertia=rig_spin_inertia(self.model, s.wheel_load),
+            wheel_mass=rig_rim_mass(self.model, float(ty.wheel_mass)) if ty.wheel_mass > 0 else 0.0,
             gravity=G, road_y=0.5 * float(gm.track))
 
     def run(self, road: Road | str, speed: float, duration: float | None = None,

@@ -124,12 +124,12 @@ class ContactModel:
         :class:`InputError` whose field is the option's name) before any work is
         started: :func:`check_options` calls it, so the command line and a study
         spec's check refuse the value, not the run; ``build`` checks again.
-    carried_spin_inertia : callable, optional
-        ``carried_spin_inertia(tyre, **options) -> float``: the spin inertia [kg m^2] the
-        model's own state carries about the axle (the ring's belt: its mass at the belt
-        radius); the rigs turn the rim with the wheel's less the tyre's
-        (:func:`tyrelab.limits.rim_spin_inertia`). Without it (the analytic models): none,
-        the rigs turn the whole wheel's.
+    carried : callable, optional
+        ``carried(tyre, **options) -> tyrelab.limits.Carried``: the mass [kg] and the spin
+        inertia about the axle [kg m^2] the model's own state carries (the ring's belt: its
+        mass, at the belt radius); the rigs move and turn the rim with the rest
+        (:func:`tyrelab.guards.rig_rim_mass`, :func:`tyrelab.guards.rig_spin_inertia`).
+        Without it (the analytic models): nothing, the rigs move the whole wheel.
     check_tyre : callable, optional
         ``check_tyre(tyre)`` refuses a tyre that lacks what the model needs (an
         :class:`InputError` saying what, e.g. the ring's ``[FLEXIBLE_RING]``) before
@@ -154,7 +154,7 @@ class ContactModel:
     terrains: tuple = ("rigid",)
     check_values: Callable[[dict], Any] | None = None
     check_tyre: Callable[[Any], Any] | None = None
-    carried_spin_inertia: Callable[..., float] | None = None
+    carried: Callable[..., Any] | None = None
 
     def __post_init__(self):
         if (self.geometry is None) == (self.step is None):

@@ -348,11 +348,14 @@ def ring_equilibrium(tyre, load, speed, params, tread_pattern=False, **options):
     return deflection, spin, st
 
 
-def belt_spin_inertia(tyre, parameters=None, **_) -> float:
-    """The belt's spin inertia [kg m^2]: ``RING_MASS r_b^2``, the belt at its radius
-    ``r_b = R0 - TREAD_DEPTH`` (the registry's ``carried_spin_inertia``); the XZL's 64.4."""
+def belt_carried(tyre, parameters=None, **_):
+    """What the belt carries of the wheel's inertia (the registry's ``carried``): its mass
+    ``RING_MASS`` and its spin inertia ``RING_MASS r_b^2``, the belt at its radius
+    ``r_b = R0 - TREAD_DEPTH`` (the XZL's 154 kg and 64.4 kg m^2)."""
+    from ...limits import Carried
     rp = parameters if parameters is not None else ring_parameters(tyre)
-    return float(rp.ring_mass * (tyre.unloaded_radius - rp.tread_depth) ** 2)
+    mass = float(rp.ring_mass)
+    return Carried(mass, mass * (tyre.unloaded_radius - rp.tread_depth) ** 2)
 
 
 def ring_footprint_of(wheel, load, deflection, tyre) -> dict:
@@ -395,7 +398,7 @@ register_contact(ContactModel("ring", RingParams, _ring_build, step=ring_step,
                               static_options={"relax": RELAX_RATE},
                               footprint=ring_footprint_of, options=_OPTION_TYPES, cost=0.08,
                               terrains=("rigid", "soil"), check_values=ring_option_values,
-                              check_tyre=ring_parameters, carried_spin_inertia=belt_spin_inertia,
+                              check_tyre=ring_parameters, carried=belt_carried,
                               parameterization=_DATA, fit_steps=_FIT_STEPS,
                               summary="flexible ring (FTire class), evenly spaced tread blocks"))
 register_contact(ContactModel("ring-tp", RingParams, _ring_tp_build, step=ring_step,
@@ -403,7 +406,7 @@ register_contact(ContactModel("ring-tp", RingParams, _ring_tp_build, step=ring_s
                               static_options={"relax": RELAX_RATE}, footprint=ring_footprint_of,
                               options=_OPTION_TYPES, cost=0.085, terrains=("rigid", "soil"),
                               check_values=ring_option_values, check_tyre=ring_parameters,
-                              carried_spin_inertia=belt_spin_inertia,
+                              carried=belt_carried,
                               parameterization=_DATA + " + tread pattern",
                               # no fit_steps: its pattern is a file the user gives, not fitted
                               summary="flexible ring with blocks on the tread pattern"))
