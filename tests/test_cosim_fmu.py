@@ -40,8 +40,7 @@ from tyrelab.api import make_tyre_model  # noqa: E402
 from tyrelab.cli.main import main  # noqa: E402
 from tyrelab.cosim import WheelCentre, wheel_stepper  # noqa: E402
 from tyrelab.cosim.fmu import export_fmu  # noqa: E402
-from tyrelab.cosim.variables import INPUTS, OUTPUTS, PARAMETERS, UNITS  # noqa: E402
-from tyrelab.guards import rig_rim_mass, rig_spin_inertia  # noqa: E402
+from tyrelab.cosim.variables import CALCULATED, INPUTS, OUTPUTS, PARAMETERS, UNITS  # noqa: E402
 from tyrelab.errors import InputError  # noqa: E402
 from tyrelab.rig.quarter_vehicle import QuarterVehicle  # noqa: E402
 from tyrelab.rig.rolling import roll  # noqa: E402
@@ -86,7 +85,8 @@ def test_the_fmu_is_valid_and_says_what_it_carries(fmus):
     md = read_model_description(str(path))
     assert md.fmiVersion == "2.0" and md.coSimulation is not None and md.modelExchange is None
     by_name = {v.name: v for v in md.modelVariables}
-    for kind, table in (("input", INPUTS), ("output", OUTPUTS), ("parameter", PARAMETERS)):
+    for kind, table in (("input", INPUTS), ("output", OUTPUTS), ("parameter", PARAMETERS),
+                        ("calculatedParameter", CALCULATED)):
         assert [v.name for v in md.modelVariables if v.causality == kind] == [v.name for v in table]
         for v in table:
             assert by_name[v.name].unit == (v.unit or None), v.name
@@ -97,6 +97,21 @@ def test_the_fmu_is_valid_and_says_what_it_carries(fmus):
         names = z.namelist()
     assert "resources/tyrelab_data/manifest.json" in names
     assert "resources/tyrelab_data/tyre/xzl-16.00R20.tir" in names
+
+
+@pytest.mark.parametrize("contact,inertia,carried", [("ring", 50.0 - 46.6, 153.999),
+                                                     ("point", 50.0, 0.0)])
+def test_the_fmu_tells_its_host_how_to_move_the_wheel(fmus, contact, inertia, carried):
+    """SPIN_INERTIA and CARRIED_MASS from the XZL's file: the ring's rim turns with WHEEL_IYY less
+    IYY (50 - 46.6 kg m^2), its belt moves RING_MASS (153.999 kg) itself; the point model's
+    wheel is all the host's (50 kg m^2, nothing carried)."""
+    wheel = FmuWheel(fmus(contact), {"INITIAL_LOAD": LC1}, 1, {"Z_WC": 0.6, "VX_WC": SPEED,
+                                                                "ROTSPEED": SPEED / 0.6})
+    try:
+        assert wheel.calculated("SPIN_INERTIA") == pytest.approx(inertia, rel=1e-9)
+        assert wheel.calculated("CARRIED_MASS") == pytest.approx(carried, rel=1e-6)
+    finally:
+        wheel.close()
 
 
 # (contact model, start x [m] or None for the road's start, duration [s]); the cleat is at 5 m
@@ -156,6 +171,10 @@ class FmuWheel:
         self.fmu.doStep(currentCommunicationPoint=t, communicationStepSize=dt)
         return self.fmu.getReal([self.vr[n] for n in outputs])
 
+    def calculated(self, name: str) -> float:
+        """A calculated parameter the FMU worked out at initialisation."""
+        return self.fmu.getReal([self.vr[name]])[0]
+
     def close(self):
         self.fmu.terminate()
         self.fmu.freeInstance()
@@ -164,7 +183,9 @@ class FmuWheel:
 
 def quarter_car_with_fmu(path: Path, qv: QuarterVehicle, road, duration: float, dt: float = DT):
     """The quarter car of :mod:`tyrelab.rig.quarter_vehicle`, written out here in plain numpy
-    (semi-implicit Euler, the spin linearly implicit in dMY/dROTSPEED), its tyre the FMU.
+    (semi-implicit Euler, the spin linearly implicit in dMY/dROTSPEED), its tyre the FMU; the
+    wheel turned with the FMU's SPIN_INERTIA and moved with its mass less the FMU's CARRIED_MASS
+    (the ring's belt moves and turns itself), as its model description tells a host.
 
     Returns arrays of the tyre's FZ, FX (road frame: the wheel is level) and the body height.
     """
@@ -172,14 +193,13 @@ def quarter_car_with_fmu(path: Path, qv: QuarterVehicle, road, duration: float, 
     ms, mu = qv.sprung_mass, qv.unsprung_mass
     k, c = qv.suspension_stiffness, qv.suspension_damping
     free = qv.spring_length + ms * g / k
-    inertia = rig_spin_inertia(qv.model, qv.wheel_load)   # the ring's rim: the wheel's less its tyre's
-    rim = rig_rim_mass(qv.model, mu, "the unsprung mass")  # and its mass less its belt's
     eq = qv.model.equilibrium(qv.wheel_load, SPEED)      # where the host puts the wheel at rest
     zu, vu = qv.model.tyre.unloaded_radius - eq.deflection, 0.0
     zs, vs, w = zu + qv.spring_length, 0.0, eq.spin
     x0 = road.run_start
     wheel = FmuWheel(path, {"INITIAL_LOAD": qv.wheel_load}, 1,
                      {"X_WC": x0, "Z_WC": zu, "VX_WC": SPEED, "ROTSPEED": w})
+    inertia, rim = wheel.calculated("SPIN_INERTIA"), mu - wheel.calculated("CARRIED_MASS")
     n = int(round(duration / dt))
     out = np.empty((n, 3))
     try:

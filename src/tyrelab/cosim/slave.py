@@ -29,7 +29,7 @@ from .._version import __version__
 from ..errors import InputError
 from .kernel import WheelCentre
 from .manifest import build_stepper, read_manifest
-from .variables import INPUTS, OUTPUT_FRAMES, OUTPUTS, PARAMETERS, SOIL_PARAMETERS, UNITS
+from .variables import CALCULATED, INPUTS, OUTPUT_FRAMES, OUTPUTS, PARAMETERS, SOIL_PARAMETERS, UNITS
 
 
 def leave_objects_to_the_exit():
@@ -98,6 +98,11 @@ class TyrelabWheel(Fmi2Slave):
         starts = {"pressure": tyre["pressure"] or 0.0, "load": manifest["load"],
                   "max_step": manifest["internal_step"],
                   "frame": OUTPUT_FRAMES.index(manifest["frame"]), "soil_group": 0}
+        for v in CALCULATED:   # worked out at initialisation (exit_initialization_mode)
+            setattr(self, v.name, 0.0)
+            self.register_variable(Real(v.name, causality=Fmi2Causality.calculatedParameter,
+                                        variability=Fmi2Variability.fixed,
+                                        description=v.description))
         for v in PARAMETERS + (SOIL_PARAMETERS if terrain is not None else ()):
             kind = Integer if v.kind == "Integer" else Real
             setattr(self, v.name, starts[v.field])
@@ -123,6 +128,8 @@ class TyrelabWheel(Fmi2Slave):
                                       soil_group=int(getattr(self, "SOIL_GROUP", 0)))
         # a wheel the host puts below the road or onto its rim: a warning in the host's log
         self._stepper.warn = lambda message: self.log(message, Fmi2Status.warning)
+        for v in CALCULATED:
+            setattr(self, v.name, float(getattr(self._stepper, v.field)))
         self._publish(self._stepper.loads(centre))
 
     def do_step(self, current_time, step_size):
@@ -143,8 +150,8 @@ class TyrelabWheel(Fmi2Slave):
 
     def to_xml(self, model_options=None) -> Element:
         """pythonfmu's model description plus what it leaves out: the unit of every real
-        variable (UnitDefinitions) and the outputs as initial unknowns (calculated at
-        initialisation from the inputs and parameters)."""
+        variable (UnitDefinitions) and the outputs and calculated parameters as initial
+        unknowns (calculated at initialisation from the inputs and parameters)."""
         root = super().to_xml(model_options or {})
         units = Element("UnitDefinitions")  # after CoSimulation, as the schema orders them
         for name, exponents in UNITS.items():
@@ -152,15 +159,19 @@ class TyrelabWheel(Fmi2Slave):
             if exponents:
                 SubElement(unit, "BaseUnit", {k: str(e) for k, e in exponents.items()})
         root.insert(list(root).index(root.find("CoSimulation")) + 1, units)
-        unit_of = {v.name: v.unit for v in INPUTS + OUTPUTS + PARAMETERS if v.unit}
+        unit_of = {v.name: v.unit for v in INPUTS + OUTPUTS + PARAMETERS + CALCULATED if v.unit}
         for sv in root.find("ModelVariables"):
             real = sv.find("Real")
             if real is not None and sv.get("name") in unit_of:
                 real.set("unit", unit_of[sv.get("name")])
         structure = root.find("ModelStructure")
         initial = SubElement(structure, "InitialUnknowns")
-        for unknown in structure.find("Outputs"):
-            SubElement(initial, "Unknown", {"index": unknown.get("index")})
+        calculated = {v.name for v in CALCULATED}
+        indices = {unknown.get("index") for unknown in structure.find("Outputs")}
+        indices |= {str(k) for k, sv in enumerate(root.find("ModelVariables"), 1)
+                    if sv.get("name") in calculated}
+        for index in sorted(indices, key=int):   # outputs and calculated parameters, in order
+            SubElement(initial, "Unknown", {"index": index})
         return root
 
 

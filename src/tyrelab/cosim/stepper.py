@@ -145,6 +145,11 @@ class WheelStepper:
         from ..guards import carried_inertia
         return carried_inertia(self.model)
 
+    @property
+    def carried_mass(self) -> float:
+        """``carried.mass`` [kg] (the FMU's ``CARRIED_MASS``)."""
+        return float(self.carried.mass)
+
     def sub_steps(self, dt: float) -> int:
         """How many internal steps a step of ``dt`` [s] takes."""
         return max(1, math.ceil(dt / self.max_step - 1e-9))

@@ -94,6 +94,18 @@ PARAMETERS = (
              "frame", "frame", "Integer"),
 )
 
+#: what the FMU works out for its host at initialisation (FMI calculated parameters, fixed from
+#: then on); ``field`` names the :class:`~.stepper.WheelStepper` property that gives it
+CALCULATED = (
+    Variable("SPIN_INERTIA", "kg.m2", "spin inertia to turn the wheel with when integrating MY into "
+             "ROTSPEED, as the rigs do: the wheel's (the tyre file's WHEEL_IYY), or for a model whose "
+             "belt turns itself (the ring) the rim's, the wheel's less the tyre's own IYY",
+             "spin_inertia"),
+    Variable("CARRIED_MASS", "kg", "mass the model's own state moves (the ring's belt; 0 for the "
+             "analytic models): its inertia is in the loads, so move the wheel centre with the "
+             "wheel's mass less this (its weight stays the wheel's)", "carried_mass"),
+)
+
 #: set before initialisation, in an FMU with a terrain only (``export fmu --terrain``)
 SOIL_PARAMETERS = (
     Variable("SOIL_GROUP", "", "instances in one process with the same SOIL_GROUP > 0 share one "
@@ -107,6 +119,8 @@ OUTPUT_FRAMES = ("C-axis", "road")
 #: FMI unit name -> exponents of the SI base units (the model description's UnitDefinitions)
 UNITS = {
     "m": {"m": 1},
+    "kg": {"kg": 1},
+    "kg.m2": {"kg": 1, "m": 2},
     "m/s": {"m": 1, "s": -1},
     "rad": {"rad": 1},
     "rad/s": {"rad": 1, "s": -1},
