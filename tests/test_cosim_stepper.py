@@ -277,12 +277,14 @@ def test_bad_wheels_are_refused_with_one_line(kwargs, match):
 
 def test_the_page_lists_every_fmu_variable_with_its_unit():
     """docs/cosimulation.md's tables name every variable of the FMU (tyrelab.cosim.variables)
-    with its unit, and nothing else; the variables carry the stepping API's records' fields."""
+    with its unit, and nothing else; the variables carry the stepping API's records' fields
+    (the calculated parameters its stepper's properties)."""
     import re
     from pathlib import Path
 
     from tyrelab.cosim import CentreLoads
-    from tyrelab.cosim.variables import INPUTS, OUTPUTS, PARAMETERS, SOIL_PARAMETERS
+    from tyrelab.cosim.stepper import WheelStepper
+    from tyrelab.cosim.variables import CALCULATED, INPUTS, OUTPUTS, PARAMETERS, SOIL_PARAMETERS
 
     page = (Path(__file__).resolve().parents[1] / "docs" / "cosimulation.md").read_text()
     listed = {}
@@ -291,7 +293,8 @@ def test_the_page_lists_every_fmu_variable_with_its_unit():
         if len(cells) >= 3:
             for name in re.findall(r"`([A-Z_]+)`", cells[0]):
                 listed[name] = cells[1]
-    table = INPUTS + OUTPUTS + PARAMETERS + SOIL_PARAMETERS
+    table = INPUTS + OUTPUTS + PARAMETERS + SOIL_PARAMETERS + CALCULATED
     assert listed == {v.name: v.unit or "-" for v in table}
+    assert all(isinstance(getattr(WheelStepper, v.field), property) for v in CALCULATED)
     assert [v.field for v in INPUTS] == list(WheelCentre._fields)
     assert [v.field for v in OUTPUTS] == list(CentreLoads._fields)
