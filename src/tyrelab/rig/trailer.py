@@ -215,8 +215,8 @@ class Trailer:
         for model, side in ((self.model, -1.0), (self.left, 1.0)):
             belt = carried_inertia(model).mass
             if belt > 0.0:
-                r = np.array([-gm.hitch_to_axle, side * 0.5 * gm.track, 0.0])
-                inertia -= belt * (np.dot(r, r) * np.eye(3) - np.outer(r, r))
+                centre = (-gm.hitch_to_axle, side * 0.5 * gm.track, 0.0)
+                inertia = _about_point(-belt, centre, inertia)
         return K.TrailerParams(
             speed=float(speed), hitch_to_axle=float(gm.hitch_to_axle), track=float(gm.track),
             hitch_height=float(s.hitch_height), mass=float(s.mass),

@@ -320,8 +320,7 @@ def ring_equilibrium(tyre, load, speed, params, tread_pattern=False, **options):
         wheel = Wheel(VerticalLaw.linear(0.0, 0.0), params, NoHandling(), road, st, no_lag())
         dt = 1e-3
         # the rim as the rigs turn it (a file without a wheel's inertia: estimated)
-        belt = params.n_segments * params.segment_mass * params.belt_radius ** 2
-        inertia = rim_spin_inertia(tyre, load, belt)[0]
+        inertia = rim_spin_inertia(tyre, load, belt_carried(tyre, **options).spin_inertia)[0]
         travel = 2.0 * math.sqrt(max(r0 ** 2 - height ** 2, 0.0))   # a contact length
         n_settle = int(max(ROLL_SETTLE, 3.0 * travel / speed) / dt)
         n = int(max(ROLL_WINDOW, travel / speed) / dt)
