@@ -1,6 +1,8 @@
 """The towed test trailer (thesis 3.4, 5.2)."""
 
+import math
 import warnings
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -172,3 +174,59 @@ def test_first_relief_along_the_wheel_path():
     assert first_relief(road_from_spec("cleat:50x50"), 0.0) == pytest.approx(5.0, abs=0.005)
     assert 50.0 <= first_relief(road_from_spec(str(data / "halfround_4in.crg")), 0.0) <= 50.3
     assert first_relief(road_from_spec(str(data / "handmade_sloped.crg")), 0.0) < 1.0  # a grade
+
+
+MF61 = Path(__file__).resolve().parents[1] / "examples" / "data" / "MagicFormula61_Parameters.tir"
+
+
+@pytest.fixture(scope="module")
+def offset_tyre_runs():
+    """The MF 6.1 example tyre, whose forces at zero slip do not vanish (PHY1, PVY1, QSY1:
+    -43 N across, -46 N of drag at 4 kN), on the trailer on a flat road at 3 and 42 km/h."""
+    from tyrelab.api import make_tyre_model
+    model = make_tyre_model(tyre=str(MF61), model="point", handling="mf")
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        return {kmh: (Trailer(model, 4000.0), Trailer(model, 4000.0).run(Flat(), kmh / 3.6,
+                                                                          duration=2.0))
+                for kmh in (3, 42)}
+
+
+@pytest.mark.parametrize("kmh", [3, 42])
+def test_a_tyre_with_force_offsets_starts_the_trailer_balanced(offset_tyre_runs, kmh):
+    """The frame starts where the tyres' own forces leave it still: over 2 s every load and
+    angle stays within 1e-6 of its value (started from the static loads, the test wheel's
+    load swung by 25 N, 0.6 %, as the frame rolled into that balance)."""
+    _, run = offset_tyre_runs[kmh]
+    for name in ("FZ", "FZ_LEFT", "FX", "FY"):
+        x = run[name].to_numpy()
+        assert np.abs(x - x[0]).max() <= 1e-6 * 4000.0, name
+    for name in ("PITCH", "ROLL"):
+        x = run[name].to_numpy()
+        assert np.abs(x - x[0]).max() <= 1e-9, name
+
+
+@pytest.mark.parametrize("kmh", [3, 42])
+def test_the_balanced_trailer_holds_its_roll_moments_by_hand(offset_tyre_runs, kmh):
+    """Statics about the hitch's roll axis (the frame's x axis) at the start, from the run's
+    channels:
+    the wheel loads' lever (+-track/2), the lateral forces' and the tyres' moments about the
+    wheel centres (the outputs' MX), the weight's lever as the frame rolls, and the tyres'
+    yaw moment about the hitch projected by the pitch (the universal joint's roll axis tilts
+    with the frame). The left wheel is taken to give the test wheel's FY, FX, MX and MZ
+    (same tyre, same slip; its load differs by 0.7 %, so do they by as much of their
+    share): those moments cancel to within that, where the load transfer alone is 33 N m."""
+    trailer, run = offset_tyre_runs[kmh]
+    g, s = trailer.geometry, trailer.setup
+    row = run.iloc[0]  # the start
+    th, ph = row["PITCH"], row["ROLL"]
+    half, L = 0.5 * g.track, g.hitch_to_axle
+    lever_z = row["Z_WC"] - s.hitch_height                 # wheel centre above the hitch
+    transfer = half * (row["FZ_LEFT"] - row["FZ"])        # sum of r_y Fz
+    lateral = -lever_z * 2.0 * row["FY"]                  # sum of -r_z Fy
+    moments = 2.0 * row["MX"]
+    weight = -math.sin(ph) * s.cg[2] * (-s.mass * G)      # r_cg,y (-m g), cg[1] = 0
+    yaw = 2.0 * (-L * math.cos(th)) * row["FY"] + 2.0 * row["MZ"]
+    roll_moment = math.cos(th) * (transfer + lateral + moments + weight) - math.sin(th) * yaw
+    assert abs(transfer) > 25.0
+    assert abs(roll_moment) < 0.007 * (abs(transfer) + abs(moments))

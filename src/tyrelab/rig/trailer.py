@@ -31,6 +31,7 @@ from ..road.spec import road_from_spec
 from . import _trailer_kernel as K
 from .simulation import drop_road, levelled_grid, run_chunks, to_signal
 from .soil_ground import Following, with_sinkage
+from .trailer_balance import balanced_loads
 from .frames import G
 
 #: on soil, the test wheel's sinkage and the frame's pitch and roll are found together in
@@ -261,18 +262,28 @@ class Trailer:
         left = self.left.equilibrium(s.wheel_load, speed)
         r0 = self.model.tyre.unloaded_radius
         z_left = r0 - left.deflection
-        on_soil = ground_meta = ground = None
+        test_wheel = ground_meta = ground = None
         if terrain is None:
             right = self.model.equilibrium(s.wheel_load, speed)
             z_right = r0 - right.deflection
         else:
-            on_soil, ground, z_right, z_left, ground_meta = self._settled_on(
+            test_wheel, ground, z_right, z_left, ground_meta = self._settled_on(
                 terrain, road, x0_road, x0_road + speed * duration, left.state, z_left, dt)
-            right = Equilibrium(r0 - z_right, speed / r0, on_soil.state)
+            right = Equilibrium(r0 - z_right, speed / r0, test_wheel.state)
         pitch, roll = self._frame_angles(z_right, z_left)
+        grid = levelled_grid(road, x0_road)
+        if terrain is None and not (self.model.contact_model.has_state
+                                    or self.left.contact_model.has_state):
+            # the loads at which the tyres' own forces at zero slip leave the frame still
+            # (trailer_balance: the MF offsets, a rolling resistance)
+            built = self.model.wheel(grid, s.wheel_load, rolling=right)
+            pitch, roll, (right, left) = balanced_loads(
+                self, speed, built, self.left.wheel(Flat().grid(), s.wheel_load, rolling=left),
+                dt, x0_road)
+            test_wheel = self.model.rolling_from(built, right)
         return self._run(road, speed, pitch, (right.spin, left.spin), s.wheel_load, duration,
                          dt, output_rate, progress, "trailer", roll, (right, left),
-                         on_soil, ground_meta, ground)
+                         test_wheel, ground_meta, ground, grid)
 
     def _frame_angles(self, z_right: float, z_left: float) -> tuple[float, float]:
         """``(pitch, roll)`` [rad] of the frame with its wheel centres at these heights [m]."""
@@ -356,14 +367,16 @@ class Trailer:
                          progress, "trailer-drop")
 
     def _run(self, road, speed, pitch0, spins, wheel_load, duration, dt, output_rate, progress,
-             rig, roll0=0.0, rolling=None, right_wheel=None, ground_meta=None, ground=None):
+             rig, roll0=0.0, rolling=None, right_wheel=None, ground_meta=None, ground=None,
+             grid=None):
         """Tow (or hold, at ``speed`` 0) the trailer from ``pitch0``, ``roll0`` [rad] at rest,
         the wheels spinning at ``spins`` (right, left) [rad/s], in the models' equilibria
         ``rolling`` (right, left; :meth:`TyreModel.equilibrium`, their states and slips);
         ``right_wheel`` the test wheel when it is built already (on a terrain, its Python
-        ``ground``, named in ``ground_meta`` for the metadata)."""
+        ``ground``, named in ``ground_meta`` for the metadata); ``grid`` the test wheel's road
+        levelled at its start when it is built already."""
         x0_road = road.run_start
-        grid = levelled_grid(road, x0_road)
+        grid = levelled_grid(road, x0_road) if grid is None else grid
         tp = self.params(speed)
         L = self.geometry.hitch_to_axle
         state = np.zeros(K.S_SIZE)

@@ -230,13 +230,21 @@ class TyreModel:
         params = self.contact_params(grid, static)
         if rolling is not None:
             state = rolling.state
-            if rolling.rolling_radius > 0 and "rolling_radius" in getattr(params, "_fields", ()):
-                params = params._replace(rolling_radius=rolling.rolling_radius)
         if state is None:
             state = self.initial_state(load, params)
-        lag = self.slip_lag((0.0, 0.0) if rolling is None else rolling.carcass)
-        return Wheel(self.tyre.vertical_law, params, self.handling_params(), grid.surface(),
-                     state, lag)
+        wheel = Wheel(self.tyre.vertical_law, params, self.handling_params(), grid.surface(),
+                      state, self.slip_lag())
+        return wheel if rolling is None else self.rolling_from(wheel, rolling)
+
+    def rolling_from(self, wheel: Wheel, rolling: Equilibrium) -> Wheel:
+        """``wheel`` (a record of this model's) started in the equilibrium ``rolling``
+        instead: its state, the transient slip's carcass deflections (fresh arrays) and, for
+        a model whose record keeps one (the ring), its rolling radius."""
+        params = wheel.contact
+        if rolling.rolling_radius > 0 and "rolling_radius" in getattr(params, "_fields", ()):
+            params = params._replace(rolling_radius=rolling.rolling_radius)
+        state = wheel.state if rolling.state is None else rolling.state
+        return wheel._replace(contact=params, state=state, lag=self.slip_lag(rolling.carcass))
 
 
 #: number of fields of a :class:`ContactGeometry`
