@@ -203,6 +203,8 @@ def test_a_run_says_which_lag_it_used():
     assert used(MFEVAL / "CityBus_Pac02Tire.tir") == "off"
     assert used(MFEVAL / "MagicFormula52_Parameters.tir", relaxation="off") == "off"
     assert used(MFEVAL / "CityBus_Pac02Tire.tir", relaxation=(0.3, 0.5)) == "0.3,0.5"
+    # the command line's form, which the refusal's message names, means the same lengths
+    assert used(MFEVAL / "CityBus_Pac02Tire.tir", relaxation="0.3, 0.5") == "0.3,0.5"
 
 
 @pytest.mark.parametrize("relaxation, words", [
@@ -210,6 +212,8 @@ def test_a_run_says_which_lag_it_used():
     ((0.3,), "expected two lengths in metres"),
     ((0.3, math.nan), "expected two lengths in metres"),
     ((-0.1, 0.3), "expected two lengths in metres"),
+    ("0.3,abc", "expected two lengths in metres, each 0 .no lag. to 100, got 0.3,abc"),
+    ("0.3,0.5,0.1", "expected two lengths in metres"),
 ])
 def test_an_impossible_relaxation_is_refused(relaxation, words):
     with pytest.raises(InputError, match=words) as info:

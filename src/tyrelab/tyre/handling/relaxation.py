@@ -130,9 +130,12 @@ def slip_lag(tyre, handling, relaxation="auto") -> SlipLag:
       ADAMS's Fiala files may), else none;
     * ``"off"``: none (steady-state slip);
     * ``"file"``: the handling model's own lengths (refused for a model without them);
-    * ``(sigma_kappa, sigma_alpha)``: constant lengths [m], 0 for none that way.
+    * ``(sigma_kappa, sigma_alpha)`` or the text ``"SIGMA_KAPPA,SIGMA_ALPHA"`` (the command
+      line's ``--relaxation``): constant lengths [m], 0 for none that way.
     """
     field = "relaxation"
+    if isinstance(relaxation, str) and "," in relaxation:  # the command line's form
+        relaxation = relaxation.split(",")
     if isinstance(relaxation, str):
         if relaxation not in RELAXATION_WORDS:
             raise InputError(f"expected one of {', '.join(RELAXATION_WORDS)} or two "
