@@ -182,6 +182,10 @@ class HandlingModel:
     ``rolling_resistance(params, fz, fx, v_long, omega, kappa, gamma)`` (compiled, optional)
     is its rolling resistance moment My [N m] about the W-axis y (the spin axis; negative
     when rolling forward), which the wheel step adds to the tyre's moments.
+    ``overturning(params, fz, fy, v_long, gamma)`` (compiled, optional) is its overturning
+    moment Mx [N m] about the W-axis x at the contact point (the Magic Formula's QSX terms:
+    the pressure's centre shifted across the patch by camber and lateral force), which the
+    wheel step adds too; without it the tyre's loads act at the contact point.
     """
 
     name: str
@@ -192,6 +196,7 @@ class HandlingModel:
     rolling_radius: Any = None
     relaxation_lengths: Any = None
     rolling_resistance: Any = None
+    overturning: Any = None
 
     def at_slips(self, params, fz: float, speed: float, kappa: float, tan_alpha: float):
         """:attr:`forces` where the ISO slips are ``kappa`` and ``tan alpha`` at forward speed

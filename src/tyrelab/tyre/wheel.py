@@ -240,6 +240,26 @@ def _rolling_moment(params, fz, fx, v_long, omega, kappa, gamma):
     return impl
 
 
+def overturning_moment(params, fz, fy, v_long, gamma):
+    """The overturning moment Mx [N m] of the handling model of ``params`` about the W-axis x
+    at the contact point (:attr:`~tyrelab.tyre.registry.HandlingModel.overturning`); 0 for a
+    model without one (compile time)."""
+    raise NotImplementedError("compiled only")
+
+
+@overload(overturning_moment)
+def _overturning_moment(params, fz, fy, v_long, gamma):
+    own = handling_by_record(params).overturning
+    if own is None:
+        def impl(params, fz, fy, v_long, gamma):
+            return 0.0
+        return impl
+
+    def impl(params, fz, fy, v_long, gamma):  # noqa: F811 - the other branch's
+        return own(params, fz, fy, v_long, gamma)
+    return impl
+
+
 def wheel_step(wheel, pose, dt):
     """Advance ``wheel`` by ``dt`` [s] at ``pose``; returns its :class:`WheelLoads`.
 
@@ -325,6 +345,7 @@ def analytic_wheel_step(wheel, pose, geo, dt):
     wxx = wxy = wxz = wyx = wyy = wyz = 0.0
     v_slip_x = v_slip_y = 0.0
     rolling = 0.0  # the rolling resistance moment about the W-axis y
+    overturning = 0.0  # the overturning moment about the W-axis x
     if has_handling(wheel.handling):
         # W-axis: z along the normal, x in the wheel plane
         tx, ty, tz = cross(ax, ay, az, nx, ny, nz)
@@ -394,6 +415,7 @@ def analytic_wheel_step(wheel, pose, geo, dt):
             lag.deflection[1] = v1
             kappa, alpha = slip(v_long, v_slip_x, v_slip_y)  # the kinematic slips, as without
         rolling = rolling_moment(wheel.handling, fz, fxw, v_long, omega, kappa, gamma)
+        overturning = overturning_moment(wheel.handling, fz, fyw, v_long, gamma)
     if not terrain_is_rigid(wheel.road):  # a deformable ground answers (compiled out on rigid)
         fz, fxw, fyw = terrain_contact(wheel.road, px, py, rho, 0.0, v_slip_x, v_slip_y, fz, fxw,
                                        fyw, dt)
@@ -401,9 +423,12 @@ def analytic_wheel_step(wheel, pose, geo, dt):
     fy = fz * ny + fxw * wxy + fyw * wyy
     fzz = fz * nz + fxw * wxz + fyw * wyz
     mx, my, mz = cross(rx, ry, rz, fx, fy, fzz)
-    # the aligning moment about the normal, the rolling resistance about the W-axis y
-    return WheelLoads(fx, fy, fzz, mx + mzw * nx + rolling * wyx, my + mzw * ny + rolling * wyy,
-                      mz + mzw * nz + rolling * wyz, px, py, pz, nx, ny, nz, rho, rho_dot, fxw, fyw,
+    # the aligning moment about the normal, the rolling resistance about the W-axis y, the
+    # overturning moment about its x
+    mx += mzw * nx + rolling * wyx + overturning * wxx
+    my += mzw * ny + rolling * wyy + overturning * wxy
+    mz += mzw * nz + rolling * wyz + overturning * wxz
+    return WheelLoads(fx, fy, fzz, mx, my, mz, px, py, pz, nx, ny, nz, rho, rho_dot, fxw, fyw,
                       fz, kappa, alpha, dspin)
 
 

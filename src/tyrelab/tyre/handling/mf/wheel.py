@@ -12,7 +12,7 @@ from ..slip import DKAPPA, slip
 from . import coefficient_index as C
 from .geometry import free_radius, radius_drop
 from .kernel import MFO, mf_forces, mf_relaxation_lengths
-from .moments import rolling_resistance
+from .moments import overturning_moment, rolling_resistance
 
 #: the MFeval use mode the rigs run (limit checks and low-speed model on)
 RIG_USE_MODE = 111
@@ -91,8 +91,19 @@ def mf_rolling_moment(params, fz, fx, v_long, omega, kappa, gamma):
     return rolling_resistance(c, fz, fx, sense * kappa, gamma, v_long, pressure)
 
 
+@nb.njit(cache=True)
+def mf_overturning(params, fz, fy, v_long, gamma):
+    """The Magic Formula's overturning moment Mx [N m] about the W-axis x at the contact point
+    (:func:`.moments.overturning_moment`: QSX1-QSX14, as MFeval) at the load, the lateral
+    force the wheel carries and its inclination."""
+    c = params.coefficients
+    pressure = params.pressure if params.pressure > 0.0 else c[C.INFLPRES]
+    return overturning_moment(c, fz, fy, gamma, (pressure - c[C.NOMPRES]) / c[C.NOMPRES])
+
+
 register_handling(HandlingModel("mf", MagicFormulaParams, magic_formula_params, mf_wheel_forces,
                                 "Magic Formula 5.2 / 6.1 / 6.2 (MFeval 4.3.1 agreement)",
                                 rolling_radius=mf_rolling_radius,
                                 relaxation_lengths=mf_wheel_relaxation,
-                                rolling_resistance=mf_rolling_moment))
+                                rolling_resistance=mf_rolling_moment,
+                                overturning=mf_overturning))
