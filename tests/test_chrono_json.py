@@ -87,6 +87,8 @@ def test_pac89_json_gives_the_files_numbers(pac89_pair):
     np.testing.assert_array_equal(hp.lateral, _coefficients(PAC89_LATERAL, "a", 14))
     np.testing.assert_array_equal(hp.longitudinal, _coefficients(PAC89_LONGITUDINAL, "b", 11))
     np.testing.assert_array_equal(hp.aligning, _coefficients(PAC89_ALIGNING, "c", 18))
+    # Chrono's PAC89 additions: "Lateral Stiffness": 261065.0, "Rolling Resistance": 0.015
+    assert (hp.lateral_stiffness, hp.rolling_resistance) == (261065.0, 0.015)
     # the vertical law from those numbers: the curve's last row, and k x 10 mm when linear
     assert js.vertical_law.static_load(0.1) == pytest.approx(53140.0, rel=1e-12)
     assert js.with_stiffness("linear").vertical_law.static_load(0.01) == pytest.approx(3263.324234)

@@ -80,3 +80,18 @@ def test_a_cambered_wheel_carries_the_kernels_mx(gamma, alpha):
     assert c["fyw"][0] == pytest.approx(float(ref["Fy"]), rel=1e-9, abs=1e-9)
     assert abs(float(ref["Mx"])) > 5.0  # (the lateral slip's term offsets the camber's part)
     assert float(m[0] @ w_x) == pytest.approx(float(ref["Mx"]), rel=1e-9, abs=1e-9)
+
+
+def test_chronos_pac89_overturns_by_its_carcass_deflection():
+    """Project Chrono's PAC89 (its HMMWV JSON's "Lateral Stiffness": 261065 N/m, typed here):
+    the lateral force deflects the carcass by FYW / k_y and the normal force acts there,
+    ``Mx = Fz FYW / k_y`` about the W-axis x at the contact point (ChPac89Tire::Advance)."""
+    model = make_tyre_model(DATA / "tir" / "HMMWV_Pac89Tire.json", "point", handling="pac89")
+    r0 = model.tyre.unloaded_radius
+    wheel = model.wheel(road_from_spec("flat").grid(), 15000.0)
+    speed, h = 10.0, r0 - 0.045
+    poses = [pose(cz=h, velocity=(speed, speed * math.tan(a), 0.0), omega=speed / h)
+             for a in (-0.1, -0.02, 0.0, 0.05)]
+    c, m = _about_contact_x(loads_table(wheel, poses), np.array([[0.0, 0.0, h]] * len(poses)))
+    assert np.abs(c["fyw"]).max() > 5e3
+    np.testing.assert_allclose(m[:, 0], c["fzw"] * c["fyw"] / 261065.0, rtol=1e-12, atol=1e-9)

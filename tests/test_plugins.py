@@ -128,14 +128,20 @@ def test_the_plugin_runs_through_the_command_line(plugin_env, tmp_path):
 
 def test_the_plugins_terrain_reaches_the_command_line(plugin_env, tmp_path):
     """``--terrain slick:0`` (the plugin's rigid ground, the road's heights, friction scaled by
-    0): the trailer's test wheel (the HMMWV tyre, Pacejka '89) rides exactly as on the plain
-    road up to the cleat (same heights, same normal load), but its longitudinal force, scaled
-    by the ground's friction, is nil, where over the cleat on the plain road it is not. An
-    unknown terrain lists what each kind takes."""
+    0): the trailer's test wheel (the HMMWV tyre, Pacejka '89 as ADAMS has it: without
+    Chrono's rolling resistance, a hysteresis moment that acts without friction) rides exactly
+    as on the plain road up to the cleat (same heights, same normal load), but its longitudinal
+    force, scaled by the ground's friction, is nil, where over the cleat on the plain road it
+    is not. An unknown terrain lists what each kind takes."""
+    from importlib import resources
+    shipped = resources.files("tyrelab.tyre").joinpath("data", "hmmwv-pac89.tir").read_text()
+    adams = tmp_path / "hmmwv-adams-pac89.tir"
+    adams.write_text(shipped.split("\n[ROLLING_COEFFICIENTS]")[0] + "\n")  # Chrono's additions last
+    assert "\n[STRUCTURAL]" not in adams.read_text() and "\n[ALIGNING_COEFFICIENTS]" in adams.read_text()
     runs = {}
     for terrain in (None, "slick:0"):
         out = tmp_path / f"{terrain or 'road'}.csv".replace(":", "_")
-        args = ["simulate", "--tyre", "hmmwv-pac89", "--model", "point", "--handling", "pac89",
+        args = ["simulate", "--tyre", str(adams), "--model", "point", "--handling", "pac89",
                 "--rig", "trailer", "--road", "cleat:50x50", "--speed", "12", "--duration", "2.5",
                 "-o", str(out)]
         done = _tyrelab(plugin_env, *args, *(["--terrain", terrain] if terrain else []))

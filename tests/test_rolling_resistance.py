@@ -93,3 +93,16 @@ def test_a_towed_wheel_starts_and_stays_in_free_rolling(tyre, handling, relaxati
     assert np.abs(out["MY"]).max() < 1e-6 * load * lever
     np.testing.assert_allclose(out["FXW"], rolling / lever, rtol=1e-6)
     assert np.ptp(out["ROTSPEED"]) < 1e-9 * eq.spin
+
+
+@pytest.mark.parametrize("kmh", [5, 40])
+def test_chronos_pac89_drags_a_towed_wheel_by_its_coefficient_times_the_load(kmh):
+    """Project Chrono's PAC89 (its HMMWV JSON's "Rolling Resistance": 0.015, typed here):
+    ``My = -f_r Fz R_l`` with R_l the loaded radius, which is also the contact force's lever
+    on the point model, so a towed wheel's balance ``Fx R_l + My = 0`` leaves the drag
+    ``Fx = -f_r Fz tanh(omega)``: 225 N at 15 kN (before, none)."""
+    out = simulate(DATA / "tir" / "HMMWV_Pac89Tire.json", "point", road="flat", speed=kmh / 3.6,
+                   load=15000.0, rig="rolling", duration=0.5, handling="pac89")
+    fz, fx, omega = (out[c].to_numpy() for c in ("FZW", "FXW", "ROTSPEED"))
+    np.testing.assert_allclose(fx, -0.015 * fz * np.tanh(omega), rtol=1e-6)
+    assert fx.mean() == pytest.approx(-225.0, rel=0.01)

@@ -36,9 +36,10 @@ Chrono file; add it if a rig needs the whole wheel.
     percent) -> ``[LATERAL_COEFFICIENTS] A0 .. A13``,
     ``[LONGITUDINAL_COEFFICIENTS] B0 .. B10``, ``[ALIGNING_COEFFICIENTS] C0 ..
     C17`` unchanged, with ``[MODEL] PROPERTY_FILE_FORMAT = 'PAC89'``; the
-    handling model ``pac89`` then runs it. ``Coefficient of Friction``,
-    ``Lateral Stiffness`` and ``Rolling Resistance`` are kept as header comments
-    only (tyrelab's PAC89 does not use them).
+    handling model ``pac89`` then runs it. ``Lateral Stiffness`` [N/m] and ``Rolling
+    Resistance`` -> ``[STRUCTURAL] LATERAL_STIFFNESS`` and ``[ROLLING_COEFFICIENTS]
+    QSY1`` (Chrono's PAC89 additions: :mod:`tyrelab.tyre.handling.pac89`);
+    ``Coefficient of Friction`` is kept as a header comment only.
 ``Pac02Tire`` (Magic Formula 5.2 / PAC2002)
     ``TIR Specification File`` names a ``.tir``; it is read by
     :func:`~tyrelab.tyre.tir.read_tir` (its own ``[UNITS]``) and is the tyre.

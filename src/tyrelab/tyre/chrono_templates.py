@@ -50,8 +50,6 @@ _PAC89_SETS = (("Lateral Coefficients", "a", 14, "LATERAL_COEFFICIENTS", "A"),
 def pac89_tir(doc: _Document) -> TirFile:
     dp = ("Design Parameters",)
     header = [*_comment(doc, "source's coefficient of friction", "Coefficient of Friction"),
-              *_comment(doc, "lateral stiffness [N/m]", *dp, "Lateral Stiffness"),
-              *_comment(doc, "rolling resistance coefficient", *dp, "Rolling Resistance"),
               "$ Coefficients in the ADAMS/Bakker convention (Fz in kN, slip angle and camber in",
               "$ degrees, longitudinal slip in percent)."]
     b = _Builder(doc, "Pac89Tire", header)
@@ -66,6 +64,13 @@ def pac89_tir(doc: _Document) -> TirFile:
         for i in range(count):
             keys = (obj, f"{letter}{i}")
             b.put(section, f"{adams}{i}", doc.number(*keys), keys)
+    # Chrono's PAC89 additions (tyre/handling/pac89.py): rolling resistance, carcass stiffness
+    if doc.has(*dp, "Rolling Resistance"):
+        keys = dp + ("Rolling Resistance",)
+        b.put(ROLLING_SECTION, "QSY1", doc.number(*keys, minimum=0.0), keys)
+    if doc.has(*dp, "Lateral Stiffness"):
+        keys = dp + ("Lateral Stiffness",)
+        b.put("STRUCTURAL", "LATERAL_STIFFNESS", doc.number(*keys, positive=True), keys)
     return b.tir
 
 

@@ -181,7 +181,9 @@ class HandlingModel:
     (:mod:`tyrelab.tyre.handling.relaxation`); without it only given lengths lag the slip.
     ``rolling_resistance(params, fz, fx, v_long, omega, kappa, gamma)`` (compiled, optional)
     is its rolling resistance moment My [N m] about the W-axis y (the spin axis; negative
-    when rolling forward), which the wheel step adds to the tyre's moments.
+    when rolling forward), which the wheel step adds to the tyre's moments; one that takes
+    an eighth argument, ``radius``, is given the loaded radius [m] (the contact point's
+    distance from the wheel centre) there.
     ``overturning(params, fz, fy, v_long, gamma)`` (compiled, optional) is its overturning
     moment Mx [N m] about the W-axis x at the contact point (the Magic Formula's QSX terms:
     the pressure's centre shifted across the patch by camber and lateral force), which the

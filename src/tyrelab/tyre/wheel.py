@@ -27,6 +27,7 @@ specialisation of each rig loop per combination of models and ground.
 
 from __future__ import annotations
 
+import inspect
 import math
 from typing import NamedTuple
 
@@ -220,22 +221,27 @@ def _has_handling(params):
     return impl
 
 
-def rolling_moment(params, fz, fx, v_long, omega, kappa, gamma):
+def rolling_moment(params, fz, fx, v_long, omega, kappa, gamma, radius):
     """The rolling resistance moment My [N m] of the handling model of ``params`` about the
-    W-axis y (:attr:`~tyrelab.tyre.registry.HandlingModel.rolling_resistance`); 0 for a
-    model without one (compile time)."""
+    W-axis y (:attr:`~tyrelab.tyre.registry.HandlingModel.rolling_resistance`), ``radius``
+    the loaded radius [m] for a model that takes it; 0 for a model without one (compile
+    time)."""
     raise NotImplementedError("compiled only")
 
 
 @overload(rolling_moment)
-def _rolling_moment(params, fz, fx, v_long, omega, kappa, gamma):
+def _rolling_moment(params, fz, fx, v_long, omega, kappa, gamma, radius):
     own = handling_by_record(params).rolling_resistance
     if own is None:
-        def impl(params, fz, fx, v_long, omega, kappa, gamma):
+        def impl(params, fz, fx, v_long, omega, kappa, gamma, radius):
             return 0.0
         return impl
+    if len(inspect.signature(own.py_func).parameters) == 8:  # it takes the loaded radius
+        def impl(params, fz, fx, v_long, omega, kappa, gamma, radius):  # noqa: F811
+            return own(params, fz, fx, v_long, omega, kappa, gamma, radius)
+        return impl
 
-    def impl(params, fz, fx, v_long, omega, kappa, gamma):  # noqa: F811 - the other branch's
+    def impl(params, fz, fx, v_long, omega, kappa, gamma, radius):  # noqa: F811 - the other branch's
         return own(params, fz, fx, v_long, omega, kappa, gamma)
     return impl
 
@@ -414,7 +420,8 @@ def analytic_wheel_step(wheel, pose, geo, dt):
             lag.deflection[0] = u1
             lag.deflection[1] = v1
             kappa, alpha = slip(v_long, v_slip_x, v_slip_y)  # the kinematic slips, as without
-        rolling = rolling_moment(wheel.handling, fz, fxw, v_long, omega, kappa, gamma)
+        rolling = rolling_moment(wheel.handling, fz, fxw, v_long, omega, kappa, gamma,
+                                 math.sqrt(rx * rx + ry * ry + rz * rz))
         overturning = overturning_moment(wheel.handling, fz, fyw, v_long, gamma)
     if not terrain_is_rigid(wheel.road):  # a deformable ground answers (compiled out on rigid)
         fz, fxw, fyw = terrain_contact(wheel.road, px, py, rho, 0.0, v_slip_x, v_slip_y, fz, fxw,

@@ -29,6 +29,23 @@ outputs only::
 Camber is passed unchanged (degrees): positive camber is the top of the
 wheel leaning to the right (-y) in both systems. This is the conversion of
 Project Chrono's ``ChPac89Tire`` (which reads the same coefficients).
+
+Chrono's additions
+------------------
+ADAMS's PAC89 gives Fx, Fy and Mz. Project Chrono's ``ChPac89Tire`` adds two terms from
+its JSON's ``Rolling Resistance`` and ``Lateral Stiffness``, which a property file states as
+``[ROLLING_COEFFICIENTS] QSY1`` (MF-Tyre's key for the same term, as for TMeasy) and
+``[STRUCTURAL] LATERAL_STIFFNESS`` [N/m] (MF-Tyre's); a file without them has neither:
+
+* the rolling resistance ``My = -f_r Fz R_l`` about the W-axis y, ``R_l`` the loaded
+  radius, turned over through standstill as tyrelab's other models turn theirs
+  (``tanh(omega / 1 rad/s)``, :mod:`.rolling_resistance`; Chrono switches it by the spin's
+  sign, faded in between 0.125 and 0.5 m/s);
+* the overturning moment ``Mx = Fz FYW / k_y`` about the W-axis x at the contact point: the
+  lateral force deflects the carcass by ``FYW / k_y`` and the normal force acts there.
+  Chrono also adds ``Fx`` times that deflection to Mz, with the sign opposite to the moment
+  of ``Fx`` acting at the deflected point (``-Fx FYW / k_y`` about z); that term is left
+  out.
 """
 
 from __future__ import annotations
@@ -41,7 +58,12 @@ import numpy as np
 
 from ...errors import InputError
 from ..registry import HandlingModel, register_handling
+from .rolling_resistance import rolling_resistance_moment
 from .slip import DKAPPA, slip
+
+#: the sections of Chrono's two additions (module docstring): MF-Tyre's
+ROLLING_SECTION = "ROLLING_COEFFICIENTS"
+STRUCTURAL_SECTION = "STRUCTURAL"
 
 #: property-file sections and key counts of the three curves (ADAMS PAC89 layout)
 SECTIONS = (("LATERAL_COEFFICIENTS", "A", 14), ("LONGITUDINAL_COEFFICIENTS", "B", 11),
@@ -49,11 +71,15 @@ SECTIONS = (("LATERAL_COEFFICIENTS", "A", 14), ("LONGITUDINAL_COEFFICIENTS", "B"
 
 
 class Pac89Params(NamedTuple):
-    """PAC89 coefficients: ``lateral`` A0-A13, ``longitudinal`` B0-B10, ``aligning`` C0-C17."""
+    """PAC89 coefficients: ``lateral`` A0-A13, ``longitudinal`` B0-B10, ``aligning`` C0-C17;
+    Project Chrono's two additions (0: none): the rolling resistance coefficient and the
+    carcass's lateral stiffness [N/m] (module docstring, "Chrono's additions")."""
 
     lateral: np.ndarray
     longitudinal: np.ndarray
     aligning: np.ndarray
+    rolling_resistance: float = 0.0
+    lateral_stiffness: float = 0.0
 
 
 def pac89_params(tyre) -> Pac89Params:
@@ -84,7 +110,32 @@ def pac89_params(tyre) -> Pac89Params:
                                  source=tir.source, field=key)
             out[i] = tir.number(section, key)
         sets.append(out)
-    return Pac89Params(*sets)
+    rolling = tir.number(ROLLING_SECTION, "QSY1", 0.0)
+    stiffness = tir.number(STRUCTURAL_SECTION, "LATERAL_STIFFNESS", 0.0)
+    for section, key, value in ((ROLLING_SECTION, "QSY1", rolling),
+                                (STRUCTURAL_SECTION, "LATERAL_STIFFNESS", stiffness)):
+        if not (math.isfinite(value) and value >= 0.0):
+            raise InputError(f"expected a number >= 0 (0: none), got {value:g}", source=tir.source,
+                             line=tir.line_of(section, key), field=key)
+    return Pac89Params(*sets, rolling_resistance=rolling, lateral_stiffness=stiffness)
+
+
+@nb.njit(cache=True)
+def pac89_rolling_moment(params, fz, fx, v_long, omega, kappa, gamma, radius):
+    """Chrono's PAC89 rolling resistance ``My = -f_r Fz R_l tanh(omega)`` [N m] about the
+    W-axis y, ``f_r`` the file's ``QSY1``, ``R_l`` the loaded radius ``radius`` [m]
+    (:func:`.rolling_resistance.rolling_resistance_moment`; module docstring)."""
+    return rolling_resistance_moment(params.rolling_resistance * radius, fz, omega)
+
+
+@nb.njit(cache=True)
+def pac89_overturning(params, fz, fy, v_long, gamma):
+    """Chrono's PAC89 overturning moment ``Mx = Fz FYW / k_y`` [N m] about the W-axis x at the
+    contact point: the lateral force deflects the carcass by ``FYW / k_y`` and the normal force
+    acts there (module docstring); 0 without a lateral stiffness."""
+    if params.lateral_stiffness > 0.0:
+        return fz * fy / params.lateral_stiffness
+    return 0.0
 
 
 @nb.njit(cache=True)
@@ -198,4 +249,6 @@ def pac89_wheel_forces(hp, fz, v_long, v_slip_x, v_slip_y, gamma):
 
 
 register_handling(HandlingModel("pac89", Pac89Params, pac89_params, pac89_wheel_forces,
-                                "Pacejka '89 (Bakker et al.), pure slip"))
+                                "Pacejka '89 (Bakker et al.), pure slip",
+                                rolling_resistance=pac89_rolling_moment,
+                                overturning=pac89_overturning))
