@@ -428,7 +428,10 @@ def test_the_transient_slip_travels_inside_the_fmu(tmp_path):
                            relaxation="off")
     z = lagged.model.tyre.unloaded_radius - lagged.equilibrium.deflection
     omega = lagged.equilibrium.spin * 1.05
-    wheel = FmuWheel(path, {"INITIAL_LOAD": load}, 0, {"Z_WC": z})
+    # started as the stepping API's wheels: rolling at SPEED (the HMMWV's rolling resistance
+    # deflects the carcass in that free rolling: its equilibrium at rest has it undeflected)
+    wheel = FmuWheel(path, {"INITIAL_LOAD": load}, 0, {"Z_WC": z, "VX_WC": SPEED,
+                                                      "ROTSPEED": lagged.equilibrium.spin})
     try:
         for i in range(200):
             centre = WheelCentre(SPEED * i * DT, 0.0, z, SPEED, 0.0, 0.0, omega)

@@ -163,7 +163,11 @@ def test_the_ring_measures_its_slip_against_its_free_rolling_radius():
             loads = stepper.loads(WheelCentre(0.0, 0.0, z, SPEED, sign * side, 0.0,
                                               (1.0 + kappa) * SPEED / r_e))
             got[model, sign] = loads.kappa, loads.alpha
-        assert got[model, 1.0][0] == pytest.approx(kappa, abs=1e-12)
+        # the ring's against R_e; PAC89's is the contact point's, whose lever is the centre's
+        # height z (Chrono's rolling resistance makes the HMMWV roll freely at a little slip:
+        # R_e is not z)
+        lever = r_e if model == "ring" else z
+        assert got[model, 1.0][0] == pytest.approx((1.0 + kappa) * lever / r_e - 1.0, abs=1e-12)
     for sign in (1.0, -1.0):
         assert got["ring", sign][1] == pytest.approx(got["point", sign][1], abs=1e-12)
         assert abs(got["ring", sign][1]) == pytest.approx(abs(alpha), abs=1e-12)

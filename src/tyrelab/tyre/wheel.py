@@ -432,9 +432,10 @@ def analytic_wheel_step(wheel, pose, geo, dt):
     mx, my, mz = cross(rx, ry, rz, fx, fy, fzz)
     # the aligning moment about the normal, the rolling resistance about the W-axis y, the
     # overturning moment about its x
-    mx += mzw * nx + rolling * wyx + overturning * wxx
-    my += mzw * ny + rolling * wyy + overturning * wxy
-    mz += mzw * nz + rolling * wyz + overturning * wxz
+    # (summed from the left, as before the overturning moment was added: bit for bit without it)
+    mx = mx + mzw * nx + rolling * wyx + overturning * wxx
+    my = my + mzw * ny + rolling * wyy + overturning * wxy
+    mz = mz + mzw * nz + rolling * wyz + overturning * wxz
     return WheelLoads(fx, fy, fzz, mx, my, mz, px, py, pz, nx, ny, nz, rho, rho_dot, fxw, fyw,
                       fz, kappa, alpha, dspin)
 
