@@ -26,6 +26,8 @@ balanced here: the ring has no force offsets, and soil settles its own start.
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from ..errors import InputError
@@ -62,7 +64,7 @@ def frame_acceleration(trailer, speed: float, loads, right_wheel, left_wheel, dt
     wheels = [model.rolling_from(wheel, eq) for wheel, eq, model in
               zip((right_wheel, left_wheel), eqs, (trailer.model, trailer.left))]
     out = np.zeros((1, K.N_CH))
-    x_start = x0_road + trailer.geometry.hitch_to_axle * np.cos(pitch)
+    x_start = x0_road + trailer.geometry.hitch_to_axle * math.cos(pitch)  # as Trailer._run
     tp = trailer.params(speed)
     # the transient slip's carcass deflections steady at this pose: the universal joint
     # turns the wheels' axes by about pitch x roll (a slip angle of 7e-7 rad at 0.0185 rad

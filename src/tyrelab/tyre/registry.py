@@ -185,9 +185,10 @@ class HandlingModel:
     an eighth argument, ``radius``, is given the loaded radius [m] (the contact point's
     distance from the wheel centre) there.
     ``overturning(params, fz, fy, v_long, gamma)`` (compiled, optional) is its overturning
-    moment Mx [N m] about the W-axis x at the contact point (the Magic Formula's QSX terms:
-    the pressure's centre shifted across the patch by camber and lateral force), which the
-    wheel step adds too; without it the tyre's loads act at the contact point.
+    moment Mx [N m] about the W-axis x at the contact point (the Magic Formula's QSX terms,
+    Chrono's PAC89's ``Fz FYW / k_y``: the pressure's centre shifted across the patch by
+    camber and lateral force), which the wheel step adds too; without it the tyre's loads
+    act at the contact point.
     """
 
     name: str

@@ -236,7 +236,7 @@ def _rolling_moment(params, fz, fx, v_long, omega, kappa, gamma, radius):
         def impl(params, fz, fx, v_long, omega, kappa, gamma, radius):
             return 0.0
         return impl
-    if len(inspect.signature(own.py_func).parameters) == 8:  # it takes the loaded radius
+    if len(inspect.signature(getattr(own, "py_func", own)).parameters) == 8:  # the loaded radius too
         def impl(params, fz, fx, v_long, omega, kappa, gamma, radius):  # noqa: F811
             return own(params, fz, fx, v_long, omega, kappa, gamma, radius)
         return impl

@@ -58,11 +58,10 @@ import numpy as np
 
 from ...errors import InputError
 from ..registry import HandlingModel, register_handling
-from .rolling_resistance import rolling_resistance_moment
+from .rolling_resistance import ROLLING_SECTION, rolling_resistance_moment
 from .slip import DKAPPA, slip
 
-#: the sections of Chrono's two additions (module docstring): MF-Tyre's
-ROLLING_SECTION = "ROLLING_COEFFICIENTS"
+#: the section of the carcass's lateral stiffness (MF-Tyre's; module docstring)
 STRUCTURAL_SECTION = "STRUCTURAL"
 
 #: property-file sections and key counts of the three curves (ADAMS PAC89 layout)

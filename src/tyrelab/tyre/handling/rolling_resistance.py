@@ -19,6 +19,9 @@ import math
 
 import numba as nb
 
+#: the section of a rolling resistance coefficient ``QSY1`` (MF-Tyre's, the same physics; TMeasy's
+#: and Chrono's PAC89's are written there too)
+ROLLING_SECTION = "ROLLING_COEFFICIENTS"
 #: the spin over which the rolling resistance turns over through standstill [rad/s] (Chrono's
 #: ``tanh(omega)``: 76 % of the moment at 1 rad/s)
 SPIN_SMOOTHING = 1.0

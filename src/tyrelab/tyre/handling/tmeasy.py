@@ -49,7 +49,7 @@ import numpy as np
 
 from ...errors import InputError
 from ..registry import HandlingModel, register_handling
-from .rolling_resistance import rolling_resistance_moment
+from .rolling_resistance import ROLLING_SECTION, rolling_resistance_moment
 from .slip import DKAPPA, VXLOW, slip
 
 #: Chrono's ``m_vnum``: the speed added to the transport speed so that slip stays finite [m/s]
@@ -66,8 +66,6 @@ CURVE_SECTIONS = {"x": "LONGITUDINAL_PARAMETERS", "y": "LATERAL_PARAMETERS"}
 CURVE_KEYS = ("DF{d}0", "F{D}MAX", "S{D}MAX", "F{D}SLD", "S{D}SLD")
 TRAIL_SECTION = "ALIGNING_PARAMETERS"
 TRAIL_KEYS = ("PT_NORM", "SY_CHSI", "SY_ZERO")
-#: the section of the rolling resistance coefficient QSY1 (MF-Tyre's, the same physics)
-ROLLING_SECTION = "ROLLING_COEFFICIENTS"
 #: each key's section, by its stem (the key without ``_1`` / ``_2``)
 KEY_SECTIONS = {**{key.format(d=d, D=d.upper()).upper(): CURVE_SECTIONS[d]
                    for d in "xy" for key in CURVE_KEYS},
