@@ -15,7 +15,6 @@ import math
 from pathlib import Path
 
 import numpy as np
-import pandas as pd
 import pytest
 
 from tyrelab.api import make_tyre_model
@@ -23,17 +22,24 @@ from tyrelab.road.spec import road_from_spec
 from tyrelab.tyre.handling.mf.model import MagicFormula
 from tyrelab.tyre.wheel import WheelLoads, loads_table, pose
 
+from mfeval_rows import MF61, mfeval_rows_on_the_wheel
+
 DATA = Path(__file__).parent / "data"
-MF61 = DATA / "mfeval" / "MagicFormula61_Parameters.tir"
 
 
-def _about_contact_x(loads, centres):
-    """Each row's moment about its contact point, on the W-axis x (spin axis x normal)."""
-    c = {name: loads[:, k] for k, name in enumerate(WheelLoads._fields)}
+def _about_contact(c, centres):
+    """Each row's moment about its contact point (``c`` the :class:`WheelLoads` fields)."""
     r = np.column_stack([c["px"], c["py"], c["pz"]]) - centres
     f = np.column_stack([c["fx"], c["fy"], c["fz"]])
     m = np.column_stack([c["mx"], c["my"], c["mz"]]) - np.cross(r, f)
-    return c, m
+    return m
+
+
+def _about_contact_x(loads, centres):
+    """``(fields, moments)``: the :class:`WheelLoads` fields of ``loads`` and each row's moment
+    about its contact point."""
+    c = {name: loads[:, k] for k, name in enumerate(WheelLoads._fields)}
+    return c, _about_contact(c, centres)
 
 
 def test_the_magic_formulas_overturning_moment_is_mfevals_mx():
@@ -41,15 +47,8 @@ def test_the_magic_formulas_overturning_moment_is_mfevals_mx():
     MFeval's deflection, spin and speed carries MFeval's Mx about the W-axis x at its contact
     point (to 1e-6, as its My: tests/test_rolling_resistance.py; Mx up to 96 N m here, where
     the moment of the lateral force about the centre reaches 2.3 kN m)."""
-    table = pd.read_csv(DATA / "mfeval" / "MagicFormula61_Parameters.mode111.csv.gz")
-    rows = table[table.gamma == 0]
-    model = make_tyre_model(MF61, "point", handling="mf", relaxation="off")
-    r0 = model.tyre.unloaded_radius
-    wheel = model.wheel(road_from_spec("flat").grid(), 4000.0)
-    poses = [pose(cz=r0 - r.rho, velocity=(r.Vx, r.Vx * math.tan(r.alpha), 0.0), omega=r.omega)
-             for r in rows.itertuples()]
-    centres = np.column_stack([np.zeros(len(rows)), np.zeros(len(rows)), r0 - rows.rho])
-    c, m = _about_contact_x(loads_table(wheel, poses), centres)
+    rows, c, centres = mfeval_rows_on_the_wheel()
+    m = _about_contact(c, centres)
     np.testing.assert_allclose(c["fyw"], rows.Fy, rtol=1e-6, atol=1e-6)  # the same state
     assert np.abs(rows.Mx).max() > 90.0
     np.testing.assert_allclose(m[:, 0], rows.Mx, rtol=1e-6, atol=1e-9)

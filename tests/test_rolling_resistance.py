@@ -14,7 +14,6 @@ import math
 from pathlib import Path
 
 import numpy as np
-import pandas as pd
 import pytest
 
 from tyrelab import simulate
@@ -23,6 +22,8 @@ from tyrelab.road.spec import road_from_spec
 from tyrelab.tyre.chrono_json import read_chrono_tyre
 from tyrelab.tyre.registry import handling_model
 from tyrelab.tyre.wheel import WheelLoads, loads_table, pose
+
+from mfeval_rows import mfeval_rows_on_the_wheel
 
 DATA = Path(__file__).parent / "data"
 MF61 = DATA / "mfeval" / "MagicFormula61_Parameters.tir"
@@ -37,16 +38,8 @@ def test_the_magic_formulas_rolling_resistance_is_mfevals_my():
     MFeval's deflection, spin and speed carries MFeval's My about its axle besides the moment
     of its contact force (to 1e-6, as tests/test_mf_reference.py holds MFeval's other outputs;
     My up to 39 N m here)."""
-    table = pd.read_csv(DATA / "mfeval" / "MagicFormula61_Parameters.mode111.csv.gz")
-    rows = table[table.gamma == 0]
-    model = make_tyre_model(MF61, "point", handling="mf", relaxation="off")
-    r0 = model.tyre.unloaded_radius
-    wheel = model.wheel(road_from_spec("flat").grid(), 4000.0)
-    poses = [pose(cz=r0 - r.rho, velocity=(r.Vx, r.Vx * math.tan(r.alpha), 0.0), omega=r.omega)
-             for r in rows.itertuples()]
-    loads = loads_table(wheel, poses)
-    c = {name: loads[:, k] for k, name in enumerate(WheelLoads._fields)}
-    lever_z = c["pz"] - (r0 - rows.rho.to_numpy())  # contact point below the centre
+    rows, c, centres = mfeval_rows_on_the_wheel()
+    lever_z = c["pz"] - centres[:, 2]  # contact point below the centre
     of_the_force = lever_z * c["fx"] - c["px"] * c["fz"]
     assert np.abs(rows.My).max() > 30.0
     np.testing.assert_allclose(c["my"] - of_the_force, rows.My, rtol=1e-6, atol=1e-9)
