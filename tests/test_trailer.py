@@ -214,7 +214,7 @@ def test_the_balanced_trailer_holds_its_roll_moments_by_hand(offset_tyre_runs, k
     wheel centres (the outputs' MX), the weight's lever as the frame rolls, and the tyres'
     yaw moment about the hitch projected by the pitch (the universal joint's roll axis tilts
     with the frame). The left wheel is taken to give the test wheel's FY, FX, MX and MZ
-    (same tyre, same slip; its load differs by 0.7 %, so do they by as much of their
+    (same tyre, same slip; its load differs by 0.6 %, so do they by as much of their
     share): those moments cancel to within that, where the load transfer alone is 30 N m."""
     trailer, run = offset_tyre_runs[kmh]
     g, s = trailer.geometry, trailer.setup
