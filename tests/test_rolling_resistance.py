@@ -51,11 +51,11 @@ def test_chronos_rolling_resistance(json, handling, shift):
     none standing, turned over rolling backwards."""
     model = handling_model(handling)
     params = model.build(read_chrono_tyre(DATA / "tir" / json))
-    fz = 4900.0
+    fz = 4900.0   # (a loaded radius of 0.4 m given: these laws' lever is R0's, not it)
     for omega, share in ((30.0, 1.0), (1.0, math.tanh(1.0)), (0.0, 0.0), (-30.0, -1.0)):
-        got = model.rolling_resistance(params, fz, 0.0, 10.0, omega, 0.0, 0.0)
+        got = model.rolling_resistance(params, fz, 0.0, 10.0, omega, 0.0, 0.0, 0.4)
         assert got == pytest.approx(-shift * fz * share, rel=1e-12, abs=1e-12)
-    assert model.rolling_resistance(params, 0.0, 0.0, 10.0, 30.0, 0.0, 0.0) == 0.0
+    assert model.rolling_resistance(params, 0.0, 0.0, 10.0, 30.0, 0.0, 0.0, 0.4) == 0.0
 
 
 @pytest.mark.parametrize("tyre, handling, relaxation", [
@@ -81,7 +81,7 @@ def test_a_towed_wheel_starts_and_stays_in_free_rolling(tyre, handling, relaxati
     at = pose(cz=lever, velocity=(speed, 0.0, 0.0), omega=eq.spin)
     loads = WheelLoads(*loads_table(wheel, np.array([at]))[0])
     rolling = handling_model(handling).rolling_resistance(wheel.handling, loads.fzw, loads.fxw,
-                                                          speed, eq.spin, loads.kappa, 0.0)
+                                                          speed, eq.spin, loads.kappa, 0.0, lever)
     assert rolling < -10.0
     assert np.abs(out["MY"]).max() < 1e-6 * load * lever
     np.testing.assert_allclose(out["FXW"], rolling / lever, rtol=1e-6)

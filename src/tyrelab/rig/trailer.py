@@ -259,33 +259,34 @@ class Trailer:
         # ring's own load-deflection and centrifugal growth; the vertical law's
         # static deflection for the analytic models); the frame pitches and
         # rolls to put the wheel centres there
-        left = self.left.equilibrium(s.wheel_load, speed)
-        r0 = self.model.tyre.unloaded_radius
-        z_left = r0 - left.deflection
-        test_wheel = ground_meta = ground = None
-        if terrain is None:
-            right = self.model.equilibrium(s.wheel_load, speed)
-            z_right = r0 - right.deflection
-        else:
-            test_wheel, ground, z_right, z_left, ground_meta = self._settled_on(
-                terrain, road, x0_road, x0_road + speed * duration, left.state, z_left, dt)
-            right = Equilibrium(r0 - z_right, speed / r0, test_wheel.state)
-        pitch, roll = self._frame_angles(z_right, z_left)
         grid = levelled_grid(road, x0_road)
+        test_wheel = ground_meta = ground = None
         if terrain is None and not (self.model.contact_model.has_state
                                     or self.left.contact_model.has_state):
             # the loads at which the tyres' own forces at zero slip leave the frame still
-            # (trailer_balance: the MF offsets, a rolling resistance)
-            built = self.model.wheel(grid, s.wheel_load, rolling=right)
+            # (trailer_balance: the MF offsets, a rolling resistance), each wheel in its
+            # equilibrium at its load
+            built = self.model.wheel(grid, s.wheel_load)
             pitch, roll, (right, left) = balanced_loads(
-                self, speed, built, self.left.wheel(Flat().grid(), s.wheel_load, rolling=left),
-                dt, x0_road)
+                self, speed, built, self.left.wheel(Flat().grid(), s.wheel_load), dt, x0_road)
             test_wheel = self.model.rolling_from(built, right)
+        else:
+            left = self.left.equilibrium(s.wheel_load, speed)
+            r0 = self.model.tyre.unloaded_radius
+            z_left = r0 - left.deflection
+            if terrain is None:
+                right = self.model.equilibrium(s.wheel_load, speed)
+                z_right = r0 - right.deflection
+            else:
+                test_wheel, ground, z_right, z_left, ground_meta = self._settled_on(
+                    terrain, road, x0_road, x0_road + speed * duration, left.state, z_left, dt)
+                right = Equilibrium(r0 - z_right, speed / r0, test_wheel.state)
+            pitch, roll = self.frame_angles(z_right, z_left)
         return self._run(road, speed, pitch, (right.spin, left.spin), s.wheel_load, duration,
                          dt, output_rate, progress, "trailer", roll, (right, left),
                          test_wheel, ground_meta, ground, grid)
 
-    def _frame_angles(self, z_right: float, z_left: float) -> tuple[float, float]:
+    def frame_angles(self, z_right: float, z_left: float) -> tuple[float, float]:
         """``(pitch, roll)`` [rad] of the frame with its wheel centres at these heights [m]."""
         pitch = math.asin((0.5 * (z_right + z_left) - self.setup.hitch_height)
                           / self.geometry.hitch_to_axle)
@@ -334,7 +335,7 @@ class Trailer:
                                  "ground)", field=exc.field) from None
             done = z_right is not None and abs(z - z_right) < 10 * SETTLE_TOLERANCE
             z_right = z
-            pitch, roll = self._frame_angles(z_right, z_left)
+            pitch, roll = self.frame_angles(z_right, z_left)
             sp, cp, sr, cr = math.sin(pitch), math.cos(pitch), math.sin(roll), math.cos(roll)
             # where the frame puts the test wheel on its road, and its spin axis (the body's y
             # axis, column 1 of Ry(pitch) Rx(roll)); the wheel sits half a track to the right

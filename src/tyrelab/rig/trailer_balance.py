@@ -45,18 +45,19 @@ STEADY_STEP = 1e9
 MAX_BALANCE_STEPS = 12
 
 
-def frame_acceleration(trailer, speed: float, loads, right_wheel, left_wheel, dt: float,
+def frame_acceleration(trailer, tp, speed: float, loads, right_wheel, left_wheel, dt: float,
                        x0_road: float):
     """``((theta'', phi''), start)``: the frame's pitch and roll accelerations [rad/s^2] from
     rest, the test and left wheels in their free-rolling equilibria at ``loads`` [N] (right,
     left), the frame posed to hold their centres there; ``start`` the
-    ``(pitch, roll, (right, left))`` of that pose and those equilibria.
+    ``(pitch, roll, (right, left))`` of that pose and those equilibria. ``tp`` the rig's
+    record at ``speed`` (:meth:`~.trailer.Trailer.params`).
 
     ``right_wheel``, ``left_wheel`` the :class:`~tyrelab.tyre.wheel.Wheel` records the run
     will use, started in each equilibrium (:meth:`~tyrelab.tyre.model.TyreModel.rolling_from`)."""
     r0 = trailer.model.tyre.unloaded_radius
     eqs = (trailer.model.equilibrium(loads[0], speed), trailer.left.equilibrium(loads[1], speed))
-    pitch, roll = trailer._frame_angles(r0 - eqs[0].deflection, r0 - eqs[1].deflection)
+    pitch, roll = trailer.frame_angles(r0 - eqs[0].deflection, r0 - eqs[1].deflection)
     state = np.zeros(K.S_SIZE)
     state[K.S.THETA] = pitch
     state[K.S.PHI] = roll
@@ -65,7 +66,6 @@ def frame_acceleration(trailer, speed: float, loads, right_wheel, left_wheel, dt
               zip((right_wheel, left_wheel), eqs, (trailer.model, trailer.left))]
     out = np.zeros((1, K.N_CH))
     x_start = x0_road + trailer.geometry.hitch_to_axle * math.cos(pitch)  # as Trailer._run
-    tp = trailer.params(speed)
     # the transient slip's carcass deflections steady at this pose: the universal joint
     # turns the wheels' axes by about pitch x roll (a slip angle of 7e-7 rad at 0.0185 rad
     # and 3.8e-5 rad), which the upright equilibria do not see. One step so long that the
@@ -85,18 +85,19 @@ def balanced_loads(trailer, speed: float, right_wheel, left_wheel, dt: float, x0
     Starts from the load case's static load on both wheels; returns that start unchanged
     when Newton's first step would move the loads by less than :data:`LOAD_TOLERANCE`."""
     static = trailer.setup.wheel_load
+    tp = trailer.params(speed)
     loads = np.array([static, static])
     h = LOAD_STEP * static
     for _ in range(MAX_BALANCE_STEPS):
-        residual, start = frame_acceleration(trailer, speed, loads, right_wheel, left_wheel, dt,
-                                             x0_road)
+        residual, start = frame_acceleration(trailer, tp, speed, loads, right_wheel, left_wheel,
+                                             dt, x0_road)
         jacobian = np.empty((2, 2))
         for k in range(2):
             moved = loads.copy()
             moved[k] += h
-            jacobian[:, k] = (np.subtract(frame_acceleration(trailer, speed, moved, right_wheel,
-                                                             left_wheel, dt, x0_road)[0],
-                                          residual)) / h
+            jacobian[:, k] = (np.subtract(frame_acceleration(trailer, tp, speed, moved,
+                                                             right_wheel, left_wheel, dt,
+                                                             x0_road)[0], residual)) / h
         step = np.linalg.solve(jacobian, -np.asarray(residual))
         if np.abs(step).max() <= LOAD_TOLERANCE * static:
             return start

@@ -179,11 +179,11 @@ class HandlingModel:
     gives the model's own relaxation lengths ``(sigma_kappa, sigma_alpha)`` [m] at a load
     (the Magic Formula's), which its transient slip takes when asked for the file's
     (:mod:`tyrelab.tyre.handling.relaxation`); without it only given lengths lag the slip.
-    ``rolling_resistance(params, fz, fx, v_long, omega, kappa, gamma)`` (compiled, optional)
-    is its rolling resistance moment My [N m] about the W-axis y (the spin axis; negative
-    when rolling forward), which the wheel step adds to the tyre's moments; one that takes
-    an eighth argument, ``radius``, is given the loaded radius [m] (the contact point's
-    distance from the wheel centre) there.
+    ``rolling_resistance(params, fz, fx, v_long, omega, kappa, gamma, radius)`` (compiled,
+    optional) is its rolling resistance moment My [N m] about the W-axis y (the spin axis;
+    negative when rolling forward) at the loaded radius ``radius`` [m] (the contact point's
+    distance from the wheel centre; Chrono's PAC89 uses it), which the wheel step adds to the
+    tyre's moments.
     ``overturning(params, fz, fy, v_long, gamma)`` (compiled, optional) is its overturning
     moment Mx [N m] about the W-axis x at the contact point (the Magic Formula's QSX terms,
     Chrono's PAC89's ``Fz FYW / k_y``: the pressure's centre shifted across the patch by

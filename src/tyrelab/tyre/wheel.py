@@ -27,7 +27,6 @@ specialisation of each rig loop per combination of models and ground.
 
 from __future__ import annotations
 
-import inspect
 import math
 from typing import NamedTuple
 
@@ -223,9 +222,8 @@ def _has_handling(params):
 
 def rolling_moment(params, fz, fx, v_long, omega, kappa, gamma, radius):
     """The rolling resistance moment My [N m] of the handling model of ``params`` about the
-    W-axis y (:attr:`~tyrelab.tyre.registry.HandlingModel.rolling_resistance`), ``radius``
-    the loaded radius [m] for a model that takes it; 0 for a model without one (compile
-    time)."""
+    W-axis y (:attr:`~tyrelab.tyre.registry.HandlingModel.rolling_resistance`) at the loaded
+    radius ``radius`` [m]; 0 for a model without one (compile time)."""
     raise NotImplementedError("compiled only")
 
 
@@ -236,13 +234,9 @@ def _rolling_moment(params, fz, fx, v_long, omega, kappa, gamma, radius):
         def impl(params, fz, fx, v_long, omega, kappa, gamma, radius):
             return 0.0
         return impl
-    if len(inspect.signature(getattr(own, "py_func", own)).parameters) == 8:  # the loaded radius too
-        def impl(params, fz, fx, v_long, omega, kappa, gamma, radius):  # noqa: F811
-            return own(params, fz, fx, v_long, omega, kappa, gamma, radius)
-        return impl
 
     def impl(params, fz, fx, v_long, omega, kappa, gamma, radius):  # noqa: F811 - the other branch's
-        return own(params, fz, fx, v_long, omega, kappa, gamma)
+        return own(params, fz, fx, v_long, omega, kappa, gamma, radius)
     return impl
 
 

@@ -142,7 +142,7 @@ def fiala_relaxation(fp, fz, v_long, gamma):
 
 
 @nb.njit(cache=True)
-def fiala_rolling_moment(fp, fz, fx, v_long, omega, kappa, gamma):
+def fiala_rolling_moment(fp, fz, fx, v_long, omega, kappa, gamma, radius):
     """The rolling resistance moment [N m] of the file's ROLLING_RESISTANCE
     (:func:`.rolling_resistance.rolling_resistance_moment`)."""
     return rolling_resistance_moment(fp.rolling_resistance, fz, omega)

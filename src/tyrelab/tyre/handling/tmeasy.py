@@ -228,7 +228,7 @@ def rolling_resistance_shift(tyre) -> float:
 
 
 @nb.njit(cache=True)
-def tmeasy_rolling_moment(params, fz, fx, v_long, omega, kappa, gamma):
+def tmeasy_rolling_moment(params, fz, fx, v_long, omega, kappa, gamma, radius):
     """The rolling resistance moment [N m] of TMeasy and TMsimple (Chrono's
     ``-c Fz R0 tanh(omega)``, :func:`.rolling_resistance.rolling_resistance_moment`)."""
     return rolling_resistance_moment(params.rolling_resistance, fz, omega)

@@ -81,7 +81,7 @@ def mf_wheel_relaxation(params, fz, v_long, gamma):
 
 
 @nb.njit(cache=True)
-def mf_rolling_moment(params, fz, fx, v_long, omega, kappa, gamma):
+def mf_rolling_moment(params, fz, fx, v_long, omega, kappa, gamma, radius):
     """The Magic Formula's rolling resistance moment My [N m] (:func:`.moments.rolling_resistance`:
     QSY1-QSY8, as MFeval), at the load, longitudinal force, speed and the rigs' slip (given
     with the Magic Formula's sign, as :func:`mf_wheel_forces` gives it)."""
