@@ -349,9 +349,14 @@ def test_the_effective_road_changes_no_faster_than_the_wheel_travels_over_it(roa
         assert np.all(fz > 0.0)
 
 
-def _feda_copy(data_dir, tmp_path, name, extra=""):
-    """The FEDA 335/65R22.5 (no [CONTACT_PATCH]) under a fresh name, ``extra`` appended."""
+def _feda_copy(data_dir, tmp_path, name, extra="", magic_formula=True):
+    """The FEDA 335/65R22.5 (no [CONTACT_PATCH]) under a fresh name, ``extra`` appended; without
+    its Magic Formula's version keys (FITTYP, PROPERTY_FILE_FORMAT) unless ``magic_formula``:
+    an MF 5.x file has a contact length and width of its own."""
     text = (data_dir / "tir" / "335_65R22_5_G275MSA_95psi.tir").read_text(encoding="latin-1")
+    if not magic_formula:
+        text = "\n".join(line for line in text.splitlines()
+                         if not line.startswith(("FITTYP", "PROPERTY_FILE_FORMAT")))
     path = tmp_path / name
     path.write_text(text + extra, encoding="latin-1")
     return path
@@ -372,15 +377,17 @@ def test_a_tyre_without_contact_patch_data_is_told_it_gets_the_xzls(data_dir, tm
             model.contact_params(Flat().grid())
         return [str(w.message) for w in found if "[CONTACT_PATCH]" in str(w.message)]
 
-    bare = _feda_copy(data_dir, tmp_path, "bare.tir")
+    bare = _feda_copy(data_dir, tmp_path, "bare.tir", magic_formula=False)
     first = said(str(bare))
     assert len(first) == 1 and "bare.tir" in first[0] and "XZL 16.00R20" in first[0]
     assert "PA1 0.15, PA2 7.06" in first[0] and "the whole section width" in first[0]
     assert "N_WIDTH 10" in first[0] and "N_LENGTH 15" in first[0]
     assert said(str(bare)) == []                                   # once per file and process
     lengths = _feda_copy(data_dir, tmp_path, "lengths.tir",
-                         "\n[CONTACT_PATCH]\nPA1 = 0.2\nPA2 = 5.0\nELLIPS_NWIDTH = 8\n")
+                         "\n[CONTACT_PATCH]\nPA1 = 0.2\nPA2 = 5.0\nELLIPS_NWIDTH = 8\n", magic_formula=False)
     (text,) = said(str(lengths), n_length=5)
     assert "length law" not in text and "N_WIDTH" not in text and "N_LENGTH" not in text
     assert "PAE 0.72" in text and "the width law" in text
     assert said("xzl-16.00R20") == []
+    (mf5,) = said(str(_feda_copy(data_dir, tmp_path, "mf5.tir")))   # MF-Tyre 5.0: its own length
+    assert "length law" not in mf5 and "width law" not in mf5 and "PAE 0.72" in mf5

@@ -11,8 +11,8 @@ from tyrelab.tyre.library import load_tyre
 def test_file_format_picks_the_handling_model(data_dir):
     assert default_handling(load_tyre(data_dir / "mfeval" / "MagicFormula61_Parameters.tir")) == "mf"
     assert default_handling(load_tyre()) == "none"
-    with pytest.warns(UserWarning, match="FITTYP"):   # MF-Tyre 5.0 (FITTYP 5) is not supported
-        assert default_handling(load_tyre(data_dir / "tir" / "335_65R22_5_G275MSA_40psi.tir")) == "none"
+    # MF-Tyre 5.0 (FITTYP 5, PROPERTY_FILE_FORMAT 'MF_05'): the Magic Formula's 5.x equations
+    assert default_handling(load_tyre(data_dir / "tir" / "335_65R22_5_G275MSA_40psi.tir")) == "mf"
 
 
 @pytest.mark.parametrize("json,handling", [("HMMWV_TMeasyTire.json", "tmeasy"),

@@ -42,7 +42,8 @@ def model_of(text, source="test.tir"):
 
 
 @pytest.mark.parametrize("model,version", [
-    ("FITTYP = 6", "5.2"), ("FITTYP = 21", "5.2"), ("FITTYP = 61", "6.1"), ("FITTYP = 62", "6.2"),
+    ("FITTYP = 5", "5.2"), ("FITTYP = 6", "5.2"), ("FITTYP = 21", "5.2"), ("FITTYP = 61", "6.1"),
+    ("FITTYP = 62", "6.2"),
     ("PROPERTY_FILE_FORMAT = 'PAC2002'", "5.2"), ("PROPERTY_FILE_FORMAT = 'MF_61'", "6.1"),
     ("PROPERTY_FILE_FORMAT = 'USER'\nFITTYP = 62", "6.2"),
     ("PROPERTY_FILE_FORMAT = 'USER'\nFILE_VERSION = 6.1", "6.1"),
@@ -57,7 +58,7 @@ def test_citybus_without_fittyp_is_read_as_pac2002():
 
 def test_unknown_fittyp_names_file_and_key():
     with pytest.raises(InputError) as info:
-        model_of(minimal_tir("FITTYP = 5"), source="old_pac94.tir")
+        model_of(minimal_tir("FITTYP = 4"), source="old_pac94.tir")
     text = str(info.value)
     assert "old_pac94.tir" in text and "FITTYP" in text and "line 8" in text
 

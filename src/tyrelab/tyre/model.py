@@ -18,6 +18,7 @@ import numpy as np
 import pandas as pd
 
 from ..core.named_index import named_index
+from ..errors import InputError
 from ..road.grid import RoadGrid
 from ..road.obstacles import Flat
 from ..road.spec import road_from_spec
@@ -29,6 +30,9 @@ from .wheel import ContactGeometry, Wheel, WheelLoads, WheelPose, contact_geomet
 
 #: Newton steps at most to the spin of a freely rolling wheel (:meth:`TyreModel._torque_free`)
 MAX_TORQUE_FREE_STEPS = 20
+#: the largest change of the slip in one of those steps: a slope read where the forces
+#: level off (a clipped slip range) must not throw the spin out of the tyre's range
+MAX_TORQUE_FREE_SLIP = 0.02
 
 
 class Equilibrium(NamedTuple):
@@ -180,20 +184,32 @@ class TyreModel:
         wheel = Wheel(self.tyre.vertical_law, params, self.handling_params(), Flat().grid().surface(),
                       self.initial_state(load, params), no_lag())
         tolerance = 1e-9 * load * r0
+        largest = MAX_TORQUE_FREE_SLIP * spin  # a Newton step's largest change of the spin
         slip = 0.0
         for _ in range(MAX_TORQUE_FREE_STEPS):
             at = pose(cz=r0 - deflection, velocity=(speed, 0.0, 0.0), omega=spin)
             loads = WheelLoads(*loads_table(wheel, np.array([at]))[0])
             slip = loads.kappa
-            if abs(loads.my) <= tolerance or not loads.dspin_domega < 0.0:
+            if abs(loads.my) <= tolerance:
                 break
-            spin -= loads.my / loads.dspin_domega
+            if not loads.dspin_domega < 0.0:  # the force stopped growing with the slip
+                raise self._no_free_rolling(load, speed, loads.my, slip)
+            spin -= min(max(loads.my / loads.dspin_domega, -largest), largest)
             deflection = self.tyre.vertical_law.deflection_at(load, spin)
+        else:
+            raise self._no_free_rolling(load, speed, loads.my, slip)
         lag = self.slip_lag()
         length = lag.length_x
         if lag.from_model:
             length = self.handling_model.relaxation_lengths(wheel.handling, loads.fzw, speed, 0.0)[0]
         return deflection, spin, (-length * slip if lag.active else 0.0, 0.0)
+
+    def _no_free_rolling(self, load: float, speed: float, moment: float, slip: float) -> InputError:
+        """The error of a wheel whose handling forces cannot hold its moment about the axle."""
+        return InputError(f"the wheel finds no free-rolling spin at {load:.0f} N and {speed:.3g} m/s: "
+                          f"its {self.handling} forces leave {moment:.3g} N m about the axle at slip "
+                          f"{slip:.3g} (a slip range KPUMIN..KPUMAX that excludes the braking slip "
+                          "its rolling resistance needs?)", source=self.tyre.name, field="tyre")
 
     def _free_rolling(self, load: float, speed: float) -> tuple[float, float]:
         """``(deflection, spin)`` of an analytic model's wheel carrying ``load`` [N] rolling

@@ -21,6 +21,18 @@ Taken from ``[MODEL] FITTYP`` (6 or 21: MF 5.2, 61: MF 6.1, 62: MF 6.2),
 else from ``PROPERTY_FILE_FORMAT`` ('PAC2002' and 'MF_05': 5.2, 'MF_61',
 'MF61': 6.1, 'MF_62', 'MF62': 6.2), else from ``FILE_VERSION`` when it
 reads 5.2, 6.1 or 6.2. PAC89/PAC94/motorcycle files are refused.
+MF-Tyre 5.0 (``FITTYP = 5``, written with ``PROPERTY_FILE_FORMAT = 'MF_05'``)
+is read with the 5.2 equations, which carry its coefficients unchanged (the
+Pacejka 2002 set; Project Chrono's ``ChPac02Tire`` reads 'MF_05' files the same
+way); MFeval reads no 5.0 file, so that reading has no reference run.
+
+Combined slip
+-------------
+``[MODEL] FE_METHOD = 'YES'`` (MF-Tyre's switch, "use friction ellipsis method
+for combined forces") replaces Pacejka's weighting functions by the friction
+ellipse (:func:`.forces.friction_ellipse_weights`); a file without the key, or
+with 'NO', uses Pacejka's (MFeval's default). The slot ``FRICTION_ELLIPSE`` is 1
+or 0.
 
 Units
 -----
@@ -107,7 +119,7 @@ PARAMETERS: tuple[tuple[str, float], ...] = (
 )
 
 #: derived slots appended after the file parameters (filled by :func:`pack`)
-DERIVED = ("VERSION", "Q_FZ1", "QA1_EFF", "QA2_EFF")
+DERIVED = ("VERSION", "Q_FZ1", "QA1_EFF", "QA2_EFF", "FRICTION_ELLIPSE")
 
 NAMES: tuple[str, ...] = tuple(n for n, _ in PARAMETERS) + DERIVED
 INDEX: dict[str, int] = {n: i for i, n in enumerate(NAMES)}
@@ -169,7 +181,7 @@ _EXTRA_DIMENSIONS = {
     "LONGITUDINAL_STIFFNESS": (-1, 1, 0, 0, 0), "LATERAL_STIFFNESS": (-1, 1, 0, 0, 0),
 }
 
-_FITTYP_VERSION = {6: "5.2", 21: "5.2", 61: "6.1", 62: "6.2"}
+_FITTYP_VERSION = {5: "5.2", 6: "5.2", 21: "5.2", 61: "6.1", 62: "6.2"}
 _FORMAT_VERSION = {"PAC2002": "5.2", "MF_05": "5.2", "MF05": "5.2", "MF_52": "5.2", "MF52": "5.2",
                    "MF_61": "6.1", "MF61": "6.1", "MF_62": "6.2", "MF62": "6.2"}
 _UNSUPPORTED_FORMATS = {"PAC89", "PAC94", "PAC_MC", "MF_MC", "PAC2002_MC", "PAC_TIME"}
@@ -191,8 +203,8 @@ def detect_version(tir: TirFile) -> str:
         value = tir.number(section, "FITTYP")
         if value not in _FITTYP_VERSION:
             sec = tir.sections[section]
-            raise InputError(f"unsupported FITTYP {fittyp!r}: this model reads Magic Formula 5.2 "
-                             "(FITTYP = 6 or 21), 6.1 (61) and 6.2 (62)",
+            raise InputError(f"unsupported FITTYP {fittyp!r}: this model reads Magic Formula 5.x "
+                             "(FITTYP = 5, 6 or 21), 6.1 (61) and 6.2 (62)",
                              source=tir.source, line=sec.lines.get("FITTYP"), field="FITTYP")
         return _FITTYP_VERSION[int(value)]
     section, fmt = _locate(tir, "PROPERTY_FILE_FORMAT")
@@ -256,8 +268,22 @@ def pack(tir: TirFile, version: str | None = None) -> tuple[np.ndarray, str]:
     if qa1 == 0.0 and qa2 == 0.0:
         qa1, qa2 = _default_contact_length(r0, cz0, fz0)
     values[INDEX["QA1_EFF"]], values[INDEX["QA2_EFF"]] = qa1, qa2
+    values[INDEX["FRICTION_ELLIPSE"]] = _friction_ellipse(tir)
     _warn_mixed_mx(values, tir.source)
     return values, version
+
+
+def _friction_ellipse(tir: TirFile) -> float:
+    """1.0 when ``FE_METHOD`` says 'YES' (combined slip by the friction ellipse), 0.0 for 'NO'
+    or no key; anything else is refused."""
+    section, raw = _locate(tir, "FE_METHOD")
+    if section is None:
+        return 0.0
+    word = str(raw).strip().strip("'\"").upper()
+    if word in ("YES", "NO"):
+        return 1.0 if word == "YES" else 0.0
+    raise InputError(f"FE_METHOD must be 'YES' or 'NO', found {raw!r}", source=tir.source,
+                     line=tir.sections[section].lines.get("FE_METHOD"), field="FE_METHOD")
 
 
 def _check_physical(values: np.ndarray, source: str) -> None:

@@ -162,3 +162,39 @@ def kappa_induced_fy(c, fz, muy, kappa, alpha_s, gamma_s, dfz, smooth):
     dvyk = (muy * fz * (c[C.RVY1] + c[C.RVY2] * dfz + c[C.RVY3] * gamma_s)
             * cos_atan(c[C.RVY4] * alpha_s))  # (4.E67)
     return dvyk * math.sin(c[C.RVY5] * math.atan(c[C.RVY6] * kappa)) * c[C.LVYKA] * smooth  # (4.E66)
+
+
+@numba.njit(cache=True, error_model="numpy")
+def friction_ellipse_weights(c, fz, kappa, alpha_s, dfz, vx, smooth, star, fx0, fy0, mux, muy,
+                             kxk, kya, shy, svy):
+    """Weights ``(Gx, Gy)`` of the friction ellipse, the combined slip of a file with
+    ``FE_METHOD = 'YES'`` (in place of Pacejka's Gxa, Gyk, 4.E51 and 4.E59; no SVyk).
+
+    The slips measured from the pure curves' zero-force points, ``kc = kappa + SHx +
+    SVx / Kxk`` and ``ac = sin(alpha + SHy + SVy / Kya)``, give the direction
+    ``tan(beta) = |ac| / |kc|``; each force keeps its own pure-slip friction in its own
+    direction and meets the other's peak on the ellipse (Project Chrono's ``ChPac02Tire``,
+    ``CalcFxyMz``, use mode 4, "combining without Pacejka coefficients"):
+
+        mu_x = 1 / sqrt(1 / mu_x0^2 + tan(beta)^2 / mu_y,max^2)
+        mu_y = tan(beta) / sqrt(1 / mu_x,max^2 + tan(beta)^2 / mu_y0^2)
+
+    with ``mu_x0 = |Fx0 - SVx| / Fz``, ``mu_y0 = |Fy0 - SVy| / Fz`` and the peaks
+    ``mu_max = |D| / Fz``. Written here without the angle, so that it holds at zero slip:
+    ``Gx = |kc| Dy / sqrt((kc Dy)^2 + ((Fx0 - SVx) ac)^2)``,
+    ``Gy = |ac| Dx / sqrt(((Fy0 - SVy) kc)^2 + (ac Dx)^2)``; a pure slip (``ac = 0`` or
+    ``kc = 0``) leaves its own force whole (weight 1) and takes the other's away.
+    """
+    shx = (c[C.PHX1] + c[C.PHX2] * dfz) * c[C.LHX] * smooth  # (4.E17)
+    svx = fz * (c[C.PVX1] + c[C.PVX2] * dfz) * c[C.LVX] * c[C.LMUX] * smooth  # (4.E18)
+    kc = kappa + shx + (svx / kxk if kxk != 0.0 else 0.0)
+    ac = math.sin(alpha_s + shy + (svy / kya if kya != 0.0 else 0.0))
+    fx_own = (-fx0 if vx < 0.0 else fx0) - svx  # the curve's own part, before 4.E9's sign turn
+    fy_own = (-fy0 if star and vx < 0.0 else fy0) - svy
+    dx = abs(mux * fz)
+    dy = abs(muy * fz)
+    gx_den = math.sqrt((kc * dy) ** 2 + (fx_own * ac) ** 2)
+    gy_den = math.sqrt((fy_own * kc) ** 2 + (ac * dx) ** 2)
+    gx = abs(kc) * dy / gx_den if gx_den > 0.0 else 1.0
+    gy = abs(ac) * dx / gy_den if gy_den > 0.0 else 1.0
+    return gx, gy

@@ -15,7 +15,8 @@ import numpy as np
 
 from ....core.named_index import named_index
 from . import coefficient_index as C
-from .forces import combined_fx_weight, combined_fy_weight, kappa_induced_fy, pure_fx, pure_fy, sign
+from .forces import (combined_fx_weight, combined_fy_weight, friction_ellipse_weights, kappa_induced_fy,
+                     pure_fx, pure_fy, sign)
 from .geometry import contact_patch, deflection_61, deflection_62, effective_rolling_radius, relaxation
 from .limits import NEGATIVE_MUY, NON_FINITE, decode_use_mode, prepare_inputs
 from .moments import aligning_moment, overturning_moment, rolling_resistance, trail_and_residual
@@ -82,9 +83,14 @@ def _steady_state(c, use_mode, fz, kappa, alpha, gamma, vx, pressure):
     fx0, mux, kxk, flags = pure_fx(c, fz, kappa, gamma, dfz, dpi, vx, smooth, check, flags)
     fy0, muy, kya, shy, svy, by, cy, flags = pure_fy(c, fz, alpha_s, gamma_s, dfz, dpi, vx,
                                                      smooth, star, check, flags)
-    gxa, flags = combined_fx_weight(c, kappa, alpha_s, gamma_s, dfz, check, flags)
-    gyk, flags = combined_fy_weight(c, kappa, alpha_s, gamma_s, dfz, check, flags)
-    svyk = kappa_induced_fy(c, fz, muy, kappa, alpha_s, gamma_s, dfz, smooth)
+    if c[C.FRICTION_ELLIPSE] != 0.0:  # FE_METHOD = 'YES' (coefficients module docstring)
+        gxa, gyk = friction_ellipse_weights(c, fz, kappa, alpha_s, dfz, vx, smooth, star, fx0,
+                                            fy0, mux, muy, kxk, kya, shy, svy)
+        svyk = 0.0
+    else:
+        gxa, flags = combined_fx_weight(c, kappa, alpha_s, gamma_s, dfz, check, flags)
+        gyk, flags = combined_fy_weight(c, kappa, alpha_s, gamma_s, dfz, check, flags)
+        svyk = kappa_induced_fy(c, fz, muy, kappa, alpha_s, gamma_s, dfz, smooth)
     fx = gxa * fx0  # (4.E50)
     fy = gyk * fy0 + svyk  # (4.E58)
 

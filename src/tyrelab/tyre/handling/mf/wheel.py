@@ -47,12 +47,18 @@ def mf_wheel_forces(params, fz, v_long, v_slip_x, v_slip_y, gamma):
     kappa, alpha = slip(v_long, v_slip_x, v_slip_y)
     sense = 1.0 if v_long >= 0.0 else -1.0
     out = np.empty(MFO.flags + 1)  # mf_forces's row: Fx ... Mz and the flag word
-    mf_forces(params.coefficients, params.use_mode, fz, sense * (kappa + DKAPPA), alpha, gamma,
-              v_long, params.pressure, out)
-    fx2 = out[MFO.Fx]
-    mf_forces(params.coefficients, params.use_mode, fz, sense * kappa, alpha, gamma, v_long,
+    # the slope's difference step stays inside the file's slip range: the rigs' use mode clips
+    # the slip to KPUMIN..KPUMAX, and a step across the clip reads the flat side (a file
+    # measured in braking only, KPUMAX = 0, gave the free-rolling wheel no slope at all)
+    step = DKAPPA
+    c = params.coefficients
+    if not c[C.KPUMIN] <= sense * (kappa + DKAPPA) <= c[C.KPUMAX]:
+        step = -DKAPPA
+    mf_forces(c, params.use_mode, fz, sense * (kappa + step), alpha, gamma, v_long,
               params.pressure, out)
-    return out[MFO.Fx], out[MFO.Fy], out[MFO.Mz], kappa, alpha, (fx2 - out[MFO.Fx]) / DKAPPA
+    fx2 = out[MFO.Fx]
+    mf_forces(c, params.use_mode, fz, sense * kappa, alpha, gamma, v_long, params.pressure, out)
+    return out[MFO.Fx], out[MFO.Fy], out[MFO.Mz], kappa, alpha, (fx2 - out[MFO.Fx]) / step
 
 
 @nb.njit(cache=True)
