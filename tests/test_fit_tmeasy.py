@@ -108,8 +108,32 @@ def test_the_magic_formula_converted(data_dir):
     # driving maxima (MFeval's table at FNOMIN, alpha = gamma = 0: -7388.5 N at kappa = -0.1,
     # 8306.1 N at 0.1; its largest magnitudes on each side)
     assert 7388.5 < fit.longitudinal[0].peak < 8306.1
-    # KPUMAX = 1 keeps the samples inside the file's range: TMeasy slip 1 / (1 + 1)
-    assert fit.slip_range[0] == pytest.approx(0.5)
+    # KPUMAX = 1 keeps the samples inside the file's range: TMeasy slip 1 / (1 + 1), on both
+    # sides (KPUMIN = -1 reaches lock, where TMeasy's braking slip is endless)
+    assert fit.slip_range[0] == (pytest.approx(-0.5), pytest.approx(0.5))
+
+
+def test_a_tyre_measured_in_braking_only_is_fitted_on_its_braking_side(data_dir):
+    """Goodyear's 335/65R22.5 MF-Tyre 5.0 file states KPUMIN = -0.8, KPUMAX = 0: the Magic
+    Formula clips the driving side flat at zero force, which the fit sampled as well (to
+    TMeasy slip +0.9), so TMeasy's odd curve split the difference: its peak 8.37 kN at
+    FZ_NOM where the tyre brakes with 16.65 kN (38 % RMS error). Sampled on the braking
+    side only, its peaks are the Magic Formula's braking peaks within the curve's RMS error."""
+    import warnings
+
+    from tyrelab.tyre.handling.mf.model import MagicFormula
+
+    source = data_dir / "tir" / "335_65R22_5_G275MSA_40psi.tir"
+    fit = tmeasy_from_handling(load_tyre(source), "mf", 16929.0)
+    low, high = fit.slip_range[0]
+    assert low == pytest.approx(-0.9) and high < 0.0
+    kappa = np.linspace(-0.8, 0.0, 80001)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        peaks = [-MagicFormula.from_tir(source).steady_state(fz, kappa, 0.0, 0.0, 10.0)["Fx"].min()
+                 for fz in (16929.0, 2 * 16929.0)]
+    for curve, peak in zip(fit.longitudinal, peaks):
+        assert abs(curve.peak - peak) <= fit.rms_pct["Fx"] / 100.0 * peak
 
 
 def test_the_command_writes_a_file_tmeasy_runs(data_dir, tmp_path, capsys):

@@ -67,10 +67,10 @@ def run_tmeasy(args) -> int:
         tir.set(FIT_SECTION, f"TMEASY_RMS_{name.upper()}_PCT", float(value))
     tidy(tir, new=False)
     write_tir(tir, out)
-    s_x, s_y = fit.slip_range
+    (x_low, x_high), (y_low, y_high) = fit.slip_range
     nominal = fit.nominal_load
-    print(f"TMeasy fitted to {source}, FZ_NOM {nominal:g} N (TMeasy slips to {s_x:.3g} and "
-          f"{s_y:.3g}); RMS error in % of each curve's largest magnitude:")
+    print(f"TMeasy fitted to {source}, FZ_NOM {nominal:g} N (TMeasy slips {x_low:.3g} to {x_high:.3g} "
+          f"and {y_low:.3g} to {y_high:.3g}); RMS error in % of each curve's largest magnitude:")
     for name, value in fit.rms_pct.items():
         print(f"  {name:7s} {value:7.3f} %")
     print(f"wrote {out}")

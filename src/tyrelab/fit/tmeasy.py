@@ -12,7 +12,9 @@ are not carried), keeping every parameter inside what TMeasy's property file acc
 (dF0 >= 2 FM / sM, FS <= FM, sM < sS); then the normalised pneumatic trail (its value at zero
 slip, where it changes sign, where it vanishes) to the aligning moment ``Mz = -L n Fy``, L
 the contact length, where the tyre grips (lateral slips up to :data:`TRAIL_SLIPS` times the
-fitted peak slip; a Magic Formula's residual moment has no place in TMeasy).
+fitted peak slip; a Magic Formula's residual moment has no place in TMeasy). A sampled
+model is sampled only inside its file's slip range (:func:`_slip_limits`): a tyre measured in
+braking only is fitted on its braking side.
 """
 
 from __future__ import annotations
@@ -58,7 +60,7 @@ class Samples:
 class TMeasyFit:
     """The fitted parameters (each a pair: at FZ_NOM and 2 FZ_NOM), the loads [N], the RMS
     error of each fitted curve over its samples in % of their largest magnitude (``rms_pct``:
-    ``Fx``, ``Fy``, ``Mz``) and the largest TMeasy slips sampled."""
+    ``Fx``, ``Fy``, ``Mz``) and the TMeasy slips sampled, ``((s_x low, high), (s_y low, high))``."""
 
     nominal_load: float
     max_load: float
@@ -66,7 +68,7 @@ class TMeasyFit:
     lateral: tuple
     trail: tuple
     rms_pct: dict = field(default_factory=dict)
-    slip_range: tuple = (0.0, 0.0)
+    slip_range: tuple = ((0.0, 0.0), (0.0, 0.0))
 
     def entries(self):
         """``[(section, key, value)]`` for the property file (:func:`tmeasy_entries`)."""
@@ -173,7 +175,7 @@ def fit_trail(samples: Samples, nominal: float, max_load: float, lateral: tuple,
     return trails(p), rms
 
 
-def fit_tmeasy(x: Samples, y: Samples, nominal: float, tyre, slip_range=(0.0, 0.0)) -> TMeasyFit:
+def fit_tmeasy(x: Samples, y: Samples, nominal: float, tyre) -> TMeasyFit:
     """TMeasy from longitudinal samples ``x`` and lateral ``y`` (with moments) at nominal load
     ``nominal`` [N] (FZ_MAX 3.5 times it, Chrono's default); ``tyre``'s vertical law gives the
     contact length."""
@@ -184,21 +186,40 @@ def fit_tmeasy(x: Samples, y: Samples, nominal: float, tyre, slip_range=(0.0, 0.
     lateral, rms_y = fit_direction(y, nominal, maximum)
     trail, rms_m = fit_trail(y, nominal, maximum, lateral, tyre)
     return TMeasyFit(nominal, maximum, longitudinal, lateral, trail,
-                     {"Fx": rms_x, "Fy": rms_y, "Mz": rms_m}, slip_range)
+                     {"Fx": rms_x, "Fy": rms_y, "Mz": rms_m},
+                     tuple((float(d.slip.min()), float(d.slip.max())) for d in (x, y)))
 
 
-def _slip_limits(tyre) -> tuple[float, float]:
-    """TMeasy's largest slips inside the source's stated range (a Magic Formula's KPUMAX,
-    ALPMAX; v_N left out: 0.1 % at 10 m/s), else :data:`MAX_SLIP_X`, :data:`MAX_SLIP_Y`."""
+def _slip_limits(tyre) -> tuple[tuple[float, float], tuple[float, float]]:
+    """TMeasy's slips ``((s_x low, high), (s_y low, high))`` inside the source's stated range (a
+    Magic Formula's KPUMIN, KPUMAX, ALPMIN, ALPMAX; ``s_x = kappa / (1 + kappa)``, ``s_y =
+    -tan(alpha)``, v_N left out: 0.1 % at 10 m/s), else :data:`MAX_SLIP_X`, :data:`MAX_SLIP_Y`.
+    TMeasy's curve is odd: where the range has both signs, both sides reach the shorter side's
+    slip (the same slips on each); a side the range leaves out is ``0``, no samples there (a tyre
+    measured in braking only, ``KPUMAX = 0``, is clipped flat at zero force on the driving side,
+    which an odd curve cannot follow)."""
     tir = tyre.tir
-    sx, sy = MAX_SLIP_X, MAX_SLIP_Y
-    kappa = tir.number("LONG_SLIP_RANGE", "KPUMAX", None)
-    if kappa is not None and kappa > 0:
-        sx = min(sx, kappa / (1.0 + kappa))
-    alpha = tir.number("SLIP_ANGLE_RANGE", "ALPMAX", None)
-    if alpha is not None and alpha > 0:
-        sy = min(sy, math.tan(min(alpha, 1.5)))
-    return sx, sy
+
+    def reach(bound, limit, magnitude):  # how far one side goes: 0 where the range excludes it
+        return limit if bound is None else min(limit, magnitude(bound))
+
+    def kappa_slip(kappa):  # TMeasy's slip magnitude of a slip ratio: endless at lock
+        return abs(kappa) / (1.0 + kappa) if kappa > -1.0 else math.inf
+
+    def sides(low, high):
+        if low > 0.0 and high > 0.0:
+            low = high = min(low, high)
+        return -low, high
+
+    x = sides(reach(tir.number("LONG_SLIP_RANGE", "KPUMIN", None), MAX_SLIP_X,
+                    lambda k: kappa_slip(k) if k < 0.0 else 0.0),
+              reach(tir.number("LONG_SLIP_RANGE", "KPUMAX", None), MAX_SLIP_X,
+                    lambda k: kappa_slip(k) if k > 0.0 else 0.0))
+    y = sides(reach(tir.number("SLIP_ANGLE_RANGE", "ALPMAX", None), MAX_SLIP_Y,
+                    lambda a: math.tan(min(a, 1.5)) if a > 0.0 else 0.0),
+              reach(tir.number("SLIP_ANGLE_RANGE", "ALPMIN", None), MAX_SLIP_Y,
+                    lambda a: math.tan(min(-a, 1.5)) if a < 0.0 else 0.0))
+    return x, y
 
 
 def tmeasy_from_handling(tyre, handling: str, nominal_load: float, speed: float = SPEED) -> TMeasyFit:
@@ -208,7 +229,7 @@ def tmeasy_from_handling(tyre, handling: str, nominal_load: float, speed: float 
 
     model = handling_model(handling)
     params = model.build(tyre)
-    s_x_max, s_y_max = _slip_limits(tyre)
+    (s_x_low, s_x_high), (s_y_low, s_y_high) = _slip_limits(tyre)
     grid = np.linspace(0.0, 1.0, SAMPLES + 1)[1:]
 
     def kappa(s):  # the ISO slip ratio at which TMeasy's transport speed gives s_x = s
@@ -217,13 +238,18 @@ def tmeasy_from_handling(tyre, handling: str, nominal_load: float, speed: float 
     lean = (speed + V_NUM) / speed  # s_y > 0 slides right: tan alpha = -s_y (V + v_N) / V
     xs, ys = [], []
     for fz in (nominal_load, 2.0 * nominal_load):
-        for s in np.r_[s_x_max * grid, -s_x_max * grid]:
+        for s in _sides(grid, s_x_low, s_x_high):
             xs.append((s, fz, model.at_slips(params, fz, speed, kappa(s), 0.0)[0]))
-        for s in np.r_[s_y_max * grid, -s_y_max * grid]:
+        for s in _sides(grid, s_y_low, s_y_high):
             ys.append((s, fz, *model.at_slips(params, fz, speed, 0.0, -s * lean)[1:3]))
     x, y = np.array(xs), np.array(ys)
     return fit_tmeasy(Samples(x[:, 0], x[:, 1], x[:, 2]), Samples(y[:, 0], y[:, 1], y[:, 2], y[:, 3]),
-                      nominal_load, tyre, (s_x_max, s_y_max))
+                      nominal_load, tyre)
+
+
+def _sides(grid, low: float, high: float) -> np.ndarray:
+    """The slips ``high grid`` and ``low grid`` (``grid`` in (0, 1]), a side without range left out."""
+    return np.r_[high * grid if high > 0 else [], low * grid if low < 0 else []]
 
 
 def samples_from_runs(runs) -> tuple[Samples, Samples]:
@@ -259,6 +285,5 @@ def tmeasy_from_runs(tyre, runs, nominal_load: float | None = None) -> TMeasyFit
     x, y = samples_from_runs(runs)
     if nominal_load is None:
         nominal_load = 0.5 * float(max(x.load.max(), y.load.max()))
-    top = (float(np.abs(x.slip).max()), float(np.abs(y.slip).max()))
-    return fit_tmeasy(x, y, nominal_load, tyre, top)
+    return fit_tmeasy(x, y, nominal_load, tyre)
 
