@@ -180,11 +180,18 @@ MF61 = Path(__file__).resolve().parents[1] / "examples" / "data" / "MagicFormula
 
 
 @pytest.fixture(scope="module")
-def offset_tyre_runs():
+def offset_tyre_runs(tmp_path_factory):
     """The MF 6.1 example tyre, whose forces at zero slip do not vanish (PHY1, PVY1, QSY1:
-    -43 N across, -46 N of drag at 4 kN), on the trailer on a flat road at 3 and 42 km/h."""
+    -43 N across, -46 N of drag at 4 kN), on the trailer on a flat road at 3 and 42 km/h;
+    its TYRESIDE made 'UNKNOWN', so that both wheels carry the tyre as measured (the file
+    says 'RIGHT': the left wheel would be mirrored, test below)."""
     from tyrelab.api import make_tyre_model
-    model = make_tyre_model(tyre=str(MF61), model="point", handling="mf")
+    text = MF61.read_text()
+    unknown = text.replace("TYRESIDE                 =    'RIGHT'", "TYRESIDE                 =    'UNKNOWN'")
+    assert unknown != text
+    path = tmp_path_factory.mktemp("mf61") / "MagicFormula61_unknown_side.tir"
+    path.write_text(unknown)
+    model = make_tyre_model(tyre=str(path), model="point", handling="mf")
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         return {kmh: (Trailer(model, 4000.0), Trailer(model, 4000.0).run(Flat(), kmh / 3.6,
@@ -204,6 +211,22 @@ def test_a_tyre_with_force_offsets_starts_the_trailer_balanced(offset_tyre_runs,
     for name in ("PITCH", "ROLL"):
         x = run[name].to_numpy()
         assert np.abs(x - x[0]).max() <= 1e-9, name
+
+
+def test_a_tyre_measured_on_the_right_is_mirrored_on_the_left_wheel():
+    """The MF 6.1 example states TYRESIDE 'RIGHT': the trailer's right (test) wheel carries it
+    as measured and its left wheel mirrored, as a vehicle mounts it. The pair is then a mirror
+    image about the frame's middle: the offsets' side forces and moments oppose and the frame
+    balances with equal loads and no roll (with the same tyre as measured on both, their
+    offsets moved 25 N of load between the wheels, 30 N m about the roll axis)."""
+    from tyrelab.api import make_tyre_model
+    model = make_tyre_model(tyre=str(MF61), model="point", handling="mf")
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        run = Trailer(model, 4000.0).run(Flat(), 42 / 3.6, duration=0.5)
+    assert abs(run["FY"].iloc[0]) > 20.0                                  # the offsets are there
+    assert np.abs(run["FZ"] - run["FZ_LEFT"]).max() <= 1e-9 * 4000.0
+    assert np.abs(run["ROLL"]).max() <= 1e-12
 
 
 @pytest.mark.parametrize("kmh", [3, 42])

@@ -266,9 +266,9 @@ class Trailer:
             # the loads at which the tyres' own forces at zero slip leave the frame still
             # (trailer_balance: the MF offsets, a rolling resistance), each wheel in its
             # equilibrium at its load
-            built = self.model.wheel(grid, s.wheel_load)
+            built = self.model.wheel(grid, s.wheel_load, side="right")
             pitch, roll, (right, left) = balanced_loads(
-                self, speed, built, self.left.wheel(Flat().grid(), s.wheel_load), dt, x0_road)
+                self, speed, built, self.left.wheel(Flat().grid(), s.wheel_load, side="left"), dt, x0_road)
             test_wheel = self.model.rolling_from(built, right)
         else:
             left = self.left.equilibrium(s.wheel_load, speed)
@@ -314,13 +314,13 @@ class Trailer:
 
         ground, meta = lay_terrain(self.model, terrain, road, x0, x1, level_at=x0)
         load, r0 = self.setup.wheel_load, self.model.tyre.unloaded_radius
-        wheel = self.model.wheel(ground, load)
+        wheel = self.model.wheel(ground, load, side="right")
         dynamic = self.model.contact_model.has_state
         half = 0.5 * self.geometry.track
         # the left wheel on its level rigid ground, in the state it starts in (the trials
         # leave a ring's belt as it is: they do not step it)
         level = Flat().grid()
-        left = self.left.wheel(level, load, state=left_state)
+        left = self.left.wheel(level, load, state=left_state, side="left")
         x, y, axis, z_right, roll = x0, 0.0, UPRIGHT, None, 0.0
         for _ in range(MAX_SETTLE_ROUNDS):
             # the trials static (the ring's dynamic settling, up to SETTLE_TIME of its steps,
@@ -389,8 +389,8 @@ class Trailer:
         out_every = max(1, int(round(1.0 / (output_rate * dt))))
 
         right_eq, left_eq = rolling or (None, None)
-        right = right_wheel or self.model.wheel(grid, wheel_load, rolling=right_eq)
-        left = self.left.wheel(Flat().grid(), wheel_load, rolling=left_eq)
+        right = right_wheel or self.model.wheel(grid, wheel_load, rolling=right_eq, side="right")
+        left = self.left.wheel(Flat().grid(), wheel_load, rolling=left_eq, side="left")
 
         follow = Following(ground, x_start, speed, dt, self.model.tyre.unloaded_radius)
 

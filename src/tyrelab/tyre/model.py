@@ -116,9 +116,17 @@ class TyreModel:
         from .contact.soil_wheel import wheel_params  # on soil an analytic model is a flexible wheel
         return wheel_params(self.contact_model, self.tyre, grid, options)
 
-    def handling_params(self):
-        """The handling model's parameter record."""
-        return self.handling_model.build(self.tyre)
+    def handling_params(self, side: str | None = None):
+        """The handling model's parameter record; ``side`` ("left", "right") the side of a
+        vehicle a rig mounts the wheel on: the tyre mirrored where that is not the side its
+        file states it was measured on (``[MODEL] TYRESIDE``, :func:`measured_side`) and the
+        model can mirror (:attr:`~.registry.HandlingModel.mirror`, the Magic Formula's), as
+        MF-Tyre and Chrono mount it. No side (a test rig, the FMU): the tyre as measured."""
+        params = self.handling_model.build(self.tyre)
+        measured = measured_side(self.tyre.tir)
+        if side is not None and measured is not None and side != measured and self.handling_model.mirror:
+            params = self.handling_model.mirror(params)
+        return params
 
     def slip_lag(self, carcass=(0.0, 0.0)) -> SlipLag:
         """The transient slip of a new wheel, its carcass deflected by ``carcass`` [m] (an
@@ -235,8 +243,9 @@ class TyreModel:
         return deflection, spin
 
     def wheel(self, grid, load: float = 0.0, static: bool = False, state=None,
-              rolling: Equilibrium | None = None) -> Wheel:
-        """The :class:`Wheel` record of this tyre on road ``grid`` at static ``load`` [N].
+              rolling: Equilibrium | None = None, side: str | None = None) -> Wheel:
+        """The :class:`Wheel` record of this tyre on road ``grid`` at static ``load`` [N],
+        mounted on ``side`` of a vehicle (:meth:`handling_params`).
 
         ``state`` the model's internal state to start from; default the static one.
         ``rolling`` an equilibrium (:meth:`equilibrium`) to start in instead: its state, and
@@ -248,7 +257,7 @@ class TyreModel:
             state = rolling.state
         if state is None:
             state = self.initial_state(load, params)
-        wheel = Wheel(self.tyre.vertical_law, params, self.handling_params(), grid.surface(),
+        wheel = Wheel(self.tyre.vertical_law, params, self.handling_params(side), grid.surface(),
                       state, self.slip_lag())
         return wheel if rolling is None else self.rolling_from(wheel, rolling)
 
@@ -313,6 +322,15 @@ def contact_geometry_table(model: TyreModel, road, x, y=0.0, z=None, axis=(0.0, 
     out = np.empty((poses.shape[0], N_GEOMETRY))
     _geometry_many(model.contact_params(grid), grid.surface(), poses, out)
     return positions_table(poses, out, ContactGeometry._fields)
+
+
+def measured_side(tir) -> str | None:
+    """The side of a vehicle ("left", "right") a property file's tyre was measured on, its
+    ``[MODEL] TYRESIDE``; None for 'UNKNOWN', 'SYMMETRIC' or no key (nothing to mirror by:
+    Chrono reads 'UNKNOWN' as left, an assumption not made here)."""
+    value = tir.get("MODEL", "TYRESIDE") if tir is not None else None
+    word = str(value).strip().strip("'\"").lower() if isinstance(value, str) else ""
+    return word if word in ("left", "right") else None
 
 
 def wheel_positions(road, x, y=0.0, z=None, axis=(0.0, 1.0, 0.0), unloaded_radius=0.0):

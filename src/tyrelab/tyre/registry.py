@@ -189,6 +189,10 @@ class HandlingModel:
     Chrono's PAC89's ``Fz FYW / k_y``: the pressure's centre shifted across the patch by
     camber and lateral force), which the wheel step adds too; without it the tyre's loads
     act at the contact point.
+    ``mirror(params)`` (Python, optional) returns the record of the same tyre mirrored through
+    its wheel plane: a rig mounting it on the other side of a vehicle than its file's
+    ``TYRESIDE`` uses it (:meth:`~tyrelab.tyre.model.TyreModel.handling_params`); without it
+    the model's tyre is the same on either side.
     """
 
     name: str
@@ -200,6 +204,7 @@ class HandlingModel:
     relaxation_lengths: Any = None
     rolling_resistance: Any = None
     overturning: Any = None
+    mirror: Any = None
 
     def at_slips(self, params, fz: float, speed: float, kappa: float, tan_alpha: float):
         """:attr:`forces` where the ISO slips are ``kappa`` and ``tan alpha`` at forward speed

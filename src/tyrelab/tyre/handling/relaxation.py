@@ -114,7 +114,8 @@ def use_mode_relaxes(tir) -> bool:
     """True when a property file's ``USE_MODE`` asks for relaxation: its tens digit
     1 (linear relaxation), 2 (non-linear) or 3 (rigid-ring dynamics) -- the MF-Tyre/ADAMS
     convention (``+10``: including relaxation behaviour, as the files' own header says);
-    the sign (mirroring) and the hundreds (contact method) are not read."""
+    the sign (mirroring: the Magic Formula's coefficients read it) and the hundreds (contact
+    method) are not read here."""
     mode = tir.get("MODEL", "USE_MODE")
     if isinstance(mode, bool) or not isinstance(mode, (int, float)):
         return False  # absent, or a bare word some writers put there

@@ -34,6 +34,14 @@ ellipse (:func:`.forces.friction_ellipse_weights`); a file without the key, or
 with 'NO', uses Pacejka's (MFeval's default). The slot ``FRICTION_ELLIPSE`` is 1
 or 0.
 
+Mirroring
+---------
+A negative ``[MODEL] USE_MODE`` (MF-Tyre's "*-1: mirroring of tyre characteristics") mirrors
+the tyre: the slot ``MIRRORED`` is 1 and the kernel evaluates it as the file's tyre seen in a
+mirror through its wheel plane (:func:`.kernel.mf_forces`). A rig that mounts the tyre on the
+other side of a vehicle than ``TYRESIDE`` states mirrors it too
+(:func:`.wheel.mf_mirrored`).
+
 Units
 -----
 :func:`tyrelab.tyre.tir.read_tir` converts the keys it knows to SI. The few
@@ -119,7 +127,7 @@ PARAMETERS: tuple[tuple[str, float], ...] = (
 )
 
 #: derived slots appended after the file parameters (filled by :func:`pack`)
-DERIVED = ("VERSION", "Q_FZ1", "QA1_EFF", "QA2_EFF", "FRICTION_ELLIPSE")
+DERIVED = ("VERSION", "Q_FZ1", "QA1_EFF", "QA2_EFF", "FRICTION_ELLIPSE", "MIRRORED")
 
 NAMES: tuple[str, ...] = tuple(n for n, _ in PARAMETERS) + DERIVED
 INDEX: dict[str, int] = {n: i for i, n in enumerate(NAMES)}
@@ -269,6 +277,9 @@ def pack(tir: TirFile, version: str | None = None) -> tuple[np.ndarray, str]:
         qa1, qa2 = _default_contact_length(r0, cz0, fz0)
     values[INDEX["QA1_EFF"]], values[INDEX["QA2_EFF"]] = qa1, qa2
     values[INDEX["FRICTION_ELLIPSE"]] = _friction_ellipse(tir)
+    use_mode = tir.get("MODEL", "USE_MODE")
+    mirrored = isinstance(use_mode, (int, float)) and not isinstance(use_mode, bool) and use_mode < 0
+    values[INDEX["MIRRORED"]] = 1.0 if mirrored else 0.0
     _warn_mixed_mx(values, tir.source)
     return values, version
 

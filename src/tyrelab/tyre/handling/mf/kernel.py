@@ -111,6 +111,17 @@ def _steady_state(c, use_mode, fz, kappa, alpha, gamma, vx, pressure):
 
 
 @numba.njit(cache=True, error_model="numpy")
+def mirror_sign(c):
+    """-1 for a mirrored tyre (``MIRRORED``: a negative USE_MODE, or mounted on the other side
+    than its TYRESIDE), else 1. A mirrored tyre is the file's seen in a mirror through its
+    wheel plane: at slip angle ``alpha`` and inclination ``gamma`` it gives the file's tyre's
+    Fx, My and -Fy, -Mx, -Mz at ``-alpha`` and ``-gamma`` (every asymmetry -- conicity,
+    ply-steer, the residual moment -- turned over; MF-Tyre's and Chrono's mirroring, which
+    flip the odd coefficients instead)."""
+    return -1.0 if c[C.MIRRORED] != 0.0 else 1.0
+
+
+@numba.njit(cache=True, error_model="numpy")
 def _finite(value, flags):
     """(value, flags), or (0, flags | NON_FINITE) for an infinite or NaN value."""
     if math.isfinite(value):
@@ -147,23 +158,26 @@ def mf_forces(coefficients, use_mode, fz, kappa, alpha, gamma, vx, pressure, out
     2, is not implemented and is evaluated as 1). 111 and 121 are the modes
     checked against MFeval.
     """
-    r = _steady_state(coefficients, use_mode, fz, kappa, alpha, gamma, vx, pressure)
+    m = mirror_sign(coefficients)
+    r = _steady_state(coefficients, use_mode, fz, kappa, m * alpha, m * gamma, vx, pressure)
     flags = r.flags
     out[MFO.Fx], flags = _finite(r.fx, flags)
-    out[MFO.Fy], flags = _finite(r.fy, flags)
-    out[MFO.Mx], flags = _finite(r.mx, flags)
+    out[MFO.Fy], flags = _finite(m * r.fy, flags)
+    out[MFO.Mx], flags = _finite(m * r.mx, flags)
     out[MFO.My], flags = _finite(r.my, flags)
-    out[MFO.Mz], flags = _finite(r.mz, flags)
+    out[MFO.Mz], flags = _finite(m * r.mz, flags)
     if out.shape[0] > MFO.flags:
         out[MFO.flags] = flags
 
 
 @numba.njit(cache=True, error_model="numpy")
 def mf_evaluate(c, use_mode, fz, kappa, alpha, gamma, vx, pressure, out):
-    """Every MFeval output of one sample, in the order of ``OUTPUTS``, into ``out``."""
+    """Every MFeval output of one sample, in the order of ``OUTPUTS``, into ``out`` (a mirrored
+    tyre's, :func:`mirror_sign`, with its Fy, Mx, Mz, Mzr and slip angles turned over)."""
+    m = mirror_sign(c)
     (fx, fy, mx, my, mz, flags, fz_u, fz_c, fz_low, kappa_out, alpha_c, alpha_out, gamma_c, p,
-     dpi, t, mux, muy, mzr, kya, kxk) = _steady_state(c, use_mode, fz, kappa, alpha, gamma, vx,
-                                                        pressure)
+     dpi, t, mux, muy, mzr, kya, kxk) = _steady_state(c, use_mode, fz, kappa, m * alpha, m * gamma,
+                                                        vx, pressure)
     check = decode_use_mode(use_mode)[0]
     re, r_omega, omega = effective_rolling_radius(c, fz_u, kappa, vx, dpi)
     if c[C.VERSION] == 62.0:
@@ -173,14 +187,14 @@ def mf_evaluate(c, use_mode, fz, kappa, alpha, gamma, vx, pressure, out):
     a, b = contact_patch(c, fz_u, dpi)
     cx, cy, sx, sy = relaxation(c, fz_c, gamma_c, dpi, kxk, kya)
     out[MFO.Fx] = fx
-    out[MFO.Fy] = fy
-    out[MFO.Mx] = mx
+    out[MFO.Fy] = m * fy
+    out[MFO.Mx] = m * mx
     out[MFO.My] = my
-    out[MFO.Mz] = mz
+    out[MFO.Mz] = m * mz
     out[MFO.flags] = float(flags)
     out[MFO.Fz] = fz_u
     out[MFO.kappa] = kappa_out
-    out[MFO.alpha] = alpha_out
+    out[MFO.alpha] = m * alpha_out
     out[MFO.gamma] = gamma
     out[MFO.Vx] = vx
     out[MFO.P] = p
@@ -193,7 +207,7 @@ def mf_evaluate(c, use_mode, fz, kappa, alpha, gamma, vx, pressure, out):
     out[MFO.omega] = omega
     out[MFO.Rl] = rl
     out[MFO.contact_width_2b] = 2.0 * b
-    out[MFO.Mzr] = mzr
+    out[MFO.Mzr] = m * mzr
     out[MFO.Cx] = cx
     out[MFO.Cy] = cy
     out[MFO.Cz] = cz
@@ -201,7 +215,7 @@ def mf_evaluate(c, use_mode, fz, kappa, alpha, gamma, vx, pressure, out):
     out[MFO.sigmax] = sx
     out[MFO.sigmay] = sy
     out[MFO.Kxk] = kxk
-    out[MFO.alpha_used] = alpha_c
+    out[MFO.alpha_used] = m * alpha_c
     bad = False
     for i in range(N_OUTPUTS):  # a non-finite output is reported as 0 and flagged
         if not math.isfinite(out[i]):
@@ -217,7 +231,7 @@ def mf_relaxation_lengths(c, use_mode, fz, gamma, vx, pressure):
     ``gamma`` [rad], speed ``vx`` [m/s] and ``pressure`` [Pa] (MFeval's ``sigmax``,
     ``sigmay``: :func:`.geometry.relaxation` with the slip stiffnesses at the load, which
     do not depend on the slip)."""
-    r = _steady_state(c, use_mode, fz, 0.0, 0.0, gamma, vx, pressure)
+    r = _steady_state(c, use_mode, fz, 0.0, 0.0, mirror_sign(c) * gamma, vx, pressure)
     sx, sy = relaxation(c, r.fz, r.gamma, r.dpi, r.kxk, r.kya)[2:]
     return (sx if math.isfinite(sx) else 0.0), (sy if math.isfinite(sy) else 0.0)
 

@@ -11,7 +11,7 @@ from ...registry import HandlingModel, register_handling
 from ..slip import DKAPPA, slip
 from . import coefficient_index as C
 from .geometry import free_radius, radius_drop
-from .kernel import MFO, mf_forces, mf_relaxation_lengths
+from .kernel import MFO, mf_forces, mf_relaxation_lengths, mirror_sign
 from .moments import overturning_moment, rolling_resistance
 
 #: the MFeval use mode the rigs run (limit checks and low-speed model on)
@@ -94,7 +94,7 @@ def mf_rolling_moment(params, fz, fx, v_long, omega, kappa, gamma, radius):
     c = params.coefficients
     pressure = params.pressure if params.pressure > 0.0 else c[C.INFLPRES]
     sense = 1.0 if v_long >= 0.0 else -1.0
-    return rolling_resistance(c, fz, fx, sense * kappa, gamma, v_long, pressure)
+    return rolling_resistance(c, fz, fx, sense * kappa, mirror_sign(c) * gamma, v_long, pressure)
 
 
 @nb.njit(cache=True)
@@ -104,7 +104,16 @@ def mf_overturning(params, fz, fy, v_long, gamma):
     force the wheel carries and its inclination."""
     c = params.coefficients
     pressure = params.pressure if params.pressure > 0.0 else c[C.INFLPRES]
-    return overturning_moment(c, fz, fy, gamma, (pressure - c[C.NOMPRES]) / c[C.NOMPRES])
+    m = mirror_sign(c)  # a mirrored tyre's: the file's at the mirrored force and inclination
+    return m * overturning_moment(c, fz, m * fy, m * gamma, (pressure - c[C.NOMPRES]) / c[C.NOMPRES])
+
+
+def mf_mirrored(params: MagicFormulaParams) -> MagicFormulaParams:
+    """The record of the same tyre mirrored (its ``MIRRORED`` slot turned over: a file already
+    mirrored by a negative USE_MODE comes back to itself), :func:`.kernel.mirror_sign`."""
+    coefficients = params.coefficients.copy()
+    coefficients[C.MIRRORED] = 0.0 if coefficients[C.MIRRORED] != 0.0 else 1.0
+    return params._replace(coefficients=coefficients)
 
 
 register_handling(HandlingModel("mf", MagicFormulaParams, magic_formula_params, mf_wheel_forces,
@@ -112,4 +121,4 @@ register_handling(HandlingModel("mf", MagicFormulaParams, magic_formula_params, 
                                 rolling_radius=mf_rolling_radius,
                                 relaxation_lengths=mf_wheel_relaxation,
                                 rolling_resistance=mf_rolling_moment,
-                                overturning=mf_overturning))
+                                overturning=mf_overturning, mirror=mf_mirrored))
