@@ -227,19 +227,6 @@ def rolling_moment(params, fz, fx, v_long, omega, kappa, gamma, radius):
     raise NotImplementedError("compiled only")
 
 
-@overload(rolling_moment)
-def _rolling_moment(params, fz, fx, v_long, omega, kappa, gamma, radius):
-    own = handling_by_record(params).rolling_resistance
-    if own is None:
-        def impl(params, fz, fx, v_long, omega, kappa, gamma, radius):
-            return 0.0
-        return impl
-
-    def impl(params, fz, fx, v_long, omega, kappa, gamma, radius):  # noqa: F811 - the other branch's
-        return own(params, fz, fx, v_long, omega, kappa, gamma, radius)
-    return impl
-
-
 def overturning_moment(params, fz, fy, v_long, gamma):
     """The overturning moment Mx [N m] of the handling model of ``params`` about the W-axis x
     at the contact point (:attr:`~tyrelab.tyre.registry.HandlingModel.overturning`); 0 for a
@@ -247,17 +234,25 @@ def overturning_moment(params, fz, fy, v_long, gamma):
     raise NotImplementedError("compiled only")
 
 
-@overload(overturning_moment)
-def _overturning_moment(params, fz, fy, v_long, gamma):
-    own = handling_by_record(params).overturning
-    if own is None:
-        def impl(params, fz, fy, v_long, gamma):
-            return 0.0
+def _moment_or_zero(stub, hook: str) -> None:
+    """Compile ``stub(params, ...)`` as the handling model's optional moment ``hook`` (an
+    attribute of :class:`~tyrelab.tyre.registry.HandlingModel`) called with the same
+    arguments, or as 0.0 for a model without it (decided at compile time)."""
+    @overload(stub)
+    def _dispatch(params, *args):
+        own = getattr(handling_by_record(params), hook)
+        if own is None:
+            def impl(params, *args):
+                return 0.0
+            return impl
+
+        def impl(params, *args):  # noqa: F811 - the other branch's
+            return own(params, *args)
         return impl
 
-    def impl(params, fz, fy, v_long, gamma):  # noqa: F811 - the other branch's
-        return own(params, fz, fy, v_long, gamma)
-    return impl
+
+_moment_or_zero(rolling_moment, "rolling_resistance")
+_moment_or_zero(overturning_moment, "overturning")
 
 
 def wheel_step(wheel, pose, dt):
