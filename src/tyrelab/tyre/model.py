@@ -329,7 +329,7 @@ def measured_side(tir) -> str | None:
     ``[MODEL] TYRESIDE``; None for 'UNKNOWN', 'SYMMETRIC' or no key (nothing to mirror by:
     Chrono reads 'UNKNOWN' as left, an assumption not made here)."""
     value = tir.get("MODEL", "TYRESIDE") if tir is not None else None
-    word = str(value).strip().strip("'\"").lower() if isinstance(value, str) else ""
+    word = value.strip().lower() if isinstance(value, str) else ""  # the reader strips the quotes
     return word if word in ("left", "right") else None
 
 

@@ -278,8 +278,7 @@ def pack(tir: TirFile, version: str | None = None) -> tuple[np.ndarray, str]:
     values[INDEX["QA1_EFF"]], values[INDEX["QA2_EFF"]] = qa1, qa2
     values[INDEX["FRICTION_ELLIPSE"]] = _friction_ellipse(tir)
     use_mode = tir.get("MODEL", "USE_MODE")
-    mirrored = isinstance(use_mode, (int, float)) and not isinstance(use_mode, bool) and use_mode < 0
-    values[INDEX["MIRRORED"]] = 1.0 if mirrored else 0.0
+    values[INDEX["MIRRORED"]] = 1.0 if isinstance(use_mode, (int, float)) and use_mode < 0 else 0.0
     _warn_mixed_mx(values, tir.source)
     return values, version
 
@@ -290,7 +289,7 @@ def _friction_ellipse(tir: TirFile) -> float:
     section, raw = _locate(tir, "FE_METHOD")
     if section is None:
         return 0.0
-    word = str(raw).strip().strip("'\"").upper()
+    word = str(raw).strip().upper()  # the reader strips the quotes
     if word in ("YES", "NO"):
         return 1.0 if word == "YES" else 0.0
     raise InputError(f"FE_METHOD must be 'YES' or 'NO', found {raw!r}", source=tir.source,

@@ -62,7 +62,7 @@ def clip_curvature(e, check, flags):
 def pure_fx(c, fz, kappa, gamma, dfz, dpi, vx, smooth, check, flags):
     """Pure longitudinal force Fx0 (4.E9-4.E18).
 
-    Returns (Fx0, mux, Kxk, flags); Kxk is the slip stiffness (4.E15).
+    Returns (Fx0, mux, Kxk, SHx, SVx, flags); Kxk is the slip stiffness (4.E15).
     Shifts SHx, SVx are scaled by ``smooth`` below VXLOW; Fx0 changes sign
     for Vx < 0.
     """
@@ -84,7 +84,7 @@ def pure_fx(c, fz, kappa, gamma, dfz, dpi, vx, smooth, check, flags):
     fx0 = magic(bx, cx, dx, ex, kx) + svx  # (4.E9)
     if vx < 0.0:
         fx0 = -fx0
-    return fx0, mux, kxk, flags
+    return fx0, mux, kxk, shx, svx, flags
 
 
 @numba.njit(cache=True, error_model="numpy")
@@ -165,8 +165,8 @@ def kappa_induced_fy(c, fz, muy, kappa, alpha_s, gamma_s, dfz, smooth):
 
 
 @numba.njit(cache=True, error_model="numpy")
-def friction_ellipse_weights(c, fz, kappa, alpha_s, dfz, vx, smooth, star, fx0, fy0, mux, muy,
-                             kxk, kya, shy, svy):
+def friction_ellipse_weights(fz, kappa, alpha_s, vx, star, fx0, fy0, mux, muy, kxk, kya, shx, svx,
+                             shy, svy):
     """Weights ``(Gx, Gy)`` of the friction ellipse, the combined slip of a file with
     ``FE_METHOD = 'YES'`` (in place of Pacejka's Gxa, Gyk, 4.E51 and 4.E59; no SVyk).
 
@@ -180,13 +180,12 @@ def friction_ellipse_weights(c, fz, kappa, alpha_s, dfz, vx, smooth, star, fx0, 
         mu_y = tan(beta) / sqrt(1 / mu_x,max^2 + tan(beta)^2 / mu_y0^2)
 
     with ``mu_x0 = |Fx0 - SVx| / Fz``, ``mu_y0 = |Fy0 - SVy| / Fz`` and the peaks
-    ``mu_max = |D| / Fz``. Written here without the angle, so that it holds at zero slip:
+    ``mu_max = |D| / Fz`` (the shifts and stiffnesses those of :func:`pure_fx` and
+    :func:`pure_fy`). Written here without the angle, so that it holds at zero slip:
     ``Gx = |kc| Dy / sqrt((kc Dy)^2 + ((Fx0 - SVx) ac)^2)``,
     ``Gy = |ac| Dx / sqrt(((Fy0 - SVy) kc)^2 + (ac Dx)^2)``; a pure slip (``ac = 0`` or
     ``kc = 0``) leaves its own force whole (weight 1) and takes the other's away.
     """
-    shx = (c[C.PHX1] + c[C.PHX2] * dfz) * c[C.LHX] * smooth  # (4.E17)
-    svx = fz * (c[C.PVX1] + c[C.PVX2] * dfz) * c[C.LVX] * c[C.LMUX] * smooth  # (4.E18)
     kc = kappa + shx + (svx / kxk if kxk != 0.0 else 0.0)
     ac = math.sin(alpha_s + shy + (svy / kya if kya != 0.0 else 0.0))
     fx_own = (-fx0 if vx < 0.0 else fx0) - svx  # the curve's own part, before 4.E9's sign turn

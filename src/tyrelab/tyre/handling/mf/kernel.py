@@ -80,12 +80,12 @@ def _steady_state(c, use_mode, fz, kappa, alpha, gamma, vx, pressure):
     vc = math.sqrt(vx * vx + (math.tan(alpha) * abs(vx)) ** 2)
     cos_alpha_prime = vx / (vc + 1e-6)  # cos(alpha') (4.E6, 4.E6a), |Vx| <= Vc
 
-    fx0, mux, kxk, flags = pure_fx(c, fz, kappa, gamma, dfz, dpi, vx, smooth, check, flags)
+    fx0, mux, kxk, shx, svx, flags = pure_fx(c, fz, kappa, gamma, dfz, dpi, vx, smooth, check, flags)
     fy0, muy, kya, shy, svy, by, cy, flags = pure_fy(c, fz, alpha_s, gamma_s, dfz, dpi, vx,
                                                      smooth, star, check, flags)
     if c[C.FRICTION_ELLIPSE] != 0.0:  # FE_METHOD = 'YES' (coefficients module docstring)
-        gxa, gyk = friction_ellipse_weights(c, fz, kappa, alpha_s, dfz, vx, smooth, star, fx0,
-                                            fy0, mux, muy, kxk, kya, shy, svy)
+        gxa, gyk = friction_ellipse_weights(fz, kappa, alpha_s, vx, star, fx0, fy0, mux, muy, kxk,
+                                            kya, shx, svx, shy, svy)
         svyk = 0.0
     else:
         gxa, flags = combined_fx_weight(c, kappa, alpha_s, gamma_s, dfz, check, flags)
