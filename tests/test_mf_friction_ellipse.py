@@ -109,14 +109,20 @@ def test_combined_slip_is_the_friction_ellipse_of_the_pure_curves(text, load):
             assert got["Fy"][i, j] == pytest.approx(fy, rel=1e-9, abs=1e-6)
 
 
-def test_braking_takes_the_side_force_away_as_the_file_asks(text):
-    """With RBY1 = 0 Pacejka's weighting leaves the side force whole under any braking slip;
-    the ellipse the file asks for takes it away as the braking force grows."""
+@pytest.mark.parametrize("alpha", [0.02, 0.05, 0.1, 0.2])
+def test_braking_takes_the_side_force_away_as_the_file_asks(text, alpha):
+    """With RBY1 = 0 Pacejka's weighting leaves the side force whole under any braking slip,
+    the resultant outside the friction ellipse of the two peaks; the ellipse the file asks
+    for takes the side force away as the braking force grows and keeps the resultant inside
+    ``(Fx / Dx)^2 + (Fy / Dy)^2 <= 1`` (Dx, Dy the peaks at FNOMIN, typed from the file)."""
     kappas = np.linspace(0.0, -0.8, 81)
-    pacejka = evaluate(mf_of(text.replace("'YES'", "'NO'")), FNOMIN, kappas, 0.05)["Fy"]
-    assert np.ptp(pacejka) < 1e-9 * abs(pacejka[0])
-    fy = np.abs(evaluate(mf_of(text), FNOMIN, kappas, 0.05)["Fy"])
-    assert np.all(np.diff(fy) < 0.0) and fy[-1] < 0.15 * fy[0]
+    dx, dy = PDX1 * FNOMIN, abs(PDY1) * FNOMIN
+    pacejka = evaluate(mf_of(text.replace("'YES'", "'NO'")), FNOMIN, kappas, alpha)
+    assert np.ptp(pacejka["Fy"]) < 1e-9 * abs(pacejka["Fy"][0])
+    assert ((pacejka["Fx"] / dx) ** 2 + (pacejka["Fy"] / dy) ** 2).max() > 1.0
+    ellipse = evaluate(mf_of(text), FNOMIN, kappas, alpha)
+    assert np.all(np.diff(np.abs(ellipse["Fy"])) < 0.0)
+    assert ((ellipse["Fx"] / dx) ** 2 + (ellipse["Fy"] / dy) ** 2).max() <= 1.0
 
 
 def test_a_friction_ellipse_switch_that_is_neither_yes_nor_no_is_refused(text):
